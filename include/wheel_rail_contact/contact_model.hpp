@@ -1,0 +1,60 @@
+/// One interface for every creep-force model, advanced one time step per call.
+/// Units: time s, speed m/s, creepages xi, eta [-], spin phi [1/m], forces N, moment N m, lengths
+/// m.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "wheel_rail_contact/contact_parameters.hpp"
+
+namespace wheel_rail_contact {
+
+struct StepInput {
+  double dt = 0.0;   ///< time since the previous step [s] (ignored by the steady model)
+  double V = 0.0;    ///< rolling speed [m/s]
+  double xi = 0.0;   ///< longitudinal creepage [-]
+  double eta = 0.0;  ///< lateral creepage [-]
+  double phi = 0.0;  ///< spin [1/m]
+  double fz = 0.0;   ///< normal load [N]
+};
+
+enum class StepStatus {
+  kOk = 0,
+  kNoLoad,      ///< fz <= 0: zero force, history cleared
+  kStandstill,  ///< V == 0: no travel, state and forces held
+  kRejected,    ///< non-finite or out-of-range input: zero force, state untouched
+};
+const char* toString(StepStatus s);
+
+struct StepOutput {
+  double fx = 0.0;                ///< [N]
+  double fy = 0.0;                ///< [N]
+  double mz = 0.0;                ///< [N m]
+  double fz = 0.0;                ///< load used [N]
+  double a = 0.0;                 ///< patch semi-axis along x [m]
+  double b = 0.0;                 ///< patch semi-axis along y [m]
+  double adhesionFraction = 0.0;  ///< [-]
+  StepStatus status = StepStatus::kOk;
+  std::string message;  ///< why, when status != kOk
+};
+
+class ContactModel {
+ public:
+  virtual ~ContactModel() = default;
+  /// Advance one step. Never throws for bad input and never returns non-finite forces: such input
+  /// gives status kRejected with zero forces and leaves the state as it was.
+  virtual StepOutput step(const StepInput& in) = 0;
+  /// Clear every piece of state: the next outputs equal those of a fresh model.
+  virtual void reset() = 0;
+  virtual std::string name() const = 0;
+};
+
+/// The model named by p.model. Validates p (std::invalid_argument naming the parameter).
+/// Throws std::invalid_argument for a model this build does not provide, saying so.
+std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p);
+
+/// Checks shared by every model: finite fields, dt >= 0. Returns an empty string if fine, else why.
+std::string checkStepInput(const StepInput& in);
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,46 @@
+/// The configuration shared by contact_cli (options --NAME) and contact_node (private params
+/// ~NAME): one name, one default, one validity rule for each. Units: G Pa, lengths m, forces N.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace wheel_rail_contact {
+
+struct ContactParameters {
+  double G = 8.2e10;             ///< shear modulus of wheel and rail [Pa]
+  double nu = 0.28;              ///< Poisson ratio [-]
+  double mu = 0.3;               ///< Coulomb friction coefficient [-]
+  double a0 = 6.0e-3;            ///< reference semi-axis along x at fz0 [m]
+  double b0 = 4.0e-3;            ///< reference semi-axis along y at fz0 [m]
+  double fz0 = 8.0e4;            ///< reference normal load [N]
+  int nx = 20;                   ///< FastSim nodes per strip [-]
+  int ny = 20;                   ///< FastSim strips [-]
+  std::string model = "steady";  ///< steady | shen-li | nss | exact
+  std::string mesh = "fixed";    ///< fixed | adaptive
+  /// Largest normal load the fixed mesh must cover [N]; 0 = 1.5 * fz0.
+  double fz_max = 0.0;
+  /// chi table file for nss; empty = the table shipped in the package (config/chi_table.csv).
+  std::string chi_table;
+};
+
+/// One parameter's name, default and meaning, for --help and the node's documentation.
+struct ParameterDoc {
+  std::string name;
+  std::string unit;
+  std::string default_value;
+  std::string meaning;
+};
+std::vector<ParameterDoc> parameterDocs();
+
+/// Throws std::invalid_argument whose message starts with the offending parameter's name.
+void validate(const ContactParameters& p);
+
+/// Set one parameter from text (the CLI and YAML paths). Throws std::invalid_argument naming the
+/// parameter on an unknown name or a value that does not parse.
+void setParameter(ContactParameters* p, const std::string& name, const std::string& value);
+
+/// fz_max resolved (0 -> 1.5 fz0).
+double effectiveFzMax(const ContactParameters& p);
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,61 @@
+/// Kalker's FastSim (J.J. Kalker, A fast algorithm for the simplified theory of rolling contact,
+/// Vehicle System Dynamics 11, 1982) on a PatchMesh, with the parabolic traction bound.
+/// Units: N, m, Pa; flexibilities m/Pa; creepages xi, eta [-], spin phi [1/m].
+/// Sign: forces act on the wheel; positive creepage gives a negative force.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "wheel_rail_contact/kalker_coefficients.hpp"
+#include "wheel_rail_contact/patch_mesh.hpp"
+
+namespace wheel_rail_contact {
+
+/// Kalker's flexibilities of the simplified theory [m/Pa]:
+/// L1 = 8a/(3 C11 G), L2 = 8a/(3 C22 G), L3 = pi a sqrt(a/b)/(4 C23 G).
+struct Flexibilities {
+  double L1 = 0.0;
+  double L2 = 0.0;
+  double L3 = 0.0;
+};
+Flexibilities kalkerFlexibilities(double a, double b, double G, const CreepCoefficients& c);
+
+struct Creepages {
+  double xi = 0.0;   ///< longitudinal [-]
+  double eta = 0.0;  ///< lateral [-]
+  double phi = 0.0;  ///< spin [1/m]
+};
+
+/// Integrated result of one FastSim evaluation.
+struct CreepForces {
+  double fx = 0.0;                ///< [N]
+  double fy = 0.0;                ///< [N]
+  double mz = 0.0;                ///< spin moment about the patch centre [N m]
+  double adhesionFraction = 1.0;  ///< loaded area in adhesion / loaded area [-]
+};
+
+/// Per-node fields on a PatchMesh (index = mesh.index(i, j)).
+struct TractionField {
+  Eigen::ArrayXd tx;                           ///< traction on the wheel along x [Pa]
+  Eigen::ArrayXd ty;                           ///< traction along y [Pa]
+  Eigen::ArrayXd bound;                        ///< mu * pressure, the Coulomb bound [Pa]
+  Eigen::Array<bool, Eigen::Dynamic, 1> slip;  ///< node saturated
+  void resize(int n);
+};
+
+/// Parabolic pressure of the simplified theory, p = p_s (1 - x^2/a^2 - y^2/b^2) for an ellipse
+/// (a, b) on `mesh` (which may be larger than the ellipse), scaled so that the mesh's own
+/// quadrature integrates it to exactly fz: saturated FastSim then gives exactly mu*fz. Writes mu*p
+/// to `bound`.
+void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
+                    Eigen::ArrayXd* bound);
+
+/// Sum of the traction field into forces and moment (trapezoid in x, midpoint in y).
+CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& field);
+
+/// Steady FastSim: marches each strip from the leading edge in adhesion, saturates at the bound.
+/// `field.bound` must be filled (parabolicBound); tx, ty and slip are written.
+CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
+                          TractionField* field);
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,51 @@
+/// Strip mesh of an elliptic contact patch, Kalker's FastSim layout, reused by every FastSim model.
+/// Units: lengths m, areas m^2. Coordinates: x rolling (material enters at x = +a), y lateral.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace wheel_rail_contact {
+
+/// ny strips of equal width 2b/ny across y in [-b, b]. Strip j (centre y_j) spans
+/// |x| <= a_j = a sqrt(1 - y_j^2/b^2) and holds nx elements of length dx_j = 2 a_j / nx, with one
+/// node at each element centre: x_ij = a_j - (i + 1/2) dx_j, i = 0 at the leading edge. Centre
+/// nodes make the midpoint rule exact for the linear adhesion traction, so small creepage
+/// reproduces linear theory. The mesh is stored in normalised coordinates (x/a, y/b), so one mesh
+/// serves every patch size: scale() changes a and b only.
+class PatchMesh {
+ public:
+  PatchMesh() = default;
+  /// Throws std::invalid_argument if nx < 2, ny < 1, a <= 0 or b <= 0.
+  PatchMesh(int nx, int ny, double a, double b);
+
+  int nx() const { return nx_; }
+  int ny() const { return ny_; }
+  int size() const { return nx_ * ny_; }
+  int index(int i, int j) const { return j * nx_ + i; }
+  double a() const { return a_; }
+  double b() const { return b_; }
+  /// Re-size the patch to semi-axes (a, b) keeping the normalised layout.
+  void scale(double a, double b);
+
+  double stripWidth() const { return 2.0 * b_ / ny_; }                     ///< dy [m]
+  double stripY(int j) const { return b_ * yNorm_(j); }                    ///< y_j [m]
+  double stripHalfLength(int j) const { return a_ * halfNorm_(j); }        ///< a_j [m]
+  double stripStep(int j) const { return 2.0 * a_ * halfNorm_(j) / nx_; }  ///< dx_j [m]
+  double nodeX(int i, int j) const { return a_ * xNorm(i, j); }            ///< x_ij [m]
+  /// Normalised node coordinate x_ij / a.
+  double xNorm(int i, int j) const { return halfNorm_(j) * (1.0 - (2.0 * i + 1.0) / nx_); }
+  double yNorm(int j) const { return yNorm_(j); }        ///< y_j / b
+  double halfNorm(int j) const { return halfNorm_(j); }  ///< a_j / a
+  /// Area a node stands for, dx_j * dy [m^2] (midpoint rule).
+  double nodeArea(int j) const { return stripStep(j) * stripWidth(); }
+
+ private:
+  int nx_ = 0;
+  int ny_ = 0;
+  double a_ = 0.0;
+  double b_ = 0.0;
+  Eigen::ArrayXd yNorm_;     ///< y_j / b, size ny
+  Eigen::ArrayXd halfNorm_;  ///< a_j / a, size ny
+};
+
+}  // namespace wheel_rail_contact

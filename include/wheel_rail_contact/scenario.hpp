@@ -1,0 +1,32 @@
+/// Scenario files: the input histories contact_cli replays, one row per time step.
+/// CSV with a header naming at least t,V,xi,eta,phi,fz (s, m/s, -, -, 1/m, N), any column order,
+/// extra columns ignored, '#' lines are comments.
+#pragma once
+
+#include <istream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace wheel_rail_contact {
+
+struct ScenarioRow {
+  double t = 0.0;    ///< [s]
+  double V = 0.0;    ///< [m/s]
+  double xi = 0.0;   ///< [-]
+  double eta = 0.0;  ///< [-]
+  double phi = 0.0;  ///< [1/m]
+  double fz = 0.0;   ///< [N]
+};
+
+/// A malformed scenario: what() names the source, line and field.
+class ScenarioError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Reads a whole scenario. Every value must be a finite number and t must increase strictly.
+/// `source` names the input in messages. Throws ScenarioError.
+std::vector<ScenarioRow> readScenario(std::istream& in, const std::string& source);
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,29 @@
+/// Steady FastSim as a ContactModel: no memory, the patch follows the Hertz scaling of the load.
+/// Units as in contact_model.hpp.
+#pragma once
+
+#include "wheel_rail_contact/contact_model.hpp"
+#include "wheel_rail_contact/fastsim.hpp"
+#include "wheel_rail_contact/hertz.hpp"
+
+namespace wheel_rail_contact {
+
+class SteadyModel : public ContactModel {
+ public:
+  explicit SteadyModel(const ContactParameters& p);
+  StepOutput step(const StepInput& in) override;
+  void reset() override { last_ = StepOutput(); }
+  std::string name() const override { return "steady"; }
+  const TractionField& traction() const { return field_; }
+  const PatchMesh& mesh() const { return mesh_; }
+
+ private:
+  ContactParameters p_;
+  ReferencePatch ref_;
+  CreepCoefficients c_;
+  PatchMesh mesh_;
+  TractionField field_;
+  StepOutput last_;  // held at standstill
+};
+
+}  // namespace wheel_rail_contact

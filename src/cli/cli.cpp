@@ -1,0 +1,119 @@
+#include "cli.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "wheel_rail_contact/contact_model.hpp"
+#include "wheel_rail_contact/scenario.hpp"
+
+namespace wheel_rail_contact {
+
+namespace {
+
+struct Options {
+  std::string command;
+  std::map<std::string, std::string> values;  // --name value, in order of appearance
+  std::vector<std::string> names;
+};
+
+const char* kUsage =
+    "usage: contact_cli run --scenario FILE.csv [--model M] [--OPTION VALUE ...]\n"
+    "       contact_cli --help\n"
+    "\n"
+    "run: replays a scenario CSV (header t,V,xi,eta,phi,fz in s, m/s, -, -, 1/m, N; one row per\n"
+    "     time step, t strictly increasing) through one model and writes CSV to stdout:\n"
+    "     t,fx,fy,mz,fz,a,b,adhesion_fraction,status (N, N, N m, N, m, m, -, text).\n"
+    "     dt of a row is its t minus the previous row's; the first row starts from zero\n"
+    "     traction history. The patch follows a = a0 (fz/fz0)^(1/3), b = b0 (fz/fz0)^(1/3).\n"
+    "     Rows the model refuses (V < 0) are written with zero forces and their status.\n";
+
+Options parse(const std::vector<std::string>& args) {
+  Options o;
+  size_t k = 0;
+  if (k < args.size() && args[k].rfind("--", 0) != 0) o.command = args[k++];
+  for (; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    if (a == "--help" || a == "-h") {
+      o.command = "help";
+      return o;
+    }
+    if (a.rfind("--", 0) != 0) throw std::invalid_argument("unexpected argument '" + a + "'");
+    if (k + 1 >= args.size()) throw std::invalid_argument(a + ": missing value");
+    const std::string name = a.substr(2);
+    if (!o.values.count(name)) o.names.push_back(name);
+    o.values[name] = args[++k];
+  }
+  return o;
+}
+
+void printHelp(std::ostream& out) {
+  out << kUsage << "\noptions (shared with contact_node's private parameters):\n";
+  out << "  --scenario FILE   scenario CSV (run)\n";
+  for (const auto& d : parameterDocs()) {
+    char line[200];
+    std::snprintf(line, sizeof line, "  --%-10s %-4s default %-10s %s\n", d.name.c_str(),
+                  d.unit.c_str(), d.default_value.c_str(), d.meaning.c_str());
+    out << line;
+  }
+}
+
+ContactParameters parametersFrom(const Options& o) {
+  ContactParameters p;
+  for (const auto& name : o.names)
+    if (name != "scenario") setParameter(&p, name, o.values.at(name));
+  validate(p);
+  return p;
+}
+
+void writeRow(std::ostream& out, double t, const StepOutput& s) {
+  char line[512];
+  std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%s\n", t, s.fx,
+                s.fy, s.mz, s.fz, s.a, s.b, s.adhesionFraction, toString(s.status));
+  out << line;
+}
+
+int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
+  const ContactParameters p = parametersFrom(o);
+  if (!o.values.count("scenario")) throw std::invalid_argument("run: --scenario FILE is required");
+  const std::string file = o.values.at("scenario");
+  std::ifstream in(file);
+  if (!in) throw std::invalid_argument("scenario: cannot open '" + file + "'");
+  const std::vector<ScenarioRow> rows = readScenario(in, file);
+  auto model = makeContactModel(p);
+  out << "t,fx,fy,mz,fz,a,b,adhesion_fraction,status\n";
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const ScenarioRow& r = rows[k];
+    const double dt = k == 0 ? 0.0 : r.t - rows[k - 1].t;
+    const StepOutput s = model->step({dt, r.V, r.xi, r.eta, r.phi, r.fz});
+    if (s.status == StepStatus::kRejected)
+      err << file << ": row at t = " << r.t << ": " << s.message << "\n";
+    writeRow(out, r.t, s);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  try {
+    const Options o = parse(args);
+    if (o.command == "help") {
+      printHelp(out);
+      return 0;
+    }
+    if (o.command == "run") return runCommand(o, out, err);
+    err << "contact_cli: "
+        << (o.command.empty() ? "missing command" : "unknown command '" + o.command + "'") << "\n"
+        << kUsage;
+    return 2;
+  } catch (const std::exception& e) {
+    err << "contact_cli: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace wheel_rail_contact

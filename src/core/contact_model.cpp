@@ -1,0 +1,41 @@
+#include "wheel_rail_contact/contact_model.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "wheel_rail_contact/steady_model.hpp"
+
+namespace wheel_rail_contact {
+
+const char* toString(StepStatus s) {
+  switch (s) {
+    case StepStatus::kOk:
+      return "ok";
+    case StepStatus::kNoLoad:
+      return "no load";
+    case StepStatus::kStandstill:
+      return "standstill";
+    case StepStatus::kRejected:
+      return "rejected input";
+  }
+  return "unknown";
+}
+
+std::string checkStepInput(const StepInput& in) {
+  if (!std::isfinite(in.dt)) return "dt is not finite";
+  if (!std::isfinite(in.V)) return "V is not finite";
+  if (!std::isfinite(in.xi)) return "xi is not finite";
+  if (!std::isfinite(in.eta)) return "eta is not finite";
+  if (!std::isfinite(in.phi)) return "phi is not finite";
+  if (!std::isfinite(in.fz)) return "fz is not finite";
+  if (in.dt < 0.0) return "dt is negative";
+  return {};
+}
+
+std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
+  validate(p);
+  if (p.model == "steady") return std::make_unique<SteadyModel>(p);
+  throw std::invalid_argument("model: '" + p.model + "' is not available in this build yet");
+}
+
+}  // namespace wheel_rail_contact

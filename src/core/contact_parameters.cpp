@@ -1,0 +1,113 @@
+#include "wheel_rail_contact/contact_parameters.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+#include "wheel_rail_contact/kalker_coefficients.hpp"
+
+namespace wheel_rail_contact {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& name, const std::string& why) {
+  throw std::invalid_argument(name + ": " + why);
+}
+
+double parseDouble(const std::string& name, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
+    fail(name, "expected a finite number, got '" + text + "'");
+  return v;
+}
+
+int parseInt(const std::string& name, const std::string& text) {
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || v < -1000000 || v > 1000000)
+    fail(name, "expected an integer, got '" + text + "'");
+  return static_cast<int>(v);
+}
+
+std::string str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<ParameterDoc> parameterDocs() {
+  const ContactParameters d;
+  return {
+      {"G", "Pa", str(d.G), "shear modulus of wheel and rail (> 0)"},
+      {"nu", "-", str(d.nu), "Poisson ratio, [0, 0.5]"},
+      {"mu", "-", str(d.mu), "Coulomb friction coefficient (>= 0)"},
+      {"a0", "m", str(d.a0), "reference semi-axis along the rolling direction at fz0 (> 0)"},
+      {"b0", "m", str(d.b0), "reference lateral semi-axis at fz0 (> 0; a0/b0 in [0.1, 10])"},
+      {"fz0", "N", str(d.fz0), "reference normal load; a, b scale as (fz/fz0)^(1/3) (> 0)"},
+      {"nx", "-", std::to_string(d.nx), "FastSim nodes per strip, [2, 400]"},
+      {"ny", "-", std::to_string(d.ny), "FastSim strips, [1, 400]"},
+      {"model", "", d.model, "steady | shen-li | nss | exact"},
+      {"mesh", "", d.mesh, "fixed (grid for fz_max) | adaptive (grid follows the patch)"},
+      {"fz_max", "N", str(d.fz_max), "largest load the fixed mesh covers; 0 = 1.5 fz0"},
+      {"chi_table", "", "(shipped)", "chi table CSV for nss; empty = config/chi_table.csv"},
+  };
+}
+
+void validate(const ContactParameters& p) {
+  if (!(p.G > 0.0) || !std::isfinite(p.G)) fail("G", "must be > 0, got " + str(p.G));
+  if (!(p.nu >= 0.0 && p.nu <= 0.5)) fail("nu", "must be in [0, 0.5], got " + str(p.nu));
+  if (!(p.mu >= 0.0) || !std::isfinite(p.mu)) fail("mu", "must be >= 0, got " + str(p.mu));
+  if (!(p.a0 > 0.0) || !std::isfinite(p.a0)) fail("a0", "must be > 0, got " + str(p.a0));
+  if (!(p.b0 > 0.0) || !std::isfinite(p.b0)) fail("b0", "must be > 0, got " + str(p.b0));
+  if (!(p.fz0 > 0.0) || !std::isfinite(p.fz0)) fail("fz0", "must be > 0, got " + str(p.fz0));
+  const double ab = p.a0 / p.b0;
+  if (!(ab >= kKalkerMinAOverB && ab <= kKalkerMaxAOverB))
+    fail("b0", "a0/b0 = " + str(ab) + " is outside Kalker's table [0.1, 10]");
+  if (p.nx < 2 || p.nx > 400) fail("nx", "must be in [2, 400], got " + std::to_string(p.nx));
+  if (p.ny < 1 || p.ny > 400) fail("ny", "must be in [1, 400], got " + std::to_string(p.ny));
+  if (p.model != "steady" && p.model != "shen-li" && p.model != "nss" && p.model != "exact")
+    fail("model", "must be one of steady, shen-li, nss, exact; got '" + p.model + "'");
+  if (p.mesh != "fixed" && p.mesh != "adaptive")
+    fail("mesh", "must be fixed or adaptive, got '" + p.mesh + "'");
+  if (!(p.fz_max >= 0.0) || !std::isfinite(p.fz_max))
+    fail("fz_max", "must be >= 0 (0 = 1.5 fz0), got " + str(p.fz_max));
+}
+
+void setParameter(ContactParameters* p, const std::string& name, const std::string& value) {
+  if (name == "G")
+    p->G = parseDouble(name, value);
+  else if (name == "nu")
+    p->nu = parseDouble(name, value);
+  else if (name == "mu")
+    p->mu = parseDouble(name, value);
+  else if (name == "a0")
+    p->a0 = parseDouble(name, value);
+  else if (name == "b0")
+    p->b0 = parseDouble(name, value);
+  else if (name == "fz0")
+    p->fz0 = parseDouble(name, value);
+  else if (name == "nx")
+    p->nx = parseInt(name, value);
+  else if (name == "ny")
+    p->ny = parseInt(name, value);
+  else if (name == "model")
+    p->model = value;
+  else if (name == "mesh")
+    p->mesh = value;
+  else if (name == "fz_max")
+    p->fz_max = parseDouble(name, value);
+  else if (name == "chi_table")
+    p->chi_table = value;
+  else
+    fail(name, "unknown parameter");
+}
+
+double effectiveFzMax(const ContactParameters& p) {
+  return p.fz_max > 0.0 ? p.fz_max : 1.5 * p.fz0;
+}
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,78 @@
+#include "wheel_rail_contact/scenario.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace wheel_rail_contact {
+
+namespace {
+
+const std::array<const char*, 6> kColumns = {"t", "V", "xi", "eta", "phi", "fz"};
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return {};
+  return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
+}
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(trim(cell));
+  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+[[noreturn]] void fail(const std::string& source, long line, const std::string& what) {
+  throw ScenarioError(source + ":" + std::to_string(line) + ": " + what);
+}
+
+}  // namespace
+
+std::vector<ScenarioRow> readScenario(std::istream& in, const std::string& source) {
+  std::string line;
+  long lineNo = 0;
+  std::array<int, 6> col{};
+  col.fill(-1);
+  bool haveHeader = false;
+  std::vector<ScenarioRow> rows;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    const std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    const auto cells = splitCsv(t);
+    if (!haveHeader) {
+      for (size_t c = 0; c < cells.size(); ++c)
+        for (size_t k = 0; k < kColumns.size(); ++k)
+          if (cells[c] == kColumns[k]) col[k] = static_cast<int>(c);
+      for (size_t k = 0; k < kColumns.size(); ++k)
+        if (col[k] < 0) fail(source, lineNo, std::string("missing column '") + kColumns[k] + "'");
+      haveHeader = true;
+      continue;
+    }
+    double v[6];
+    for (size_t k = 0; k < kColumns.size(); ++k) {
+      if (col[k] >= static_cast<int>(cells.size()))
+        fail(source, lineNo, std::string("field '") + kColumns[k] + "': missing value");
+      const std::string& cell = cells[col[k]];
+      char* end = nullptr;
+      v[k] = std::strtod(cell.c_str(), &end);
+      if (cell.empty() || end != cell.c_str() + cell.size())
+        fail(source, lineNo,
+             std::string("field '") + kColumns[k] + "': not a number ('" + cell + "')");
+      if (!std::isfinite(v[k]))
+        fail(source, lineNo,
+             std::string("field '") + kColumns[k] + "': not finite ('" + cell + "')");
+    }
+    if (!rows.empty() && !(v[0] > rows.back().t))
+      fail(source, lineNo, "field 't': time must increase strictly");
+    rows.push_back({v[0], v[1], v[2], v[3], v[4], v[5]});
+  }
+  if (!haveHeader) fail(source, lineNo, "no header line (expected t,V,xi,eta,phi,fz)");
+  return rows;
+}
+
+}  // namespace wheel_rail_contact

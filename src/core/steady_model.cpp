@@ -1,0 +1,53 @@
+#include "wheel_rail_contact/steady_model.hpp"
+
+namespace wheel_rail_contact {
+
+SteadyModel::SteadyModel(const ContactParameters& p)
+    : p_(p),
+      ref_{p.a0, p.b0, p.fz0},
+      c_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
+      mesh_(p.nx, p.ny, p.a0, p.b0) {
+  field_.resize(mesh_.size());
+}
+
+StepOutput SteadyModel::step(const StepInput& in) {
+  StepOutput out;
+  out.message = checkStepInput(in);
+  if (!out.message.empty()) {
+    out.status = StepStatus::kRejected;
+    return out;
+  }
+  if (in.V < 0.0) {
+    out.status = StepStatus::kRejected;
+    out.message = "rolling backwards (V < 0) is not modelled";
+    return out;
+  }
+  if (!(in.fz > 0.0)) {
+    out.status = StepStatus::kNoLoad;
+    out.message = "fz <= 0: no contact";
+    last_ = out;
+    return out;
+  }
+  if (in.V == 0.0) {
+    out = last_;
+    out.status = StepStatus::kStandstill;
+    out.message = "V = 0: no travel, forces held";
+    return out;
+  }
+  const HertzEllipse h = ref_.at(in.fz);
+  mesh_.scale(h.a, h.b);
+  parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_.bound);
+  const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, c_),
+                                      {in.xi, in.eta, in.phi}, &field_);
+  out.fx = f.fx;
+  out.fy = f.fy;
+  out.mz = f.mz;
+  out.fz = in.fz;
+  out.a = h.a;
+  out.b = h.b;
+  out.adhesionFraction = f.adhesionFraction;
+  last_ = out;
+  return out;
+}
+
+}  // namespace wheel_rail_contact

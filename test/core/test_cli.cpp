@@ -1,0 +1,142 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../../src/cli/cli.hpp"
+#include "wheel_rail_contact/kalker_coefficients.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+Result cli(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  const int code = runCli(args, out, err);
+  return {code, out.str(), err.str()};
+}
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::vector<std::vector<std::string>> parseCsv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string c;
+    while (std::getline(ss, c, ',')) cells.push_back(c);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST(ContactCli, RunSteadyReproducesLinearTheoryAndSaturation) {
+  const std::string f = writeTemp("lin.csv",
+                                  "t,V,xi,eta,phi,fz\n0,20,1e-7,0,0,8e4\n0.001,20,0,1e-7,0,8e4\n"
+                                  "0.002,20,0.5,0,0,6.4e5\n");
+  const Result r = cli({"run", "--scenario", f, "--model", "steady"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto rows = parseCsv(r.out);
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0][0] + "," + rows[0][1] + "," + rows[0][2] + "," + rows[0][3] + "," + rows[0][4] +
+                "," + rows[0][5] + "," + rows[0][6] + "," + rows[0][7],
+            "t,fx,fy,mz,fz,a,b,adhesion_fraction");
+  const CreepCoefficients c = kalkerCoefficients(1.5, 0.28);
+  const double Gab = 8.2e10 * 6e-3 * 4e-3;
+  EXPECT_NEAR(std::stod(rows[1][1]), -Gab * c.c11 * 1e-7, 0.005 * Gab * c.c11 * 1e-7);
+  EXPECT_NEAR(std::stod(rows[2][2]), -Gab * c.c22 * 1e-7, 0.005 * Gab * c.c22 * 1e-7);
+  EXPECT_NEAR(std::stod(rows[3][1]), -0.3 * 6.4e5, 1e-6 * 0.3 * 6.4e5);
+  EXPECT_NEAR(std::stod(rows[3][5]), 12e-3, 1e-12);  // a = a0 (fz/fz0)^(1/3)
+}
+
+TEST(ContactCli, HelpDocumentsEveryOptionDefault) {
+  const Result r = cli({"--help"});
+  EXPECT_EQ(r.code, 0);
+  for (const char* opt : {"--G ", "--nu ", "--mu ", "--a0 ", "--b0 ", "--fz0 ", "--nx ", "--ny ",
+                          "--model ", "--scenario "})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+  EXPECT_NE(r.out.find("default 8.2e+10"), std::string::npos);
+}
+
+TEST(ContactCli, BadOptionsExitNonZeroNamingTheOption) {
+  const std::string f = writeTemp("ok.csv", "t,V,xi,eta,phi,fz\n0,20,1e-3,0,0,8e4\n");
+  const struct {
+    std::vector<std::string> args;
+    std::string mention;
+  } cases[] = {
+      {{"run", "--scenario", f, "--a0", "-1"}, "a0: must be > 0"},
+      {{"run", "--scenario", f, "--a0", "0"}, "a0: must be > 0"},
+      {{"run", "--scenario", f, "--mu", "-0.1"}, "mu: must be >= 0"},
+      {{"run", "--scenario", f, "--nx", "1"}, "nx: must be in [2, 400]"},
+      {{"run", "--scenario", f, "--ny", "x"}, "ny: expected an integer"},
+      {{"run", "--scenario", f, "--G", "abc"}, "G: expected a finite number"},
+      {{"run", "--scenario", f, "--model", "magic"}, "model: must be one of"},
+      {{"run", "--scenario", f, "--bogus", "1"}, "bogus: unknown parameter"},
+      {{"run", "--scenario", f, "--nu"}, "--nu: missing value"},
+      {{"run"}, "--scenario FILE is required"},
+      {{"run", "--scenario", "/nonexistent/x.csv"}, "cannot open"},
+      {{"fly"}, "unknown command 'fly'"},
+  };
+  for (const auto& c : cases) {
+    const Result r = cli(c.args);
+    EXPECT_NE(r.code, 0) << c.mention;
+    EXPECT_NE(r.err.find(c.mention), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty() || r.out.find("nan") == std::string::npos);
+  }
+}
+
+TEST(ContactCli, BadScenarioExitsNonZeroNamingLineAndField) {
+  const std::string missing = writeTemp("m.csv", "t,V,xi,eta,phi\n0,20,0,0,0\n");
+  Result r = cli({"run", "--scenario", missing});
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("m.csv:1: missing column 'fz'"), std::string::npos) << r.err;
+  const std::string bad =
+      writeTemp("b.csv", "t,V,xi,eta,phi,fz\n0,20,0,0,0,1e4\n1,20,zz,0,0,1e4\n");
+  r = cli({"run", "--scenario", bad});
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("b.csv:3: field 'xi': not a number ('zz')"), std::string::npos) << r.err;
+}
+
+TEST(ContactCli, RefusedRowsAreWrittenWithStatusNotNaN) {
+  const std::string f =
+      writeTemp("neg.csv", "t,V,xi,eta,phi,fz\n0,-20,1e-3,0,0,8e4\n1,20,1e-3,0,0,0\n");
+  const Result r = cli({"run", "--scenario", f});
+  EXPECT_EQ(r.code, 0);
+  const auto rows = parseCsv(r.out);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1][8], "rejected input");
+  EXPECT_EQ(rows[2][8], "no load");
+  EXPECT_EQ(std::stod(rows[1][1]), 0.0);
+  EXPECT_EQ(r.out.find("nan"), std::string::npos);
+  EXPECT_NE(r.err.find("V < 0"), std::string::npos);
+}
+
+TEST(ContactCli, ExecutableRunsTheShippedDemoScenario) {
+  const std::string cmd = std::string(WRC_CONTACT_CLI) + " run --scenario " + WRC_SOURCE_DIR +
+                          "/scenes/demo.csv --model steady";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  char buf[4096];
+  std::string out;
+  while (fgets(buf, sizeof buf, pipe)) out += buf;
+  EXPECT_EQ(pclose(pipe), 0);
+  EXPECT_GT(parseCsv(out).size(), 10u);
+  EXPECT_EQ(out.find("nan"), std::string::npos);
+}

@@ -1,0 +1,119 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "wheel_rail_contact/fastsim.hpp"
+#include "wheel_rail_contact/steady_model.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+struct Patch {
+  double a = 6e-3, b = 4e-3, G = 8.2e10, nu = 0.28, mu = 0.3, fz = 8e4;
+};
+
+CreepForces run(const Patch& p, const Creepages& c, int nx = 20, int ny = 20) {
+  const PatchMesh mesh(nx, ny, p.a, p.b);
+  TractionField f;
+  f.resize(mesh.size());
+  parabolicBound(mesh, p.a, p.b, p.fz, p.mu, &f.bound);
+  const CreepCoefficients k = kalkerCoefficients(p.a / p.b, p.nu);
+  return steadyFastSim(mesh, kalkerFlexibilities(p.a, p.b, p.G, k), c, &f);
+}
+
+}  // namespace
+
+TEST(SteadyFastSim, SmallCreepageReproducesLinearTheory) {
+  for (double ab : {0.3, 1.0, 1.5, 4.0}) {
+    Patch p;
+    p.b = p.a / ab;
+    const CreepCoefficients k = kalkerCoefficients(ab, p.nu);
+    const double Gab = p.G * p.a * p.b, Gab32 = p.G * std::pow(p.a * p.b, 1.5);
+    const double xi = 1e-7, eta = 1e-7, phi = 1e-5;
+    EXPECT_NEAR(run(p, {xi, 0, 0}).fx, -Gab * k.c11 * xi, 0.005 * Gab * k.c11 * xi) << ab;
+    EXPECT_NEAR(run(p, {0, eta, 0}).fy, -Gab * k.c22 * eta, 0.005 * Gab * k.c22 * eta) << ab;
+    EXPECT_NEAR(run(p, {0, 0, phi}).fy, -Gab32 * k.c23 * phi, 0.005 * Gab32 * k.c23 * phi) << ab;
+  }
+}
+
+TEST(SteadyFastSim, LargeCreepageSaturatesAtMuFz) {
+  const Patch p;
+  for (const Creepages c : {Creepages{0.5, 0, 0}, Creepages{0, -0.5, 0}, Creepages{0.3, 0.4, 0}}) {
+    const CreepForces f = run(p, c);
+    EXPECT_NEAR(std::hypot(f.fx, f.fy), p.mu * p.fz, 1e-6 * p.mu * p.fz);
+    EXPECT_LT(f.adhesionFraction, 0.05);
+  }
+  const CreepForces f = run(p, {0.3, 0.4, 0});
+  EXPECT_NEAR(f.fy / f.fx,
+              0.4 / 0.3 * kalkerCoefficients(1.5, 0.28).c22 / kalkerCoefficients(1.5, 0.28).c11,
+              0.05);  // force leans to the stiffer axis
+}
+
+TEST(SteadyFastSim, ForcesAreOddInCreepage) {
+  const Patch p;
+  const Creepages c{2e-3, -1e-3, 3.0};
+  const CreepForces f = run(p, c), g = run(p, {-c.xi, -c.eta, -c.phi});
+  EXPECT_NEAR(f.fx, -g.fx, 1e-9 * std::abs(f.fx));
+  EXPECT_NEAR(f.fy, -g.fy, 1e-9 * std::abs(f.fy));
+  EXPECT_NEAR(f.mz, -g.mz, 1e-9 * std::abs(f.mz));
+  const CreepForces zero = run(p, {0, 0, 0});
+  EXPECT_EQ(zero.fx, 0.0);
+  EXPECT_EQ(zero.fy, 0.0);
+  EXPECT_EQ(zero.adhesionFraction, 1.0);
+}
+
+TEST(SteadyFastSim, PartialSlipIsBetweenTheLimitsAndConverges) {
+  const Patch p;
+  const Creepages c{1e-3, 0.5e-3, 0.5};
+  const CreepForces ref = run(p, c, 320, 320);
+  double prevErr = 1e300;
+  for (int n : {10, 20, 40, 80}) {
+    const CreepForces f = run(p, c, n, n);
+    const double err = std::hypot(f.fx - ref.fx, f.fy - ref.fy);
+    EXPECT_LT(err, prevErr) << n;
+    prevErr = err;
+  }
+  EXPECT_LT(prevErr, 0.005 * std::hypot(ref.fx, ref.fy));
+  EXPECT_GT(ref.adhesionFraction, 0.05);
+  EXPECT_LT(ref.adhesionFraction, 0.95);
+}
+
+TEST(SteadyFastSim, ConvergesToTheSimplifiedTheoryCreepCurve) {
+  // Kalker (1982): pure xi on a strip of half-length a_j with bound s (a_j^2 - x^2), s = mu p_s /
+  // a^2, p_s = 2 Fz / (pi a b), has the closed form F_j = -s (4/3) a_j^3 [1 - (1 - k_j)^3], k_j =
+  // min(1, c / (2 a_j)), c = (xi / L1) / s. Integrated over y it is the simplified theory's creep
+  // curve; FastSim must approach it as the mesh is refined.
+  const Patch p;
+  const double c11 = kalkerCoefficients(p.a / p.b, p.nu).c11;
+  const double L1 = kalkerFlexibilities(p.a, p.b, p.G, {c11, 1, 1}).L1;
+  const double s = p.mu * 2.0 * p.fz / (M_PI * p.a * p.b) / (p.a * p.a);
+  for (double xi : {2e-4, 6e-4, 1.5e-3, 4e-3}) {
+    const double c = xi / L1 / s;
+    double exact = 0.0;
+    const int n = 20000;
+    for (int q = 0; q < n; ++q) {
+      const double y = p.b * (-1.0 + (2.0 * q + 1.0) / n);
+      const double aj = p.a * std::sqrt(1.0 - y * y / (p.b * p.b));
+      const double k = std::min(1.0, c / (2.0 * aj));
+      exact -= s * 4.0 / 3.0 * aj * aj * aj * (1.0 - std::pow(1.0 - k, 3)) * (2.0 * p.b / n);
+    }
+    EXPECT_NEAR(run(p, {xi, 0, 0}, 100, 100).fx, exact, 0.003 * p.mu * p.fz) << xi;
+  }
+}
+
+TEST(SteadyModel, StatusRules) {
+  ContactParameters prm;
+  SteadyModel m(prm);
+  StepOutput o = m.step({1e-3, 20.0, 1e-3, 0, 0, 8e4});
+  EXPECT_EQ(o.status, StepStatus::kOk);
+  EXPECT_LT(o.fx, 0.0);
+  const StepOutput held = m.step({1e-3, 0.0, 5e-3, 0, 0, 8e4});
+  EXPECT_EQ(held.status, StepStatus::kStandstill);
+  EXPECT_EQ(held.fx, o.fx);
+  EXPECT_EQ(m.step({1e-3, 20.0, NAN, 0, 0, 8e4}).status, StepStatus::kRejected);
+  EXPECT_EQ(m.step({1e-3, -2.0, 1e-3, 0, 0, 8e4}).status, StepStatus::kRejected);
+  o = m.step({1e-3, 20.0, 1e-3, 0, 0, -5.0});
+  EXPECT_EQ(o.status, StepStatus::kNoLoad);
+  EXPECT_EQ(o.fx, 0.0);
+}
