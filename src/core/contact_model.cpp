@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "wheel_rail_contact/nss_model.hpp"
 #include "wheel_rail_contact/steady_model.hpp"
 
 namespace wheel_rail_contact {
@@ -35,6 +36,15 @@ std::string checkStepInput(const StepInput& in) {
 std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
   validate(p);
   if (p.model == "steady") return std::make_unique<SteadyModel>(p);
+  if (p.model == "shen-li") return std::make_unique<NssModel>(p, ChiTable::uniform({}));
+  if (p.model == "nss") {
+    const std::string path = p.chi_table.empty() ? ChiTable::defaultPath() : p.chi_table;
+    try {
+      return std::make_unique<NssModel>(p, ChiTable::load(path));
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(std::string("chi_table: ") + e.what());
+    }
+  }
   throw std::invalid_argument("model: '" + p.model + "' is not available in this build yet");
 }
 

@@ -1,0 +1,37 @@
+/// Table of identified dynamic-flexibility parameters chi (nss_filter.hpp) for the creepage kinds
+/// 11 (xi), 22 (eta), 23 (phi) against the semi-axis ratio a/b, interpolated linearly in ln(a/b)
+/// and clamped at the table's ends.
+/// File format (CSV, '#' comment lines carry units, mesh and date of the fit):
+///   a_over_b,kind,chi1,chi2,chi3        with kind in {11, 22, 23}
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "wheel_rail_contact/nss_filter.hpp"
+
+namespace wheel_rail_contact {
+
+enum class CreepKind { k11 = 0, k22 = 1, k23 = 2 };
+
+class ChiTable {
+ public:
+  /// Reads a table. Throws std::runtime_error naming the file and line on any malformed,
+  /// non-finite or unstable (chi3 <= 0) entry, or if a kind is missing.
+  static ChiTable load(const std::string& path);
+  /// The table shipped with the package (config/chi_table.csv).
+  static std::string defaultPath();
+  /// A table with the same chi for every kind and a/b (tests; {0, 1, 0} is Shen & Li).
+  static ChiTable uniform(const ChiParameters& chi);
+
+  ChiParameters at(CreepKind kind, double a_over_b) const;
+
+ private:
+  struct Row {
+    double logAB;
+    ChiParameters chi;
+  };
+  std::vector<Row> rows_[3];  // per kind, sorted by a/b
+};
+
+}  // namespace wheel_rail_contact

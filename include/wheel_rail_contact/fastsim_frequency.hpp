@@ -1,0 +1,25 @@
+/// Frequency response of the FastSim models in full adhesion: the non-steady creep coefficient
+/// C^(lambda/a) (complex, dimensionless) for one small harmonic creepage, with the convention of
+/// method-notes section 5 (creepage = amp cos(wt); C = -F^/(norm amp); Im C < 0 is a lag).
+/// Computed exactly for the model's space discretisation in the continuous-time limit dt -> 0,
+/// by one complex march per strip: tau_i (1/h + (i k / a) F(k)) = tau_up / h - D_i, k = 2 pi
+/// a/lambda.
+#pragma once
+
+#include <complex>
+
+#include "wheel_rail_contact/chi_table.hpp"
+#include "wheel_rail_contact/nss_filter.hpp"
+
+namespace wheel_rail_contact {
+
+/// C^ of a FastSim model on an nx x ny mesh at a/b and nu with dynamic flexibility `chi`
+/// ({0, 1, 0} for Shen & Li). lambda_over_a = +infinity gives the steady coefficient.
+std::complex<double> fastsimNonSteadyCoefficient(CreepKind kind, double a_over_b, double nu, int nx,
+                                                 int ny, const ChiParameters& chi,
+                                                 double lambda_over_a);
+
+/// The steady FastSim coefficient on the same mesh (real; equals Kalker's C within the mesh error).
+double fastsimSteadyCoefficient(CreepKind kind, double a_over_b, double nu, int nx, int ny);
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,41 @@
+/// The dynamic flexibility of NSS-FastSim (Alonso & Gimenez 2008): a first-order transfer function
+/// F(k) = (chi2 + i k chi1) / (1 + i k chi3), the ratio of dynamic to static flexibility at the
+/// dimensionless spatial frequency k = 2 pi a / lambda (i k <-> (a/V) d/dt; method-notes section
+/// 4). chi1, chi2, chi3 are dimensionless. F == 1 (chi = {0, 1, 0}) is Shen & Li's model.
+#pragma once
+
+#include <complex>
+
+namespace wheel_rail_contact {
+
+struct ChiParameters {
+  double chi1 = 0.0;
+  double chi2 = 1.0;
+  double chi3 = 0.0;
+  /// True if the discretised filter is stable for every step: chi3 > 0, or the static case
+  /// chi1 = chi3 = 0.
+  bool valid() const;
+};
+
+/// F at spatial frequency k (continuous time).
+std::complex<double> transferFunction(const ChiParameters& chi, double k);
+
+/// F discretised for one step (Tustin, method-notes eq. 10) in transposed direct form II:
+/// h_n = b0 g_n + s_{n-1},  s_n = b1 g_n - a1 h_n,  where g is the traction rate dtau/dt and h the
+/// filtered rate. One state s per node and direction; the pole -a1 lies inside the unit circle for
+/// every dt > 0 whenever chi3 > 0.
+struct FilterZ {
+  double b0 = 1.0;
+  double b1 = 0.0;
+  double a1 = 0.0;
+};
+
+/// Z coefficients for semi-axis a [m], speed V > 0 [m/s] and step dt > 0 [s].
+FilterZ discretise(const ChiParameters& chi, double a, double V, double dt);
+
+/// Paper eq. 15: per direction, the Z coefficients of the two creepage kinds acting along it,
+/// weighted by w1 and w2 (|xi| and |phi| sqrt(ab) along x; |eta| and |phi| sqrt(ab) along y).
+/// Both weights zero would be 0/0: the caller keeps its previous weights instead.
+FilterZ weightedFilter(const FilterZ& z1, double w1, const FilterZ& z2, double w2);
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,95 @@
+#include "wheel_rail_contact/chi_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#ifndef WRC_DEFAULT_CHI_TABLE
+#define WRC_DEFAULT_CHI_TABLE "config/chi_table.csv"
+#endif
+
+namespace wheel_rail_contact {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, long line, const std::string& why) {
+  throw std::runtime_error("chi table " + path + ":" + std::to_string(line) + ": " + why);
+}
+
+int kindIndex(const std::string& s) {
+  if (s == "11") return 0;
+  if (s == "22") return 1;
+  if (s == "23") return 2;
+  return -1;
+}
+
+}  // namespace
+
+std::string ChiTable::defaultPath() {
+  return WRC_DEFAULT_CHI_TABLE;
+}
+
+ChiTable ChiTable::uniform(const ChiParameters& chi) {
+  ChiTable t;
+  for (auto& rows : t.rows_) rows.push_back({0.0, chi});
+  return t;
+}
+
+ChiTable ChiTable::load(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("chi table " + path + ": cannot open");
+  ChiTable t;
+  std::string line;
+  long n = 0;
+  bool header = false;
+  while (std::getline(in, line)) {
+    ++n;
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      if (line.rfind("a_over_b,kind,chi1,chi2,chi3", 0) != 0)
+        fail(path, n, "expected header a_over_b,kind,chi1,chi2,chi3");
+      header = true;
+      continue;
+    }
+    std::stringstream ss(line);
+    std::string f[5];
+    for (auto& s : f) std::getline(ss, s, ',');
+    double v[5] = {0, 0, 0, 0, 0};
+    for (int k : {0, 2, 3, 4}) {
+      char* end = nullptr;
+      v[k] = std::strtod(f[k].c_str(), &end);
+      if (f[k].empty() || *end != '\0' || !std::isfinite(v[k]))
+        fail(path, n, "field " + std::to_string(k + 1) + " is not a finite number");
+    }
+    const int kind = kindIndex(f[1]);
+    if (kind < 0) fail(path, n, "kind must be 11, 22 or 23, got '" + f[1] + "'");
+    if (!(v[0] > 0.0)) fail(path, n, "a_over_b must be > 0");
+    const ChiParameters chi{v[2], v[3], v[4]};
+    if (!chi.valid()) fail(path, n, "chi3 must be > 0 (stable filter)");
+    t.rows_[kind].push_back({std::log(v[0]), chi});
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (t.rows_[k].empty())
+      fail(path, n, "no rows for kind " + std::string(k == 0 ? "11" : k == 1 ? "22" : "23"));
+    std::sort(t.rows_[k].begin(), t.rows_[k].end(),
+              [](const Row& a, const Row& b) { return a.logAB < b.logAB; });
+  }
+  return t;
+}
+
+ChiParameters ChiTable::at(CreepKind kind, double a_over_b) const {
+  const auto& r = rows_[static_cast<int>(kind)];
+  const double x = std::log(a_over_b);
+  if (r.size() == 1 || x <= r.front().logAB) return r.front().chi;
+  if (x >= r.back().logAB) return r.back().chi;
+  const auto hi = std::upper_bound(r.begin(), r.end(), x,
+                                   [](double v, const Row& row) { return v < row.logAB; });
+  const auto lo = hi - 1;
+  const double w = (x - lo->logAB) / (hi->logAB - lo->logAB);
+  return {(1 - w) * lo->chi.chi1 + w * hi->chi.chi1, (1 - w) * lo->chi.chi2 + w * hi->chi.chi2,
+          (1 - w) * lo->chi.chi3 + w * hi->chi.chi3};
+}
+
+}  // namespace wheel_rail_contact

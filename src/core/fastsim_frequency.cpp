@@ -1,0 +1,45 @@
+#include "wheel_rail_contact/fastsim_frequency.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "wheel_rail_contact/fastsim.hpp"
+
+namespace wheel_rail_contact {
+
+std::complex<double> fastsimNonSteadyCoefficient(CreepKind kind, double a_over_b, double nu, int nx,
+                                                 int ny, const ChiParameters& chi,
+                                                 double lambda_over_a) {
+  using C = std::complex<double>;
+  const double a = 1.0, b = a / a_over_b, G = 1.0;  // C^ is scale-free: unit a and G
+  const PatchMesh mesh(nx, ny, a, b);
+  const Flexibilities L = kalkerFlexibilities(a, b, G, kalkerCoefficients(a_over_b, nu));
+  const bool steady = !std::isfinite(lambda_over_a);
+  const double k = steady ? 0.0 : 2.0 * M_PI / lambda_over_a;
+  const C timeTerm = steady ? C(0.0) : C(0.0, k / a) * transferFunction(chi, k);
+  C force = 0.0;
+  for (int j = 0; j < ny; ++j) {
+    const double dx = mesh.stripStep(j), aj = mesh.stripHalfLength(j);
+    C tau = 0.0, strip = 0.0;
+    for (int i = 0; i < nx; ++i) {
+      const double h = (i == 0) ? 0.5 * dx : dx;
+      const double xMid = aj - (i + 0.5) * dx + 0.5 * h;
+      const double drive = kind == CreepKind::k11   ? 1.0 / L.L1
+                           : kind == CreepKind::k22 ? 1.0 / L.L2
+                                                    : xMid / L.L3;
+      tau = (tau / h - drive) / (1.0 / h + timeTerm);
+      strip += tau;
+    }
+    force += strip * mesh.nodeArea(j);
+  }
+  const double norm = kind == CreepKind::k23 ? G * std::pow(a * b, 1.5) : G * a * b;
+  return -force / norm;
+}
+
+double fastsimSteadyCoefficient(CreepKind kind, double a_over_b, double nu, int nx, int ny) {
+  return fastsimNonSteadyCoefficient(kind, a_over_b, nu, nx, ny, ChiParameters{},
+                                     std::numeric_limits<double>::infinity())
+      .real();
+}
+
+}  // namespace wheel_rail_contact

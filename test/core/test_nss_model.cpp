@@ -1,0 +1,190 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "wheel_rail_contact/fastsim_frequency.hpp"
+#include "wheel_rail_contact/nss_model.hpp"
+#include "wheel_rail_contact/steady_model.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+ContactParameters params(const char* model, const char* mesh = "fixed") {
+  ContactParameters p;
+  p.model = model;
+  p.mesh = mesh;
+  p.nx = p.ny = 16;
+  return p;
+}
+
+// A scene with every ingredient: harmonic creepages of both signs, spin, varying load.
+StepInput scene(int k, double dt = 5e-5) {
+  const double q = 20.0 * dt * k;
+  StepInput in;
+  in.dt = k == 0 ? 0.0 : dt;
+  in.V = 20.0;
+  in.xi = 2e-3 * std::cos(2 * M_PI * q / 0.09);
+  in.eta = 1e-3 * std::sin(2 * M_PI * q / 0.05);
+  in.phi = 0.8;
+  in.fz = 8e4 * (1.0 + 0.25 * std::sin(2 * M_PI * q / 0.12));
+  return in;
+}
+
+const ChiTable kSomeChi = ChiTable::uniform({0.4, 1.1, 0.6});
+
+}  // namespace
+
+TEST(NssModel, StaticFilterReproducesShenLiExactly) {
+  for (const char* mesh : {"fixed", "adaptive"}) {
+    NssModel nss(params("nss", mesh), ChiTable::uniform({0.0, 1.0, 0.0}));
+    NssModel shenLi(params("shen-li", mesh), kSomeChi);  // shen-li ignores the table
+    for (int k = 0; k < 400; ++k) {
+      const StepOutput a = nss.step(scene(k)), b = shenLi.step(scene(k));
+      ASSERT_EQ(a.fx, b.fx) << mesh << " step " << k;
+      ASSERT_EQ(a.fy, b.fy) << mesh << " step " << k;
+      ASSERT_EQ(a.mz, b.mz) << mesh << " step " << k;
+    }
+  }
+}
+
+TEST(NssModel, ConstantInputsSettleOnSteadyFastSim) {
+  ContactParameters p = params("nss");
+  p.fz_max = p.fz0;  // fixed mesh exactly on the patch, as the steady model's
+  for (const char* model : {"nss", "shen-li"}) {
+    p.model = model;
+    NssModel m(p, kSomeChi);
+    SteadyModel s(p);
+    const StepInput in{5e-5, 20.0, 1.5e-3, -0.5e-3, 2.0, p.fz0};
+    StepOutput o;
+    for (int k = 0; k < 3000; ++k) o = m.step(in);
+    const StepOutput ref = s.step(in);
+    EXPECT_NEAR(o.fx, ref.fx, 1e-9 * std::abs(ref.fx)) << model;
+    EXPECT_NEAR(o.fy, ref.fy, 1e-9 * std::abs(ref.fy)) << model;
+    EXPECT_NEAR(o.mz, ref.mz, 1e-8 * std::abs(ref.mz)) << model;
+  }
+}
+
+TEST(NssModel, FirstStepStartsFromZeroHistory) {
+  NssModel m(params("nss"), kSomeChi);
+  StepInput in = scene(0);
+  const StepOutput o = m.step(in);
+  EXPECT_EQ(o.status, StepStatus::kOk);
+  EXPECT_EQ(o.fx, 0.0);
+  EXPECT_EQ(o.fy, 0.0);
+  in.dt = 5e-5;
+  EXPECT_LT(m.step(in).fx, 0.0);  // builds up from rest
+}
+
+TEST(NssModel, ResetGivesFreshStartOutputs) {
+  NssModel fresh(params("nss", "adaptive"), kSomeChi), used(params("nss", "adaptive"), kSomeChi);
+  for (int k = 0; k < 137; ++k) used.step(scene(k + 50));
+  used.reset();
+  for (int k = 0; k < 200; ++k) {
+    const StepOutput a = fresh.step(scene(k)), b = used.step(scene(k));
+    ASSERT_EQ(a.fx, b.fx) << k;
+    ASSERT_EQ(a.fy, b.fy) << k;
+  }
+}
+
+TEST(NssModel, RejectedInputLeavesTheStateUntouched) {
+  NssModel clean(params("nss"), kSomeChi), faulty(params("nss"), kSomeChi);
+  for (int k = 0; k < 100; ++k) {
+    if (k == 40) {
+      StepInput bad = scene(k);
+      bad.xi = NAN;
+      const StepOutput r = faulty.step(bad);
+      EXPECT_EQ(r.status, StepStatus::kRejected);
+      EXPECT_EQ(r.fx, 0.0);
+      bad = scene(k);
+      bad.dt = -1.0;
+      EXPECT_EQ(faulty.step(bad).status, StepStatus::kRejected);
+      bad.dt = scene(k).dt;
+      bad.V = -3.0;
+      EXPECT_EQ(faulty.step(bad).status, StepStatus::kRejected);
+    }
+    ASSERT_EQ(clean.step(scene(k)).fx, faulty.step(scene(k)).fx) << k;
+  }
+}
+
+TEST(NssModel, StandstillHoldsAndLossOfContactClears) {
+  NssModel m(params("nss"), kSomeChi);
+  StepOutput last;
+  for (int k = 0; k < 60; ++k) last = m.step(scene(k));
+  StepInput still = scene(60);
+  still.V = 0.0;
+  still.xi = 0.05;
+  const StepOutput held = m.step(still);
+  EXPECT_EQ(held.status, StepStatus::kStandstill);
+  EXPECT_EQ(held.fx, last.fx);
+  EXPECT_EQ(m.step(scene(61)).status, StepStatus::kOk);
+  StepInput lift = scene(62);
+  lift.fz = 0.0;
+  const StepOutput off = m.step(lift);
+  EXPECT_EQ(off.status, StepStatus::kNoLoad);
+  EXPECT_EQ(off.fx, 0.0);
+  // History cleared: the next loaded step equals a fresh model's step from zero history.
+  NssModel fresh(params("nss"), kSomeChi);
+  fresh.step(scene(0));
+  EXPECT_EQ(m.step(scene(63)).fx, fresh.step(scene(63)).fx);
+}
+
+TEST(NssModel, AdaptiveAtConstantLoadEqualsFixedMeshOnThePatch) {
+  ContactParameters fixed = params("nss", "fixed"), adaptive = params("nss", "adaptive");
+  fixed.fz_max = fixed.fz0;
+  NssModel f(fixed, kSomeChi), a(adaptive, kSomeChi);
+  for (int k = 0; k < 300; ++k) {
+    StepInput in = scene(k);
+    in.fz = fixed.fz0;
+    ASSERT_EQ(f.step(in).fx, a.step(in).fx) << k;
+  }
+}
+
+TEST(NssModel, TimeDomainMatchesItsFrequencyResponse) {
+  // Full adhesion, small harmonic xi, dt small against a/V: the periodic response must match the
+  // continuous-time frequency response of the same model and mesh.
+  ContactParameters p = params("nss");
+  p.fz_max = p.fz0;
+  p.mu = 1000.0;
+  const ChiParameters chi{0.4, 1.1, 0.6};
+  NssModel m(p, ChiTable::uniform(chi));
+  const double a = p.a0, b = p.b0, lambda = 10 * a, V = 20.0, dt = a / V / 200;
+  const int perPeriod = static_cast<int>(std::round(lambda / (V * dt)));
+  std::complex<double> acc = 0.0;
+  for (int k = 0; k < 12 * perPeriod; ++k) {
+    const double wt = 2 * M_PI * k / perPeriod;
+    const StepOutput o = m.step({k == 0 ? 0.0 : dt, V, 1e-6 * std::cos(wt), 0, 0, p.fz0});
+    if (k >= 10 * perPeriod) acc += o.fx * std::exp(std::complex<double>(0, -wt));
+  }
+  const std::complex<double> measured = -2.0 * acc / double(2 * perPeriod) / (p.G * a * b * 1e-6);
+  const std::complex<double> predicted =
+      fastsimNonSteadyCoefficient(CreepKind::k11, a / b, p.nu, p.nx, p.ny, chi, 10.0);
+  EXPECT_NEAR(std::abs(measured - predicted) / std::abs(predicted), 0.0, 0.01);
+}
+
+TEST(NssModel, FrequencyResponseTendsToSteadyAndLags) {
+  const ChiParameters shenLi{};
+  const double steady = fastsimSteadyCoefficient(CreepKind::k11, 1.0, 0.28, 20, 20);
+  EXPECT_NEAR(steady, kalkerCoefficients(1.0, 0.28).c11, 0.005 * steady);
+  const auto slow = fastsimNonSteadyCoefficient(CreepKind::k11, 1.0, 0.28, 20, 20, shenLi, 1e4);
+  EXPECT_NEAR(slow.real(), steady, 1e-3 * steady);
+  for (CreepKind kind : {CreepKind::k11, CreepKind::k22, CreepKind::k23}) {
+    const auto c = fastsimNonSteadyCoefficient(kind, 1.0, 0.28, 20, 20, shenLi, 5.0);
+    EXPECT_LT(c.imag(), 0.0);
+    EXPECT_LT(std::abs(c), fastsimSteadyCoefficient(kind, 1.0, 0.28, 20, 20));
+  }
+}
+
+TEST(NssModel, StaysBoundedForExtremeSteps) {
+  for (double dt : {1e-9, 1e-3, 10.0}) {
+    NssModel m(params("nss", "adaptive"), kSomeChi);
+    for (int k = 0; k < 200; ++k) {
+      StepInput in = scene(k, dt);
+      in.xi *= 100;
+      const StepOutput o = m.step(in);
+      ASSERT_TRUE(std::isfinite(o.fx) && std::isfinite(o.fy) && std::isfinite(o.mz));
+      ASSERT_LE(std::hypot(o.fx, o.fy), 0.3 * in.fz * (1 + 1e-9)) << dt;
+    }
+  }
+}
