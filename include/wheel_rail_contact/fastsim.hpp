@@ -50,7 +50,20 @@ struct TractionField {
 void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
                     Eigen::ArrayXd* bound);
 
-/// Sum of the traction field into forces and moment (trapezoid in x, midpoint in y).
+/// Per-strip running sums of one sweep, so the march integrates the forces as it goes.
+class ForceSums {
+ public:
+  /// Strip j's sums: traction sums, sum of (x/a) ty, nodes in adhesion and loaded nodes.
+  void addStrip(const PatchMesh& mesh, int j, double tx, double ty, double xnTy, int stuck,
+                int loaded);
+  CreepForces forces() const;
+
+ private:
+  CreepForces f_;
+  double stuck_ = 0.0, loaded_ = 0.0;
+};
+
+/// Sum of the traction field into forces and moment (midpoint rule).
 CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& field);
 
 /// Steady FastSim: marches each strip from the leading edge in adhesion, saturates at the bound.

@@ -33,9 +33,15 @@ class PatchMesh {
   double stripStep(int j) const { return 2.0 * a_ * halfNorm_(j) / nx_; }  ///< dx_j [m]
   double nodeX(int i, int j) const { return a_ * xNorm(i, j); }            ///< x_ij [m]
   /// Normalised node coordinate x_ij / a.
-  double xNorm(int i, int j) const { return halfNorm_(j) * (1.0 - (2.0 * i + 1.0) / nx_); }
+  double xNorm(int i, int j) const { return xNorm_(index(i, j)); }
   double yNorm(int j) const { return yNorm_(j); }        ///< y_j / b
   double halfNorm(int j) const { return halfNorm_(j); }  ///< a_j / a
+  /// All x_ij / a, indexed by index(i, j).
+  const Eigen::ArrayXd& xNorms() const { return xNorm_; }
+  /// 1 - x^2/a^2 - y^2/b^2 at every node (>= 0), and its quadrature on the unit mesh
+  /// sum(shape * dx_j dy) / (a b): the parabolic pressure of a patch that fills the mesh.
+  const Eigen::ArrayXd& pressureShape() const { return shape_; }
+  double shapeIntegral() const { return shapeIntegral_; }
   /// Area a node stands for, dx_j * dy [m^2] (midpoint rule).
   double nodeArea(int j) const { return stripStep(j) * stripWidth(); }
 
@@ -46,6 +52,9 @@ class PatchMesh {
   double b_ = 0.0;
   Eigen::ArrayXd yNorm_;     ///< y_j / b, size ny
   Eigen::ArrayXd halfNorm_;  ///< a_j / a, size ny
+  Eigen::ArrayXd xNorm_;     ///< x_ij / a, size nx*ny
+  Eigen::ArrayXd shape_;     ///< 1 - (x/a)^2 - (y/b)^2, size nx*ny
+  double shapeIntegral_ = 0.0;
 };
 
 }  // namespace wheel_rail_contact

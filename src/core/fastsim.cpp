@@ -21,16 +21,22 @@ void TractionField::resize(int n) {
 
 void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
                     Eigen::ArrayXd* bound) {
+  if (a == mesh.a() && b == mesh.b()) {  // the patch fills the mesh: precomputed shape
+    *bound = mesh.pressureShape() * (mu * fz / (mesh.shapeIntegral() * a * b));
+    return;
+  }
   bound->resize(mesh.size());
+  const double ka = mesh.a() / a;
   double sum = 0.0;
   for (int j = 0; j < mesh.ny(); ++j) {
     const double y = mesh.stripY(j);
     const double ry = 1.0 - y * y / (b * b);
     double strip = 0.0;
     for (int i = 0; i < mesh.nx(); ++i) {
-      const double x = mesh.nodeX(i, j);
-      const double shape = std::max(0.0, ry - x * x / (a * a));
-      (*bound)(mesh.index(i, j)) = shape;
+      const int k = mesh.index(i, j);
+      const double xn = mesh.xNorms()(k) * ka;
+      const double shape = std::max(0.0, ry - xn * xn);
+      (*bound)(k) = shape;
       strip += shape;
     }
     sum += strip * mesh.nodeArea(j);
@@ -38,35 +44,49 @@ void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double
   *bound *= (sum > 0.0) ? mu * fz / sum : 0.0;
 }
 
+void ForceSums::addStrip(const PatchMesh& mesh, int j, double tx, double ty, double xnTy, int stuck,
+                         int loaded) {
+  const double dA = mesh.nodeArea(j);
+  f_.fx += tx * dA;
+  f_.fy += ty * dA;
+  f_.mz += (mesh.a() * xnTy - mesh.stripY(j) * tx) * dA;
+  stuck_ += stuck * dA;
+  loaded_ += loaded * dA;
+}
+
+CreepForces ForceSums::forces() const {
+  CreepForces out = f_;
+  out.adhesionFraction = loaded_ > 0.0 ? stuck_ / loaded_ : 0.0;
+  return out;
+}
+
 CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& f) {
-  CreepForces out;
-  double loaded = 0.0, stuck = 0.0;
+  ForceSums sums;
   for (int j = 0; j < mesh.ny(); ++j) {
-    const double dA = mesh.nodeArea(j);
-    const double y = mesh.stripY(j);
+    double tx = 0.0, ty = 0.0, xnTy = 0.0;
+    int stuck = 0, loaded = 0;
     for (int i = 0; i < mesh.nx(); ++i) {
       const int k = mesh.index(i, j);
-      out.fx += f.tx(k) * dA;
-      out.fy += f.ty(k) * dA;
-      out.mz += (mesh.nodeX(i, j) * f.ty(k) - y * f.tx(k)) * dA;
-      if (f.bound(k) > 0.0) {
-        loaded += dA;
-        if (!f.slip(k)) stuck += dA;
-      }
+      tx += f.tx(k);
+      ty += f.ty(k);
+      xnTy += mesh.xNorms()(k) * f.ty(k);
+      loaded += f.bound(k) > 0.0;
+      stuck += f.bound(k) > 0.0 && !f.slip(k);
     }
+    sums.addStrip(mesh, j, tx, ty, xnTy, stuck, loaded);
   }
-  out.adhesionFraction = loaded > 0.0 ? stuck / loaded : 0.0;
-  return out;
+  return sums.forces();
 }
 
 CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                           TractionField* f) {
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3;
+  ForceSums sums;
   for (int j = 0; j < mesh.ny(); ++j) {
-    const double dx = mesh.stripStep(j);
-    const double aj = mesh.stripHalfLength(j);
+    const double dx = mesh.stripStep(j), aj = mesh.stripHalfLength(j);
     const double sx = gx - gphi * mesh.stripY(j);
-    double tx = 0.0, ty = 0.0;
+    double tx = 0.0, ty = 0.0, sumX = 0.0, sumY = 0.0, xnTy = 0.0;
+    int stuck = 0, loaded = 0;
     for (int i = 0; i < mesh.nx(); ++i) {
       const int k = mesh.index(i, j);
       // Step from the upstream node (the leading edge for i = 0); the spin term is linear in x, so
@@ -85,9 +105,15 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
       f->tx(k) = tx;
       f->ty(k) = ty;
       f->slip(k) = slips;
+      sumX += tx;
+      sumY += ty;
+      xnTy += mesh.xNorms()(k) * ty;
+      loaded += g > 0.0;
+      stuck += g > 0.0 && !slips;
     }
+    sums.addStrip(mesh, j, sumX, sumY, xnTy, stuck, loaded);
   }
-  return integrateTraction(mesh, *f);
+  return sums.forces();
 }
 
 }  // namespace wheel_rail_contact

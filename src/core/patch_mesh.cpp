@@ -1,5 +1,6 @@
 #include "wheel_rail_contact/patch_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,6 +14,18 @@ PatchMesh::PatchMesh(int nx, int ny, double a, double b) : nx_(nx), ny_(ny) {
   for (int j = 0; j < ny; ++j) {
     yNorm_(j) = -1.0 + (2.0 * j + 1.0) / ny;
     halfNorm_(j) = std::sqrt(1.0 - yNorm_(j) * yNorm_(j));
+  }
+  xNorm_.resize(size());
+  shape_.resize(size());
+  for (int j = 0; j < ny; ++j) {
+    double strip = 0.0;
+    for (int i = 0; i < nx; ++i) {
+      const double xn = halfNorm_(j) * (1.0 - (2.0 * i + 1.0) / nx);
+      xNorm_(index(i, j)) = xn;
+      shape_(index(i, j)) = std::max(0.0, 1.0 - yNorm_(j) * yNorm_(j) - xn * xn);
+      strip += shape_(index(i, j));
+    }
+    shapeIntegral_ += strip * (2.0 * halfNorm_(j) / nx) * (2.0 / ny);
   }
   scale(a, b);
 }
