@@ -27,11 +27,11 @@ struct ChiFit {
 };
 
 /// The error measures of `chi` against `exact` (points sorted by lambda/a) on an nx x ny mesh.
-ChiFit evaluateChi(CreepKind kind, double a_over_b, double nu, int nx, int ny,
+ChiFit evaluateChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
                    const ChiParameters& chi, const std::vector<FrequencyPoint>& exact);
 
 /// Best chi (chi1 >= 0, chi2 > 0, chi3 > 0) by Nelder-Mead in log-parameters from several starts.
-ChiFit fitChi(CreepKind kind, double a_over_b, double nu, int nx, int ny,
+ChiFit fitChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
               const std::vector<FrequencyPoint>& exact);
 
 }  // namespace wheel_rail_contact

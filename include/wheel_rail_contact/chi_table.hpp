@@ -1,5 +1,5 @@
 /// Table of identified dynamic-flexibility parameters chi (nss_filter.hpp) for the creepage kinds
-/// 11 (xi), 22 (eta), 23 (phi) against the semi-axis ratio a/b, interpolated linearly in ln(a/b)
+/// 11 (kXi), 22 (kEta), 23 (kPhi) against the semi-axis ratio a/b, interpolated linearly in ln(a/b)
 /// and clamped at the table's ends.
 /// File format (CSV, '#' comment lines carry units, mesh and date of the fit):
 ///   a_over_b,kind,chi1,chi2,chi3        with kind in {11, 22, 23}
@@ -8,11 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "wheel_rail_contact/creepage_kind.hpp"
 #include "wheel_rail_contact/nss_filter.hpp"
 
 namespace wheel_rail_contact {
-
-enum class CreepKind { k11 = 0, k22 = 1, k23 = 2 };
 
 class ChiTable {
  public:
@@ -24,7 +23,7 @@ class ChiTable {
   /// A table with the same chi for every kind and a/b (tests; {0, 1, 0} is Shen & Li).
   static ChiTable uniform(const ChiParameters& chi);
 
-  ChiParameters at(CreepKind kind, double a_over_b) const;
+  ChiParameters at(CreepageKind kind, double a_over_b) const;
 
  private:
   struct Row {

@@ -15,11 +15,11 @@ namespace wheel_rail_contact {
 
 /// C^ of a FastSim model on an nx x ny mesh at a/b and nu with dynamic flexibility `chi`
 /// ({0, 1, 0} for Shen & Li). lambda_over_a = +infinity gives the steady coefficient.
-std::complex<double> fastsimNonSteadyCoefficient(CreepKind kind, double a_over_b, double nu, int nx,
-                                                 int ny, const ChiParameters& chi,
+std::complex<double> fastsimNonSteadyCoefficient(CreepageKind kind, double a_over_b, double nu,
+                                                 int nx, int ny, const ChiParameters& chi,
                                                  double lambda_over_a);
 
 /// The steady FastSim coefficient on the same mesh (real; equals Kalker's C within the mesh error).
-double fastsimSteadyCoefficient(CreepKind kind, double a_over_b, double nu, int nx, int ny);
+double fastsimSteadyCoefficient(CreepageKind kind, double a_over_b, double nu, int nx, int ny);
 
 }  // namespace wheel_rail_contact

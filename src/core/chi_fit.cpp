@@ -8,7 +8,7 @@
 
 namespace wheel_rail_contact {
 
-ChiFit evaluateChi(CreepKind kind, double a_over_b, double nu, int nx, int ny,
+ChiFit evaluateChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
                    const ChiParameters& chi, const std::vector<FrequencyPoint>& exact) {
   ChiFit fit;
   fit.chi = chi;
@@ -97,7 +97,7 @@ Vec nelderMead(F f, Vec start, double step, int maxEval, int* evals) {
 
 }  // namespace
 
-ChiFit fitChi(CreepKind kind, double a_over_b, double nu, int nx, int ny,
+ChiFit fitChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
               const std::vector<FrequencyPoint>& exact) {
   auto cost = [&](const Vec& p) {
     return evaluateChi(kind, a_over_b, nu, nx, ny, fromLog(p), exact).meanErrorLog;

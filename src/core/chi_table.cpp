@@ -79,7 +79,7 @@ ChiTable ChiTable::load(const std::string& path) {
   return t;
 }
 
-ChiParameters ChiTable::at(CreepKind kind, double a_over_b) const {
+ChiParameters ChiTable::at(CreepageKind kind, double a_over_b) const {
   const auto& r = rows_[static_cast<int>(kind)];
   const double x = std::log(a_over_b);
   if (r.size() == 1 || x <= r.front().logAB) return r.front().chi;

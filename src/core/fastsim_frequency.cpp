@@ -7,8 +7,8 @@
 
 namespace wheel_rail_contact {
 
-std::complex<double> fastsimNonSteadyCoefficient(CreepKind kind, double a_over_b, double nu, int nx,
-                                                 int ny, const ChiParameters& chi,
+std::complex<double> fastsimNonSteadyCoefficient(CreepageKind kind, double a_over_b, double nu,
+                                                 int nx, int ny, const ChiParameters& chi,
                                                  double lambda_over_a) {
   using C = std::complex<double>;
   const double a = 1.0, b = a / a_over_b, G = 1.0;  // C^ is scale-free: unit a and G
@@ -24,19 +24,19 @@ std::complex<double> fastsimNonSteadyCoefficient(CreepKind kind, double a_over_b
     for (int i = 0; i < nx; ++i) {
       const double h = (i == 0) ? 0.5 * dx : dx;
       const double xMid = aj - (i + 0.5) * dx + 0.5 * h;
-      const double drive = kind == CreepKind::k11   ? 1.0 / L.L1
-                           : kind == CreepKind::k22 ? 1.0 / L.L2
-                                                    : xMid / L.L3;
+      const double drive = kind == CreepageKind::kXi    ? 1.0 / L.L1
+                           : kind == CreepageKind::kEta ? 1.0 / L.L2
+                                                        : xMid / L.L3;
       tau = (tau / h - drive) / (1.0 / h + timeTerm);
       strip += tau;
     }
     force += strip * mesh.nodeArea(j);
   }
-  const double norm = kind == CreepKind::k23 ? G * std::pow(a * b, 1.5) : G * a * b;
+  const double norm = kind == CreepageKind::kPhi ? G * std::pow(a * b, 1.5) : G * a * b;
   return -force / norm;
 }
 
-double fastsimSteadyCoefficient(CreepKind kind, double a_over_b, double nu, int nx, int ny) {
+double fastsimSteadyCoefficient(CreepageKind kind, double a_over_b, double nu, int nx, int ny) {
   return fastsimNonSteadyCoefficient(kind, a_over_b, nu, nx, ny, ChiParameters{},
                                      std::numeric_limits<double>::infinity())
       .real();

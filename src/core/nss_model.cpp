@@ -11,7 +11,7 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
       adaptive_(p.mesh == "adaptive"),
       dynamic_(p.model == "nss") {
   for (int k = 0; k < 3; ++k)
-    chi_[k] = dynamic_ ? chi.at(static_cast<CreepKind>(k), p.a0 / p.b0) : ChiParameters{};
+    chi_[k] = dynamic_ ? chi.at(static_cast<CreepageKind>(k), p.a0 / p.b0) : ChiParameters{};
   const HertzEllipse largest = ref_.at(adaptive_ ? p.fz0 : effectiveFzMax(p));
   mesh_ = PatchMesh(p.nx, p.ny, largest.a, largest.b);
   spare_ = mesh_;

@@ -159,17 +159,17 @@ TEST(NssModel, TimeDomainMatchesItsFrequencyResponse) {
   }
   const std::complex<double> measured = -2.0 * acc / double(2 * perPeriod) / (p.G * a * b * 1e-6);
   const std::complex<double> predicted =
-      fastsimNonSteadyCoefficient(CreepKind::k11, a / b, p.nu, p.nx, p.ny, chi, 10.0);
+      fastsimNonSteadyCoefficient(CreepageKind::kXi, a / b, p.nu, p.nx, p.ny, chi, 10.0);
   EXPECT_NEAR(std::abs(measured - predicted) / std::abs(predicted), 0.0, 0.01);
 }
 
 TEST(NssModel, FrequencyResponseTendsToSteadyAndLags) {
   const ChiParameters shenLi{};
-  const double steady = fastsimSteadyCoefficient(CreepKind::k11, 1.0, 0.28, 20, 20);
+  const double steady = fastsimSteadyCoefficient(CreepageKind::kXi, 1.0, 0.28, 20, 20);
   EXPECT_NEAR(steady, kalkerCoefficients(1.0, 0.28).c11, 0.005 * steady);
-  const auto slow = fastsimNonSteadyCoefficient(CreepKind::k11, 1.0, 0.28, 20, 20, shenLi, 1e4);
+  const auto slow = fastsimNonSteadyCoefficient(CreepageKind::kXi, 1.0, 0.28, 20, 20, shenLi, 1e4);
   EXPECT_NEAR(slow.real(), steady, 1e-3 * steady);
-  for (CreepKind kind : {CreepKind::k11, CreepKind::k22, CreepKind::k23}) {
+  for (CreepageKind kind : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
     const auto c = fastsimNonSteadyCoefficient(kind, 1.0, 0.28, 20, 20, shenLi, 5.0);
     EXPECT_LT(c.imag(), 0.0);
     EXPECT_LT(std::abs(c), fastsimSteadyCoefficient(kind, 1.0, 0.28, 20, 20));
