@@ -1,0 +1,17 @@
+/// Which single creepage drives a linear (creep-coefficient) computation.
+#pragma once
+
+#include <string>
+
+namespace wheel_rail_contact {
+
+/// kXi: longitudinal xi -> C11 (Fx); kEta: lateral eta -> C22 (Fy); kPhi: spin phi -> C23 (Fy).
+enum class CreepageKind { kXi, kEta, kPhi };
+
+/// "xi", "eta", "phi".
+const char* toString(CreepageKind k);
+
+/// Parses "xi", "eta" or "phi"; throws std::invalid_argument naming the text otherwise.
+CreepageKind parseCreepageKind(const std::string& text);
+
+}  // namespace wheel_rail_contact
