@@ -1,0 +1,89 @@
+/// Kalker's exact theory for the tangential problem of two elastically identical half-spaces on a
+/// HalfspaceGrid (CONTACT's split: influence coefficients / this tangential solver / output).
+/// Units: tractions and pressures Pa, lengths m, forces N, moment N m, creepages as in fastsim.hpp.
+/// Traction and state fields are per grid element (size mx*my, index HalfspaceGrid::index).
+/// Slip per unit rolled distance at element I: s_I = w_I + (u_I - u'_I)/dq, with u'_I
+///   steady:    u at the upstream neighbour (x + dx) now, dq = dx;
+///   transient: u at the upstream neighbour at the previous step, dq = dx (one cell per step);
+///   shift:     u at I itself at the previous step, dq the tangential shift (Cattaneo from rest).
+/// Coulomb: |tau| <= mu p; adhesion where |tau| < mu p (s = 0), else tau = -mu p s/|s|.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <vector>
+
+#include "wheel_rail_contact/fastsim.hpp"
+#include "wheel_rail_contact/halfspace_influence.hpp"
+
+namespace wheel_rail_contact {
+
+enum class RollingMode { kSteady, kTransient, kShift };
+
+enum class ElementState : unsigned char { kExterior = 0, kAdhesion, kSlip };
+
+/// Block Gauss-Seidel stops when no element's traction moved by more than tolerance * max|tau|
+/// in a sweep; after maxIterations sweeps the solution is reported as not converged.
+struct SolverControl {
+  double tolerance = 1e-10;
+  int maxIterations = 5000;
+};
+
+struct HalfspaceSolution {
+  double fx = 0.0;                  ///< [N]
+  double fy = 0.0;                  ///< [N]
+  double mz = 0.0;                  ///< about the patch centre, sum of (x tau_y - y tau_x) dA [N m]
+  Eigen::VectorXd tx, ty;           ///< traction on the wheel [Pa], 0 outside contact
+  std::vector<ElementState> state;  ///< adhesion/slip map
+  double adhesionFraction = 1.0;    ///< adhesion elements / contact elements [-]
+  int iterations = 0;               ///< Gauss-Seidel sweeps (0: direct adhesion solve sufficed)
+  bool converged = true;
+  double residual = 0.0;  ///< last sweep's max |delta tau| / max |tau| [-]
+};
+
+class HalfspaceSolver {
+ public:
+  HalfspaceSolver(const HalfspaceGrid& grid, double G, double nu, SolverControl control = {});
+  /// Pressure per element [Pa]; p > 0 marks contact. Throws std::invalid_argument if a loaded
+  /// element lies in the last column (its upstream neighbour would be off the grid).
+  void setPressure(const Eigen::VectorXd& p);
+  /// The Hertzian case: the discrete normal problem (halfspace_normal.hpp) for the gap whose Hertz
+  /// ellipse at load fz is (a, b), so the loaded elements are those CONTACT loads.
+  void setHertzPressure(double a, double b, double fz);
+  /// Zero traction history: the next transient or shift step starts from rest.
+  void clearHistory();
+  /// One solve; transient and shift use the history and replace it with the result.
+  /// dq: shift distance for kShift [m] (ignored otherwise: dq = dx).
+  const HalfspaceSolution& solve(RollingMode mode, const Creepages& w, double mu, double dq = 0.0);
+  const HalfspaceSolution& solution() const { return sol_; }
+  const HalfspaceGrid& grid() const { return kernel_.grid(); }
+  const InfluenceKernel& kernel() const { return kernel_; }
+  /// Elements in contact (grid indices, ascending).
+  const std::vector<int>& contactElements() const { return elems_; }
+
+ private:
+  void buildSystem(bool steady);
+  void previousDisplacement(RollingMode mode, Eigen::VectorXd* c) const;
+  bool directAdhesion(bool steady, const Eigen::VectorXd& rhs, Eigen::VectorXd* tau);
+  void gaussSeidel(RollingMode mode, const Eigen::VectorXd& c, const Creepages& w, double dq,
+                   Eigen::VectorXd* tau);
+  void output(const Eigen::VectorXd& tau);
+
+  InfluenceKernel kernel_;
+  double G_, nu_;
+  SolverControl control_;
+  Eigen::VectorXd p_, bound_;  // per contact element: pressure, mu p
+  std::vector<int> elems_;
+  Eigen::VectorXd histX_, histY_;  // previous traction per grid element
+  // System matrix over contact unknowns (x, y interleaved per element), valid for elems_.
+  Eigen::MatrixXd m_;
+  int systemKind_ = -1;  // -1 none, 0 symmetric (transient/shift), 1 steady
+  bool systemUsed_ = false;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  bool factored_ = false;
+  HalfspaceSolution sol_;
+};
+
+}  // namespace wheel_rail_contact

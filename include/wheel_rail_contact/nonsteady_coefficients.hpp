@@ -1,0 +1,54 @@
+/// Exact non-steady linear creep coefficients C11, C22, C23 as functions of the wavelength of a
+/// harmonic creepage (method-notes section 5), from the transient half-space scheme of
+/// halfspace_solver.hpp (shift dq = dx per step) in full adhesion, at periodic steady state.
+/// Convention: creepage = cos(omega t), omega t = 2 pi q / lambda; each step uses the exact mean of
+/// the creepage over the step (as CONTACT's reference runs); C = -F^/(norm), F = Re(F^ e^{i omega
+/// t}), norm = G a b (xi, eta) or G (ab)^{3/2} (phi); Im C < 0 is a lag. Dimensionless; G cancels.
+/// Grid: mx x my elements over [-1.1a, 1.1a] x [-1.1b, 1.1b]; contact = the loaded elements of the
+/// discrete Hertz normal problem (halfspace_normal.hpp), as in CONTACT.
+#pragma once
+
+#include <complex>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "wheel_rail_contact/creepage_kind.hpp"
+
+namespace wheel_rail_contact {
+
+/// Frequency response of the discrete scheme: harmonic unknowns tau^n = tau^ z^n, z = e^{i omega
+/// dt}, solve (A - B/z) tau^ = -dx w^ on the contact elements (A: influence at the element, B: at
+/// its upstream neighbour), folded by the y-symmetry of the kind (half the unknowns). Build once
+/// per (kind, a/b, nu, grid); every at() is one dense complex LU of about mx*my/1.6 unknowns.
+class NonSteadyCoefficients {
+ public:
+  NonSteadyCoefficients(CreepageKind kind, double a_over_b, double nu, int mx, int my);
+  /// Complex coefficient at wavelength lambda = lambda_over_a * a (> 0).
+  std::complex<double> at(double lambda_over_a) const;
+  /// The same scheme in steady rolling (lambda -> infinity).
+  double steady() const;
+  int unknowns() const { return static_cast<int>(weight_.size()); }
+
+ private:
+  std::complex<double> solve(std::complex<double> zinv, std::complex<double> wmean) const;
+  CreepageKind kind_;
+  double a_ = 1.0, b_ = 1.0, dx_ = 0.0;
+  Eigen::MatrixXd A_, B_;
+  Eigen::VectorXd shape_;   // rigid slip per unknown for unit creepage
+  Eigen::VectorXd weight_;  // force weight per unknown: dA times 1 or 2 (mirror), 0 if off-axis
+};
+
+/// One coefficient (C11 for kXi, C22 for kEta, C23 for kPhi) at lambda/a.
+std::complex<double> exactNonSteadyCoefficient(CreepageKind kind, double a_over_b,
+                                               double lambda_over_a, double nu, int mx, int my);
+
+/// A whole curve: builds the matrices once.
+std::vector<std::complex<double>> exactNonSteadyCurve(CreepageKind kind, double a_over_b,
+                                                      const std::vector<double>& lambda_over_a,
+                                                      double nu, int mx, int my);
+
+/// Steady coefficient of the same scheme on the same grid.
+double exactSteadyCoefficient(CreepageKind kind, double a_over_b, double nu, int mx, int my);
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,249 @@
+#include "wheel_rail_contact/halfspace_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "wheel_rail_contact/halfspace_normal.hpp"
+
+namespace wheel_rail_contact {
+
+namespace {
+
+// Slip solve of one element: tau = -g e with the slip s = c + D tau parallel to e, |e| = 1,
+// D = diag(dx, dy) > 0. Writing s = k e (k >= 0) gives e_i = c_i / (k + g d_i); k is the root of
+// sum e_i^2 = 1, decreasing and convex in k, so Newton from k = 0 converges monotonically.
+void slipDirection(double cx, double cy, double g, double dx, double dy, double* ex, double* ey) {
+  double k = 0.0;
+  for (int it = 0; it < 60; ++it) {
+    const double qx = k + g * dx, qy = k + g * dy;
+    const double f = cx * cx / (qx * qx) + cy * cy / (qy * qy) - 1.0;
+    const double df = -2.0 * (cx * cx / (qx * qx * qx) + cy * cy / (qy * qy * qy));
+    const double step = -f / df;
+    k += step;
+    if (std::abs(step) <= 1e-15 * (k + g * std::max(dx, dy))) break;
+  }
+  double x = cx / (k + g * dx), y = cy / (k + g * dy);
+  const double n = std::hypot(x, y);
+  *ex = x / n;
+  *ey = y / n;
+}
+
+}  // namespace
+
+HalfspaceSolver::HalfspaceSolver(const HalfspaceGrid& grid, double G, double nu,
+                                 SolverControl control)
+    : kernel_(grid, G, nu), G_(G), nu_(nu), control_(control) {
+  histX_ = Eigen::VectorXd::Zero(grid.size());
+  histY_ = Eigen::VectorXd::Zero(grid.size());
+  sol_.tx = Eigen::VectorXd::Zero(grid.size());
+  sol_.ty = Eigen::VectorXd::Zero(grid.size());
+  sol_.state.assign(grid.size(), ElementState::kExterior);
+}
+
+void HalfspaceSolver::setPressure(const Eigen::VectorXd& p) {
+  const HalfspaceGrid& g = grid();
+  if (p.size() != g.size()) throw std::invalid_argument("pressure: size must be mx*my");
+  std::vector<int> elems;
+  for (int k = 0; k < g.size(); ++k)
+    if (p[k] > 0.0) elems.push_back(k);
+  for (int k : elems)
+    if (k / g.my == g.mx - 1)
+      throw std::invalid_argument("pressure: contact reaches the last grid column");
+  if (elems != elems_) {
+    elems_ = elems;
+    systemKind_ = -1;
+  }
+  p_.resize(elems_.size());
+  for (size_t i = 0; i < elems_.size(); ++i) p_[i] = p[elems_[i]];
+}
+
+void HalfspaceSolver::setHertzPressure(double a, double b, double fz) {
+  setPressure(hertzianGridPressure(grid(), a, b, fz, G_, nu_));
+}
+
+void HalfspaceSolver::clearHistory() {
+  histX_.setZero();
+  histY_.setZero();
+}
+
+void HalfspaceSolver::buildSystem(bool steady) {
+  const HalfspaceGrid& g = grid();
+  const int n = static_cast<int>(elems_.size());
+  m_.resize(2 * n, 2 * n);
+  for (int j = 0; j < n; ++j) {
+    const int jx = elems_[j] / g.my, jy = elems_[j] % g.my;
+    for (int i = 0; i < n; ++i) {
+      const int di = elems_[i] / g.my - jx, dj = elems_[i] % g.my - jy;
+      double xx = kernel_.xx(di, dj), xy = kernel_.xy(di, dj), yy = kernel_.yy(di, dj);
+      if (steady) {  // minus the displacement at the upstream neighbour, now
+        xx -= kernel_.xx(di + 1, dj);
+        xy -= kernel_.xy(di + 1, dj);
+        yy -= kernel_.yy(di + 1, dj);
+      }
+      m_(2 * i, 2 * j) = xx;
+      m_(2 * i + 1, 2 * j) = xy;
+      m_(2 * i, 2 * j + 1) = xy;
+      m_(2 * i + 1, 2 * j + 1) = yy;
+    }
+  }
+  systemKind_ = steady ? 1 : 0;
+  systemUsed_ = false;
+  factored_ = false;
+}
+
+void HalfspaceSolver::previousDisplacement(RollingMode mode, Eigen::VectorXd* c) const {
+  const HalfspaceGrid& g = grid();
+  const int n = static_cast<int>(elems_.size());
+  c->setZero(2 * n);
+  if (mode == RollingMode::kSteady) return;
+  std::vector<int> src;
+  for (int k = 0; k < g.size(); ++k)
+    if (histX_[k] != 0.0 || histY_[k] != 0.0) src.push_back(k);
+  const int shift = mode == RollingMode::kTransient ? 1 : 0;
+  for (int i = 0; i < n; ++i) {
+    const int ix = elems_[i] / g.my + shift, iy = elems_[i] % g.my;
+    double ux = 0.0, uy = 0.0;
+    for (int k : src) {
+      const int di = ix - k / g.my, dj = iy - k % g.my;
+      const double xy = kernel_.xy(di, dj);
+      ux += kernel_.xx(di, dj) * histX_[k] + xy * histY_[k];
+      uy += xy * histX_[k] + kernel_.yy(di, dj) * histY_[k];
+    }
+    (*c)[2 * i] = ux;
+    (*c)[2 * i + 1] = uy;
+  }
+}
+
+bool HalfspaceSolver::directAdhesion(bool steady, const Eigen::VectorXd& rhs,
+                                     Eigen::VectorXd* tau) {
+  if (!factored_) {
+    if (steady)
+      lu_.compute(m_);
+    else
+      llt_.compute(m_);
+    factored_ = true;
+  }
+  *tau = steady ? Eigen::VectorXd(lu_.solve(rhs)) : Eigen::VectorXd(llt_.solve(rhs));
+  for (int i = 0; i < p_.size(); ++i)
+    if (std::hypot((*tau)[2 * i], (*tau)[2 * i + 1]) > bound_[i] * (1.0 + 1e-12)) return false;
+  return true;
+}
+
+void HalfspaceSolver::gaussSeidel(RollingMode mode, const Eigen::VectorXd& c, const Creepages& w,
+                                  double dq, Eigen::VectorXd* tau) {
+  const HalfspaceGrid& g = grid();
+  const int n = static_cast<int>(elems_.size());
+  Eigen::VectorXd v = m_ * (*tau);
+  sol_.converged = false;
+  for (int it = 1; it <= control_.maxIterations; ++it) {
+    double maxd = 0.0, maxt = 0.0;
+    // Leading edge first: upstream elements settle before the ones they feed.
+    for (int i = n - 1; i >= 0; --i) {
+      const int ix = elems_[i] / g.my, iy = elems_[i] % g.my;
+      const double dxx = m_(2 * i, 2 * i) / dq, dyy = m_(2 * i + 1, 2 * i + 1) / dq;
+      double& tx = (*tau)[2 * i];
+      double& ty = (*tau)[2 * i + 1];
+      // Slip with this element's traction removed.
+      const double cx = w.xi - w.phi * g.yc(iy) + (v[2 * i] - c[2 * i]) / dq - dxx * tx;
+      const double cy = w.eta + w.phi * g.xc(ix) + (v[2 * i + 1] - c[2 * i + 1]) / dq - dyy * ty;
+      double nx = -cx / dxx, ny = -cy / dyy;
+      const double gb = bound_[i];
+      if (std::hypot(nx, ny) > gb) {
+        double ex = 0.0, ey = 0.0;
+        if (gb > 0.0) slipDirection(cx, cy, gb, dxx, dyy, &ex, &ey);
+        nx = -gb * ex;
+        ny = -gb * ey;
+      }
+      const double ddx = nx - tx, ddy = ny - ty;
+      if (ddx != 0.0 || ddy != 0.0) {
+        v.noalias() += m_.col(2 * i) * ddx + m_.col(2 * i + 1) * ddy;
+        tx = nx;
+        ty = ny;
+      }
+      maxd = std::max(maxd, std::hypot(ddx, ddy));
+      maxt = std::max(maxt, std::hypot(nx, ny));
+    }
+    sol_.iterations = it;
+    sol_.residual = maxt > 0.0 ? maxd / maxt : 0.0;
+    if (sol_.residual <= control_.tolerance) {
+      sol_.converged = true;
+      break;
+    }
+  }
+  (void)mode;
+}
+
+const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepages& w, double mu,
+                                                double dq) {
+  const HalfspaceGrid& g = grid();
+  if (mode != RollingMode::kShift) dq = g.dx;
+  if (!(dq > 0.0) || !(mu >= 0.0)) throw std::invalid_argument("solve: need dq > 0, mu >= 0");
+  const bool steady = mode == RollingMode::kSteady;
+  const int n = static_cast<int>(elems_.size());
+  if (systemKind_ != (steady ? 1 : 0)) buildSystem(steady);
+  bound_ = mu * p_;
+  Eigen::VectorXd c;
+  previousDisplacement(mode, &c);
+  Eigen::VectorXd rhs(2 * n);
+  for (int i = 0; i < n; ++i) {  // adhesion: u_I - u'_I = -dq w_I
+    rhs[2 * i] = c[2 * i] - dq * (w.xi - w.phi * g.yc(elems_[i] % g.my));
+    rhs[2 * i + 1] = c[2 * i + 1] - dq * (w.eta + w.phi * g.xc(elems_[i] / g.my));
+  }
+  sol_.iterations = 0;
+  sol_.converged = true;
+  sol_.residual = 0.0;
+  Eigen::VectorXd tau;
+  const bool direct = steady || systemUsed_;
+  if (n > 0 && !(direct && directAdhesion(steady, rhs, &tau))) {
+    if (!direct) {  // start from the previous traction carried one cell downstream
+      tau.setZero(2 * n);
+      const int shift = mode == RollingMode::kTransient ? 1 : 0;
+      for (int i = 0; i < n; ++i) {
+        const int ix = elems_[i] / g.my + shift, iy = elems_[i] % g.my;
+        if (mode != RollingMode::kSteady && ix < g.mx) {
+          tau[2 * i] = histX_[g.index(ix, iy)];
+          tau[2 * i + 1] = histY_[g.index(ix, iy)];
+        }
+      }
+    }
+    for (int i = 0; i < n; ++i) {  // project onto the Coulomb disc
+      const double t = std::hypot(tau[2 * i], tau[2 * i + 1]);
+      if (t > bound_[i]) tau.segment<2>(2 * i) *= bound_[i] / t;
+    }
+    gaussSeidel(mode, c, w, dq, &tau);
+  }
+  systemUsed_ = true;
+  output(tau);
+  if (!steady) {
+    histX_ = sol_.tx;
+    histY_ = sol_.ty;
+  }
+  return sol_;
+}
+
+void HalfspaceSolver::output(const Eigen::VectorXd& tau) {
+  const HalfspaceGrid& g = grid();
+  const int n = static_cast<int>(elems_.size());
+  const double dA = g.dx * g.dy;
+  sol_.tx.setZero(g.size());
+  sol_.ty.setZero(g.size());
+  sol_.state.assign(g.size(), ElementState::kExterior);
+  sol_.fx = sol_.fy = sol_.mz = 0.0;
+  int adhesion = 0;
+  for (int i = 0; i < n; ++i) {
+    const int k = elems_[i];
+    const double tx = tau[2 * i], ty = tau[2 * i + 1];
+    sol_.tx[k] = tx;
+    sol_.ty[k] = ty;
+    const bool slip = std::hypot(tx, ty) >= bound_[i] * (1.0 - 1e-9);
+    sol_.state[k] = slip ? ElementState::kSlip : ElementState::kAdhesion;
+    adhesion += slip ? 0 : 1;
+    sol_.fx += tx * dA;
+    sol_.fy += ty * dA;
+    sol_.mz += (g.xc(k / g.my) * ty - g.yc(k % g.my) * tx) * dA;
+  }
+  sol_.adhesionFraction = n > 0 ? static_cast<double>(adhesion) / n : 1.0;
+}
+
+}  // namespace wheel_rail_contact
