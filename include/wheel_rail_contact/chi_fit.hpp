@@ -30,8 +30,9 @@ struct ChiFit {
 ChiFit evaluateChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
                    const ChiParameters& chi, const std::vector<FrequencyPoint>& exact);
 
-/// Best chi (chi1 >= 0, chi2 > 0, chi3 > 0) by Nelder-Mead in log-parameters from several starts.
+/// Best chi (chi1 >= 0, chi2 > 0, chi3 > 0) by Nelder-Mead in log-parameters from several starts,
+/// minimising meanErrorLog + maxWeight * maxError.
 ChiFit fitChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
-              const std::vector<FrequencyPoint>& exact);
+              const std::vector<FrequencyPoint>& exact, double maxWeight = 0.0);
 
 }  // namespace wheel_rail_contact

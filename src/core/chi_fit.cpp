@@ -98,9 +98,10 @@ Vec nelderMead(F f, Vec start, double step, int maxEval, int* evals) {
 }  // namespace
 
 ChiFit fitChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
-              const std::vector<FrequencyPoint>& exact) {
+              const std::vector<FrequencyPoint>& exact, double maxWeight) {
   auto cost = [&](const Vec& p) {
-    return evaluateChi(kind, a_over_b, nu, nx, ny, fromLog(p), exact).meanErrorLog;
+    const ChiFit e = evaluateChi(kind, a_over_b, nu, nx, ny, fromLog(p), exact);
+    return e.meanErrorLog + maxWeight * e.maxError;
   };
   int evals = 0;
   Vec best{};

@@ -1,0 +1,142 @@
+// accuracy_report: every accuracy figure of NSS-FastSim against our exact half-space solver
+// (issue "NSS-FastSim", item 7), written as CSV under an output folder:
+//   freq_errors.csv   |C^/C_steady (nss, shen-li, steady) - exact| per kind, a/b, lambda/a
+//   freq_ab1.csv      the a/b = 1 curves of every model (figure 1)
+//   scenes.csv        per paper scene and model: RMS error / peak, / (mu Fz0), dFx / (mu dFz)
+//   scene_<name>.csv  force histories of every model (figures 2-4, 9-10)
+//   accuracy_report [--out doc/data] [--grid 30] [--nx 20 --ny 20] [--periods 3]
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "wheel_rail_contact/chi_table.hpp"
+#include "wheel_rail_contact/fastsim_frequency.hpp"
+#include "wheel_rail_contact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/paper_scenes.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+struct Options {
+  std::string out = "doc/data";
+  int grid = 30, nx = 20, ny = 20, periods = 3;
+};
+
+const char* kKindName[3] = {"11", "22", "23"};
+const CreepageKind kKinds[3] = {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi};
+
+void frequencyErrors(const Options& o, const ChiTable& table) {
+  std::ofstream errs(o.out + "/freq_errors.csv"), fig(o.out + "/freq_ab1.csv");
+  errs << "a_over_b,kind,lambda_over_a,err_nss,err_shenli,err_steady\n";
+  fig << "kind,lambda_over_a,model,c_real,c_imag,ratio_real,ratio_imag\n";
+  std::vector<double> lambdas;
+  for (int q = 0; q <= 32; ++q) lambdas.push_back(std::pow(10.0, -0.30103 + q * 2.30103 / 32));
+  for (double ab : {0.5, 1.0, 2.0}) {
+    for (int k = 0; k < 3; ++k) {
+      const NonSteadyCoefficients exact(kKinds[k], ab, 0.28, o.grid, o.grid);
+      const double ce = exact.steady();
+      const double cf = fastsimSteadyCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny);
+      const ChiParameters chi = table.at(kKinds[k], ab);
+      for (double l : lambdas) {
+        const std::complex<double> re = exact.at(l) / ce;
+        const auto nss = fastsimNonSteadyCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny, chi, l);
+        const auto sl = fastsimNonSteadyCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny, {}, l);
+        char line[256];
+        std::snprintf(line, sizeof line, "%g,%s,%.5g,%.5f,%.5f,%.5f\n", ab, kKindName[k], l,
+                      std::abs(nss / cf - re), std::abs(sl / cf - re), std::abs(1.0 - re));
+        errs << line;
+        if (ab != 1.0) continue;
+        const std::pair<const char*, std::complex<double>> rows[] = {
+            {"exact", re * ce}, {"nss", nss}, {"shen-li", sl}, {"steady", cf}};
+        for (const auto& r : rows) {
+          const double steady = std::string(r.first) == "exact" ? ce : cf;
+          std::snprintf(line, sizeof line, "%s,%.5g,%s,%.6g,%.6g,%.6g,%.6g\n", kKindName[k], l,
+                        r.first, r.second.real(), r.second.imag(), r.second.real() / steady,
+                        r.second.imag() / steady);
+          fig << line;
+        }
+      }
+      std::cerr << "freq a/b " << ab << " kind " << kKindName[k] << " done\n";
+    }
+  }
+}
+
+void sceneErrors(const Options& o) {
+  std::vector<PaperScene> scenes;
+  const double step = 2.2 * 0.02 / o.grid;  // the exact solver's element length at a = 20 mm
+  for (int c = 1; c <= 3; ++c) scenes.push_back(combinedCreepageScene(c, o.periods, step));
+  const double loadStep = 2.2 * 0.02 * std::cbrt(1.25) / o.grid;
+  for (double xi : {0.002, 0.01, 0.05, 0.1})
+    for (double l : {5.0, 15.0, 40.0})
+      scenes.push_back(varyingLoadScene(xi, l, o.periods, loadStep));
+  std::ofstream table(o.out + "/scenes.csv");
+  table << "scene,model,mesh,rms_over_peak,rms_over_mu_fz0,dfx_over_mu_dfz,exact_dfx_over_mu_dfz\n";
+  const std::pair<const char*, const char*> models[] = {
+      {"nss", "fixed"}, {"nss", "adaptive"}, {"shen-li", "fixed"}, {"steady", "fixed"}};
+  for (const PaperScene& s : scenes) {
+    ContactParameters p = s.params;
+    p.model = "exact";
+    p.nx = p.ny = o.grid;
+    auto exactModel = makeContactModel(p);
+    const std::vector<StepOutput> exact = runScene(*exactModel, s.rows);
+    std::ofstream hist(o.out + "/scene_" + s.name + ".csv");
+    hist << "t,fz,model,mesh,fx,fy\n";
+    auto write = [&](const char* m, const char* mesh, const std::vector<StepOutput>& r) {
+      for (size_t k = 0; k < r.size(); ++k) {
+        char line[200];
+        std::snprintf(line, sizeof line, "%.6g,%.6g,%s,%s,%.6g,%.6g\n", s.rows[k].t, s.rows[k].fz,
+                      m, mesh, r[k].fx, r[k].fy);
+        hist << line;
+      }
+    };
+    write("exact", "grid", exact);
+    for (const auto& m : models) {
+      p.model = m.first;
+      p.mesh = m.second;
+      p.nx = o.nx;
+      p.ny = o.ny;
+      auto model = makeContactModel(p);
+      const std::vector<StepOutput> r = runScene(*model, s.rows);
+      write(m.first, m.second, r);
+      const SceneError e = sceneError(s, r, exact);
+      char line[256];
+      std::snprintf(line, sizeof line, "%s,%s,%s,%.5f,%.5f,%.5f,%.5f\n", s.name.c_str(), m.first,
+                    m.second, e.rmsOverPeak, e.rmsOverMuFz0, e.dFxOverMuDFz, e.dFxOverMuDFzExact);
+      table << line;
+      std::cerr << line;
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  for (int k = 1; k + 1 < argc; k += 2) {
+    const std::string name = argv[k], v = argv[k + 1];
+    if (name == "--out")
+      o.out = v;
+    else if (name == "--grid")
+      o.grid = std::stoi(v);
+    else if (name == "--nx")
+      o.nx = std::stoi(v);
+    else if (name == "--ny")
+      o.ny = std::stoi(v);
+    else if (name == "--periods")
+      o.periods = std::stoi(v);
+    else {
+      std::cerr << "accuracy_report: unknown option " << name << "\n";
+      return 2;
+    }
+  }
+  const ChiTable table = ChiTable::load(ChiTable::defaultPath());
+  frequencyErrors(o, table);
+  sceneErrors(o);
+  return 0;
+}
