@@ -3,7 +3,7 @@
 // it computes the exact C^(lambda/a) / C_steady curve, fits chi (chi_fit.hpp) at the FastSim mesh
 // and writes the table, plus every exact curve for plots.
 //   identify_chi [--out config/chi_table.csv] [--curves doc/data/exact_curves.csv]
-//                [--nx 20 --ny 20] [--grid 30] [--nu 0.28] [--points 25]
+//                [--nx 20 --ny 20] [--grid 30] [--nu 0.28] [--points 25] [--ab 0.2,...,5]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,8 @@ int main(int argc, char** argv) {
                                             {"ny", "20"},
                                             {"grid", "30"},
                                             {"nu", "0.28"},
-                                            {"points", "25"}};
+                                            {"points", "25"},
+                                            {"ab", "0.2,0.3,0.5,0.7,1,1.4,2,3,5"}};
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string name = std::string(argv[k]).substr(2);
     if (!opt.count(name)) {
@@ -38,7 +40,9 @@ int main(int argc, char** argv) {
   const int nx = std::stoi(opt["nx"]), ny = std::stoi(opt["ny"]), grid = std::stoi(opt["grid"]);
   const int points = std::stoi(opt["points"]);
   const double nu = std::stod(opt["nu"]);
-  const std::vector<double> ratios = {0.2, 0.3, 0.5, 0.7, 1.0, 1.4, 2.0, 3.0, 5.0};
+  std::vector<double> ratios;
+  std::stringstream list(opt["ab"]);
+  for (std::string v; std::getline(list, v, ',');) ratios.push_back(std::stod(v));
   std::vector<double> lambdas;
   for (int q = 0; q < points; ++q) lambdas.push_back(std::pow(100.0, q / (points - 1.0)));
 
