@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "wheel_rail_contact/exact_model.hpp"
 #include "wheel_rail_contact/steady_model.hpp"
 
 namespace wheel_rail_contact {
@@ -17,6 +18,8 @@ const char* toString(StepStatus s) {
       return "standstill";
     case StepStatus::kRejected:
       return "rejected input";
+    case StepStatus::kNotConverged:
+      return "not converged";
   }
   return "unknown";
 }
@@ -35,6 +38,7 @@ std::string checkStepInput(const StepInput& in) {
 std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
   validate(p);
   if (p.model == "steady") return std::make_unique<SteadyModel>(p);
+  if (p.model == "exact") return std::make_unique<ExactModel>(p);
   throw std::invalid_argument("model: '" + p.model + "' is not available in this build yet");
 }
 
