@@ -21,9 +21,10 @@ struct StepInput {
 
 enum class StepStatus {
   kOk = 0,
-  kNoLoad,      ///< fz <= 0: zero force, history cleared
-  kStandstill,  ///< V == 0: no travel, state and forces held
-  kRejected,    ///< non-finite or out-of-range input: zero force, state untouched
+  kNoLoad,        ///< fz <= 0: zero force, history cleared
+  kStandstill,    ///< V == 0: no travel, state and forces held
+  kRejected,      ///< non-finite or out-of-range input: zero force, state untouched
+  kNotConverged,  ///< an iterative solver hit its cap: forces are its last iterate, not trusted
 };
 const char* toString(StepStatus s);
 

@@ -23,11 +23,17 @@ enum class RollingMode { kSteady, kTransient, kShift };
 
 enum class ElementState : unsigned char { kExterior = 0, kAdhesion, kSlip };
 
-/// Block Gauss-Seidel stops when no element's traction moved by more than tolerance * max|tau|
+/// Full adhesion is solved directly (Cholesky, or LU for steady rolling, factored once per contact
+/// set); partial slip by block Gauss-Seidel with exact 2x2 element solves, which
+/// stops when no element's traction moved by more than tolerance * max|tau|
 /// in a sweep; after maxIterations sweeps the solution is reported as not converged.
 struct SolverControl {
-  double tolerance = 1e-10;
+  double tolerance = 1e-8;
   int maxIterations = 5000;
+  /// Steady partial slip is marched in transient steps until no traction changes by more than
+  /// steadyTolerance * max|tau| in a step (at most 40 mx steps).
+  double steadyTolerance = 1e-7;
+  double relaxation = 1.0;  ///< over-relaxation of adhesion updates, (0, 2)
 };
 
 struct HalfspaceSolution {
@@ -40,6 +46,7 @@ struct HalfspaceSolution {
   int iterations = 0;               ///< Gauss-Seidel sweeps (0: direct adhesion solve sufficed)
   bool converged = true;
   double residual = 0.0;  ///< last sweep's max |delta tau| / max |tau| [-]
+  int steadySteps = 0;    ///< transient steps of a steady partial-slip solve
 };
 
 class HalfspaceSolver {
@@ -69,6 +76,7 @@ class HalfspaceSolver {
   void gaussSeidel(RollingMode mode, const Eigen::VectorXd& c, const Creepages& w, double dq,
                    Eigen::VectorXd* tau);
   void output(const Eigen::VectorXd& tau);
+  const HalfspaceSolution& steadyByMarching(const Creepages& w, double mu, Eigen::VectorXd tau);
 
   InfluenceKernel kernel_;
   double G_, nu_;

@@ -1,5 +1,7 @@
 #include "cli.hpp"
 
+#include <cmath>
+#include <complex>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -7,7 +9,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "wheel_rail_contact/chi_table.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
+#include "wheel_rail_contact/fastsim_frequency.hpp"
+#include "wheel_rail_contact/nonsteady_coefficients.hpp"
 #include "wheel_rail_contact/scenario.hpp"
 
 namespace wheel_rail_contact {
@@ -22,6 +27,8 @@ struct Options {
 
 const char* kUsage =
     "usage: contact_cli run --scenario FILE.csv [--model M] [--OPTION VALUE ...]\n"
+    "       contact_cli freq --model exact --kind {xi,eta,phi} --ab R --lambda-over-a L1,L2,...\n"
+    "                  [--nu NU] [--nx MX --ny MY]\n"
     "       contact_cli --help\n"
     "\n"
     "run: replays a scenario CSV (header t,V,xi,eta,phi,fz in s, m/s, -, -, 1/m, N; one row per\n"
@@ -29,7 +36,17 @@ const char* kUsage =
     "     t,fx,fy,mz,fz,a,b,adhesion_fraction,status (N, N, N m, N, m, m, -, text).\n"
     "     dt of a row is its t minus the previous row's; the first row starts from zero\n"
     "     traction history. The patch follows a = a0 (fz/fz0)^(1/3), b = b0 (fz/fz0)^(1/3).\n"
-    "     Rows the model refuses (V < 0) are written with zero forces and their status.\n";
+    "     Rows the model refuses (V < 0) are written with zero forces and their status.\n"
+    "     --model exact steps internally by one grid element (dq = dx = 2.2 a_max/nx, inputs\n"
+    "     interpolated linearly between rows, the remainder carried over) and still writes one\n"
+    "     row per scenario row, at its t (the state after the last internal step).\n"
+    "\n"
+    "freq: non-steady creep coefficient C11 (xi), C22 (eta) or C23 (phi) at each lambda/a, for\n"
+    "     a/b = R, one small harmonic creepage cos(2 pi q/lambda) in full adhesion at periodic\n"
+    "     steady state; C = -F^/(G a b) (G (ab)^1.5 for phi), Im C < 0 a lag. CSV to stdout:\n"
+    "     lambda_over_a,c_real,c_imag,magnitude,phase_deg,c_steady,magnitude_over_steady\n"
+    "     (c_steady: the same model's steady coefficient on the same grid). For exact, --nx/--ny\n"
+    "     are the grid MX x MY over [-1.1a, 1.1a] x [-1.1b, 1.1b].\n";
 
 Options parse(const std::vector<std::string>& args) {
   Options o;
@@ -76,6 +93,80 @@ void writeRow(std::ostream& out, double t, const StepOutput& s) {
   out << line;
 }
 
+std::vector<double> parseList(const std::string& name, const std::string& text) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    const double x = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !(x > 0.0) || !std::isfinite(x))
+      throw std::invalid_argument(name + ": expected positive numbers separated by commas, got '" +
+                                  text + "'");
+    v.push_back(x);
+  }
+  if (v.empty()) throw std::invalid_argument(name + ": empty list");
+  return v;
+}
+
+struct FrequencyResponse {
+  std::vector<std::complex<double>> c;  // one per lambda/a
+  double steady = 0.0;
+};
+
+// The one place a model's frequency response is chosen; models without one are refused by name.
+FrequencyResponse frequencyResponse(const ContactParameters& p, CreepageKind kind, double ab,
+                                    const std::vector<double>& lambda_over_a) {
+  if (p.model == "exact") {
+    const NonSteadyCoefficients c(kind, ab, p.nu, p.nx, p.ny);
+    FrequencyResponse r;
+    for (double l : lambda_over_a) r.c.push_back(c.at(l));
+    r.steady = c.steady();
+    return r;
+  }
+  // FastSim models: their exact linear response in the continuous-time limit
+  // (fastsim_frequency.hpp).
+  ChiParameters chi;  // shen-li: F == 1
+  if (p.model == "nss") {
+    const std::string path = p.chi_table.empty() ? ChiTable::defaultPath() : p.chi_table;
+    chi = ChiTable::load(path).at(kind, ab);
+  }
+  FrequencyResponse r;
+  r.steady = fastsimSteadyCoefficient(kind, ab, p.nu, p.nx, p.ny);
+  for (double l : lambda_over_a)
+    r.c.push_back(p.model == "steady"
+                      ? std::complex<double>(r.steady)
+                      : fastsimNonSteadyCoefficient(kind, ab, p.nu, p.nx, p.ny, chi, l));
+  return r;
+}
+
+int freqCommand(const Options& o, std::ostream& out) {
+  ContactParameters p;
+  for (const char* req : {"kind", "ab", "lambda-over-a"})
+    if (!o.values.count(req))
+      throw std::invalid_argument(std::string("freq: --") + req + " is required");
+  for (const auto& name : o.names)
+    if (name != "kind" && name != "ab" && name != "lambda-over-a")
+      setParameter(&p, name, o.values.at(name));
+  validate(p);
+  const CreepageKind kind = parseCreepageKind(o.values.at("kind"));
+  const double ab = parseList("ab", o.values.at("ab")).at(0);
+  if (!(ab >= 0.05 && ab <= 20.0)) throw std::invalid_argument("ab: must be in [0.05, 20]");
+  if (p.nx * p.ny > 6400) throw std::invalid_argument("nx: at most nx * ny = 6400 elements");
+  const std::vector<double> lambdas = parseList("lambda-over-a", o.values.at("lambda-over-a"));
+  const FrequencyResponse r = frequencyResponse(p, kind, ab, lambdas);
+  out << "lambda_over_a,c_real,c_imag,magnitude,phase_deg,c_steady,magnitude_over_steady\n";
+  for (size_t k = 0; k < lambdas.size(); ++k) {
+    const std::complex<double> c = r.c[k];
+    char line[320];
+    std::snprintf(line, sizeof line, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", lambdas[k],
+                  c.real(), c.imag(), std::abs(c), std::arg(c) * 180.0 / M_PI, r.steady,
+                  std::abs(c) / r.steady);
+    out << line;
+  }
+  return 0;
+}
+
 int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
   const ContactParameters p = parametersFrom(o);
   if (!o.values.count("scenario")) throw std::invalid_argument("run: --scenario FILE is required");
@@ -106,6 +197,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
       return 0;
     }
     if (o.command == "run") return runCommand(o, out, err);
+    if (o.command == "freq") return freqCommand(o, out);
     err << "contact_cli: "
         << (o.command.empty() ? "missing command" : "unknown command '" + o.command + "'") << "\n"
         << kUsage;

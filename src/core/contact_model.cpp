@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "wheel_rail_contact/exact_model.hpp"
 #include "wheel_rail_contact/nss_model.hpp"
 #include "wheel_rail_contact/steady_model.hpp"
 
@@ -18,6 +19,8 @@ const char* toString(StepStatus s) {
       return "standstill";
     case StepStatus::kRejected:
       return "rejected input";
+    case StepStatus::kNotConverged:
+      return "not converged";
   }
   return "unknown";
 }
@@ -36,6 +39,7 @@ std::string checkStepInput(const StepInput& in) {
 std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
   validate(p);
   if (p.model == "steady") return std::make_unique<SteadyModel>(p);
+  if (p.model == "exact") return std::make_unique<ExactModel>(p);
   if (p.model == "shen-li") return std::make_unique<NssModel>(p, ChiTable::uniform({}));
   if (p.model == "nss") {
     const std::string path = p.chi_table.empty() ? ChiTable::defaultPath() : p.chi_table;

@@ -136,6 +136,7 @@ void HalfspaceSolver::gaussSeidel(RollingMode mode, const Eigen::VectorXd& c, co
   const int n = static_cast<int>(elems_.size());
   Eigen::VectorXd v = m_ * (*tau);
   sol_.converged = false;
+  const double omega = control_.relaxation;
   for (int it = 1; it <= control_.maxIterations; ++it) {
     double maxd = 0.0, maxt = 0.0;
     // Leading edge first: upstream elements settle before the ones they feed.
@@ -147,13 +148,21 @@ void HalfspaceSolver::gaussSeidel(RollingMode mode, const Eigen::VectorXd& c, co
       // Slip with this element's traction removed.
       const double cx = w.xi - w.phi * g.yc(iy) + (v[2 * i] - c[2 * i]) / dq - dxx * tx;
       const double cy = w.eta + w.phi * g.xc(ix) + (v[2 * i + 1] - c[2 * i + 1]) / dq - dyy * ty;
-      double nx = -cx / dxx, ny = -cy / dyy;
       const double gb = bound_[i];
-      if (std::hypot(nx, ny) > gb) {
+      double nx = -cx / dxx, ny = -cy / dyy;  // adhesion: s = 0
+      if (std::hypot(nx, ny) > gb) {          // slip at the bound
         double ex = 0.0, ey = 0.0;
         if (gb > 0.0) slipDirection(cx, cy, gb, dxx, dyy, &ex, &ey);
         nx = -gb * ex;
         ny = -gb * ey;
+      } else if (omega != 1.0) {  // over-relaxed adhesion update (projected SOR)
+        nx = tx + omega * (nx - tx);
+        ny = ty + omega * (ny - ty);
+        const double t = std::hypot(nx, ny);
+        if (t > gb) {
+          nx *= gb / t;
+          ny *= gb / t;
+        }
       }
       const double ddx = nx - tx, ddy = ny - ty;
       if (ddx != 0.0 || ddy != 0.0) {
@@ -193,15 +202,17 @@ const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepage
   sol_.iterations = 0;
   sol_.converged = true;
   sol_.residual = 0.0;
+  sol_.steadySteps = 0;
   Eigen::VectorXd tau;
-  const bool direct = steady || systemUsed_;
-  if (n > 0 && !(direct && directAdhesion(steady, rhs, &tau))) {
-    if (!direct) {  // start from the previous traction carried one cell downstream
+  if (steady) {
+    if (n > 0 && !directAdhesion(true, rhs, &tau)) return steadyByMarching(w, mu, tau);
+  } else if (n > 0 && !(systemUsed_ && directAdhesion(false, rhs, &tau))) {
+    if (!systemUsed_) {  // start from the previous traction carried one cell downstream
       tau.setZero(2 * n);
       const int shift = mode == RollingMode::kTransient ? 1 : 0;
       for (int i = 0; i < n; ++i) {
         const int ix = elems_[i] / g.my + shift, iy = elems_[i] % g.my;
-        if (mode != RollingMode::kSteady && ix < g.mx) {
+        if (ix < g.mx) {
           tau[2 * i] = histX_[g.index(ix, iy)];
           tau[2 * i + 1] = histY_[g.index(ix, iy)];
         }
@@ -219,6 +230,42 @@ const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepage
     histX_ = sol_.tx;
     histY_ = sol_.ty;
   }
+  return sol_;
+}
+
+const HalfspaceSolution& HalfspaceSolver::steadyByMarching(const Creepages& w, double mu,
+                                                           Eigen::VectorXd tau) {
+  // Steady partial slip as the limit of transient rolling with constant inputs, started from the
+  // adhesion solution clamped to the Coulomb disc. The transient start-up decays over about 1.1a,
+  // i.e. mx/2 steps per e-folding; the user's traction history is kept aside and restored.
+  const HalfspaceGrid& g = grid();
+  const Eigen::VectorXd keepX = histX_, keepY = histY_;
+  histX_.setZero();
+  histY_.setZero();
+  for (size_t i = 0; i < elems_.size(); ++i) {
+    const double t = std::hypot(tau[2 * i], tau[2 * i + 1]);
+    const double f = t > bound_[i] ? bound_[i] / t : 1.0;
+    histX_[elems_[i]] = f * tau[2 * i];
+    histY_[elems_[i]] = f * tau[2 * i + 1];
+  }
+  const int maxSteps = 40 * g.mx;
+  int sweeps = 0, steps = 0;
+  bool converged = false;
+  while (steps < maxSteps && !converged) {
+    const Eigen::VectorXd px = histX_, py = histY_;
+    solve(RollingMode::kTransient, w, mu);
+    sweeps += sol_.iterations;
+    ++steps;
+    const double change =
+        std::max((histX_ - px).cwiseAbs().maxCoeff(), (histY_ - py).cwiseAbs().maxCoeff());
+    const double scale = std::max(histX_.cwiseAbs().maxCoeff(), histY_.cwiseAbs().maxCoeff());
+    converged = sol_.converged && change <= control_.steadyTolerance * scale;
+  }
+  histX_ = keepX;
+  histY_ = keepY;
+  sol_.iterations = sweeps;
+  sol_.converged = converged;
+  sol_.steadySteps = steps;
   return sol_;
 }
 

@@ -140,3 +140,23 @@ TEST(ContactCli, ExecutableRunsTheShippedDemoScenario) {
   EXPECT_GT(parseCsv(out).size(), 10u);
   EXPECT_EQ(out.find("nan"), std::string::npos);
 }
+
+TEST(ContactCli, FreqForEveryFastSimModel) {
+  for (const char* model : {"steady", "shen-li", "nss"}) {
+    const Result r = cli({"freq", "--model", model, "--kind", "eta", "--ab", "1", "--lambda-over-a",
+                          "3,30", "--nx", "16", "--ny", "16"});
+    ASSERT_EQ(r.code, 0) << model << r.err;
+    const auto rows = parseCsv(r.out);
+    ASSERT_EQ(rows.size(), 3u);
+    EXPECT_EQ(rows[0][0] + "," + rows[0][1] + "," + rows[0][2] + "," + rows[0][3] + "," +
+                  rows[0][4] + "," + rows[0][5],
+              "lambda_over_a,c_real,c_imag,magnitude,phase_deg,c_steady");
+    const double steady = std::stod(rows[1][5]);
+    EXPECT_NEAR(steady, kalkerCoefficients(1.0, 0.28).c22, 0.01 * steady);
+    if (std::string(model) == "steady")
+      EXPECT_EQ(std::stod(rows[1][2]), 0.0);
+    else
+      EXPECT_LT(std::stod(rows[1][2]), 0.0);                          // a lag at lambda/a = 3
+    EXPECT_LT(std::stod(rows[1][3]), std::stod(rows[2][3]) + 1e-12);  // shorter wave, smaller |C|
+  }
+}

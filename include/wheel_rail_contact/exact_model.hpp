@@ -1,0 +1,45 @@
+/// The exact half-space solver (halfspace_solver.hpp) as a ContactModel named "exact": transient
+/// rolling on one fixed grid of nx x ny elements over [-1.1 a_max, 1.1 a_max] x [-1.1 b_max,
+/// 1.1 b_max], a_max, b_max the patch at effectiveFzMax. Units as in contact_model.hpp.
+/// Each step() advances by V dt in internal sub-steps of exactly one element length dx (the
+/// scheme's condition dq = dx), with V, creepages and load interpolated linearly between the
+/// previous and the current input; the remainder below dx is carried to the next step. The output
+/// is the state after the last sub-step (it lags the step's end by less than dx/V). A step longer
+/// than 10 nx elements restarts from rest 10 nx elements before its end (the memory of the start
+/// has decayed by e^-20 there). The pressure is the discrete Hertz normal problem at the
+/// sub-step's load (a, b scale as (fz/fz0)^(1/3)). Status rules as SteadyModel; the first step
+/// after start, reset or loss of contact starts from zero traction and returns zero force.
+#pragma once
+
+#include "wheel_rail_contact/contact_model.hpp"
+#include "wheel_rail_contact/halfspace_solver.hpp"
+#include "wheel_rail_contact/hertz.hpp"
+
+namespace wheel_rail_contact {
+
+class ExactModel : public ContactModel {
+ public:
+  /// Throws std::invalid_argument if nx * ny exceeds 6400 (dense matrices on the contact set).
+  explicit ExactModel(const ContactParameters& p);
+  StepOutput step(const StepInput& in) override;
+  void reset() override;
+  std::string name() const override { return "exact"; }
+  const HalfspaceSolver& solver() const { return solver_; }
+  /// Sub-steps taken by the last step() call.
+  int subSteps() const { return subSteps_; }
+
+ private:
+  void subStep(const StepInput& in);
+  ContactParameters p_;
+  ReferencePatch ref_;
+  HalfspaceSolver solver_;
+  double fzMax_;
+  StepInput prev_;
+  bool started_ = false;
+  double carry_ = 0.0;  // distance rolled since the last sub-step [m]
+  double loadedFz_ = -1.0;
+  int subSteps_ = 0;
+  StepOutput last_;
+};
+
+}  // namespace wheel_rail_contact

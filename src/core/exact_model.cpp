@@ -1,0 +1,119 @@
+#include "wheel_rail_contact/exact_model.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace wheel_rail_contact {
+
+namespace {
+
+HalfspaceGrid gridFor(const ContactParameters& p) {
+  validate(p);
+  if (p.nx * p.ny > 6400)
+    throw std::invalid_argument("nx: the exact model supports at most nx * ny = 6400 elements");
+  const double s = std::cbrt(effectiveFzMax(p) / p.fz0);
+  return HalfspaceGrid::covering(p.a0 * s, p.b0 * s, p.nx, p.ny);
+}
+
+StepInput lerp(const StepInput& a, const StepInput& b, double f) {
+  StepInput r;
+  r.V = a.V + f * (b.V - a.V);
+  r.xi = a.xi + f * (b.xi - a.xi);
+  r.eta = a.eta + f * (b.eta - a.eta);
+  r.phi = a.phi + f * (b.phi - a.phi);
+  r.fz = a.fz + f * (b.fz - a.fz);
+  return r;
+}
+
+}  // namespace
+
+ExactModel::ExactModel(const ContactParameters& p)
+    : p_(p), ref_{p.a0, p.b0, p.fz0}, solver_(gridFor(p), p.G, p.nu), fzMax_(effectiveFzMax(p)) {}
+
+void ExactModel::reset() {
+  solver_.clearHistory();
+  started_ = false;
+  carry_ = 0.0;
+  subSteps_ = 0;
+  last_ = StepOutput();
+}
+
+void ExactModel::subStep(const StepInput& in) {
+  if (in.fz != loadedFz_) {
+    const HertzEllipse h = ref_.at(in.fz);
+    solver_.setHertzPressure(h.a, h.b, in.fz);
+    loadedFz_ = in.fz;
+  }
+  solver_.solve(RollingMode::kTransient, {in.xi, in.eta, in.phi}, p_.mu);
+  ++subSteps_;
+}
+
+StepOutput ExactModel::step(const StepInput& in) {
+  StepOutput out;
+  subSteps_ = 0;
+  out.message = checkStepInput(in);
+  if (out.message.empty() && in.V < 0.0) out.message = "rolling backwards (V < 0) is not modelled";
+  if (out.message.empty() && in.fz > fzMax_ * (1.0 + 1e-12))
+    out.message = "fz above fz_max: the fixed grid does not cover the patch";
+  if (!out.message.empty()) {
+    out.status = StepStatus::kRejected;
+    return out;
+  }
+  if (!(in.fz > 0.0)) {
+    reset();
+    out.status = StepStatus::kNoLoad;
+    out.message = "fz <= 0: no contact";
+    last_ = out;
+    return out;
+  }
+  if (in.V == 0.0 && started_) {
+    out = last_;
+    out.status = StepStatus::kStandstill;
+    out.message = "V = 0: no travel, forces held";
+    return out;
+  }
+  const HertzEllipse h = ref_.at(in.fz);
+  if (!started_) {  // from rest: no distance rolled yet, no traction
+    solver_.clearHistory();
+    started_ = true;
+    carry_ = 0.0;
+    last_ = StepOutput();
+    last_.adhesionFraction = 1.0;
+  } else {
+    const double dx = solver_.grid().dx;
+    const double travel = 0.5 * (prev_.V + in.V) * in.dt;
+    const double total = carry_ + travel;
+    const long n = static_cast<long>(std::floor(total / dx));
+    const long cap = 10L * solver_.grid().mx;
+    long first = 1;
+    if (n > cap) {
+      first = n - cap + 1;
+      solver_.clearHistory();
+    }
+    for (long k = first; k <= n; ++k) subStep(lerp(prev_, in, (k * dx - carry_) / travel));
+    carry_ = total - n * dx;
+    if (n > 0) {
+      const HalfspaceSolution& s = solver_.solution();
+      last_.fx = s.fx;
+      last_.fy = s.fy;
+      last_.mz = s.mz;
+      last_.adhesionFraction = s.adhesionFraction;
+      last_.status = s.converged ? StepStatus::kOk : StepStatus::kNotConverged;
+      last_.message = s.converged ? "" : "Gauss-Seidel hit its iteration cap";
+    }
+  }
+  prev_ = in;
+  out.fx = last_.fx;
+  out.fy = last_.fy;
+  out.mz = last_.mz;
+  out.adhesionFraction = last_.adhesionFraction;
+  out.status = last_.status;
+  out.message = last_.message;
+  out.fz = in.fz;
+  out.a = h.a;
+  out.b = h.b;
+  last_ = out;
+  return out;
+}
+
+}  // namespace wheel_rail_contact
