@@ -31,6 +31,7 @@ void NssModel::reset() {
   wx_[0] = wy_[0] = 1.0;
   wx_[1] = wy_[1] = 0.0;
   last_ = StepOutput();
+  lastA_ = 0.0;
   if (adaptive_) mesh_.scale(ref_.a0, ref_.b0);
 }
 
@@ -47,6 +48,19 @@ void NssModel::followPatch(const HertzEllipse& h) {
   remapState(mesh_, state_, spare_, &remapped_);
   std::swap(state_, remapped_);
   mesh_.scale(h.a, h.b);
+}
+
+void NssModel::keepDisplacement(double a) {
+  // What persists in the material is the elastic displacement u = L tau (paper eq. 3), and every
+  // flexibility L scales with a (a/b is fixed): carry u, not tau, into the new patch size.
+  if (lastA_ > 0.0 && a != lastA_) {
+    const double r = lastA_ / a;
+    state_.tx *= r;
+    state_.ty *= r;
+    state_.sx *= r;
+    state_.sy *= r;
+  }
+  lastA_ = a;
 }
 
 void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, double dt) {
@@ -90,6 +104,7 @@ StepOutput NssModel::step(const StepInput& in) {
   if (in.V == 0.0) return hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");
   const HertzEllipse h = ref_.at(in.fz);
   followPatch(h);
+  keepDisplacement(h.a);
   parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_.bound);
   CreepForces f;
   if (in.dt > 0.0) {
