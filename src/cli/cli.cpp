@@ -1,5 +1,7 @@
 #include "cli.hpp"
 
+#include "config_yaml.hpp"
+
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -21,7 +23,7 @@ struct Options {
 };
 
 const char* kUsage =
-    "usage: contact_cli run --scenario FILE.csv [--model M] [--OPTION VALUE ...]\n"
+    "usage: contact_cli run --scenario FILE.csv [--config FILE.yaml] [--model M] [--OPTION VALUE]\n"
     "       contact_cli --help\n"
     "\n"
     "run: replays a scenario CSV (header t,V,xi,eta,phi,fz in s, m/s, -, -, 1/m, N; one row per\n"
@@ -53,6 +55,8 @@ Options parse(const std::vector<std::string>& args) {
 void printHelp(std::ostream& out) {
   out << kUsage << "\noptions (shared with contact_node's private parameters):\n";
   out << "  --scenario FILE   scenario CSV (run)\n";
+  out << "  --config FILE     contact_node's YAML (keys = these names; its node-only keys are\n"
+         "                    ignored); options given on the command line override it\n";
   for (const auto& d : parameterDocs()) {
     char line[200];
     std::snprintf(line, sizeof line, "  --%-10s %-4s default %-10s %s\n", d.name.c_str(),
@@ -63,8 +67,9 @@ void printHelp(std::ostream& out) {
 
 ContactParameters parametersFrom(const Options& o) {
   ContactParameters p;
+  if (o.values.count("config")) loadConfigYaml(o.values.at("config"), &p);
   for (const auto& name : o.names)
-    if (name != "scenario") setParameter(&p, name, o.values.at(name));
+    if (name != "scenario" && name != "config") setParameter(&p, name, o.values.at(name));
   validate(p);
   return p;
 }
