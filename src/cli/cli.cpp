@@ -1,5 +1,7 @@
 #include "cli.hpp"
 
+#include "config_yaml.hpp"
+
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -26,9 +28,9 @@ struct Options {
 };
 
 const char* kUsage =
-    "usage: contact_cli run --scenario FILE.csv [--model M] [--OPTION VALUE ...]\n"
-    "       contact_cli freq --model exact --kind {xi,eta,phi} --ab R --lambda-over-a L1,L2,...\n"
-    "                  [--nu NU] [--nx MX --ny MY]\n"
+    "usage: contact_cli run --scenario FILE.csv [--config FILE.yaml] [--model M] [--OPTION VALUE]\n"
+    "       contact_cli freq --model M --kind {xi,eta,phi} --ab R --lambda-over-a L1,L2,...\n"
+    "                  [--nu NU] [--nx N --ny N]\n"
     "       contact_cli --help\n"
     "\n"
     "run: replays a scenario CSV (header t,V,xi,eta,phi,fz in s, m/s, -, -, 1/m, N; one row per\n"
@@ -46,7 +48,9 @@ const char* kUsage =
     "     steady state; C = -F^/(G a b) (G (ab)^1.5 for phi), Im C < 0 a lag. CSV to stdout:\n"
     "     lambda_over_a,c_real,c_imag,magnitude,phase_deg,c_steady,magnitude_over_steady\n"
     "     (c_steady: the same model's steady coefficient on the same grid). For exact, --nx/--ny\n"
-    "     are the grid MX x MY over [-1.1a, 1.1a] x [-1.1b, 1.1b].\n";
+    "     are the grid MX x MY over [-1.1a, 1.1a] x [-1.1b, 1.1b]. For steady, shen-li and nss:\n"
+    "     the FastSim mesh nx x ny, the exact linear response of the model's space\n"
+    "     discretisation in the continuous-time limit (nss with the chi table at a/b).\n";
 
 Options parse(const std::vector<std::string>& args) {
   Options o;
@@ -70,6 +74,8 @@ Options parse(const std::vector<std::string>& args) {
 void printHelp(std::ostream& out) {
   out << kUsage << "\noptions (shared with contact_node's private parameters):\n";
   out << "  --scenario FILE   scenario CSV (run)\n";
+  out << "  --config FILE     contact_node's YAML (keys = these names; its node-only keys are\n"
+         "                    ignored); options given on the command line override it\n";
   for (const auto& d : parameterDocs()) {
     char line[200];
     std::snprintf(line, sizeof line, "  --%-10s %-4s default %-10s %s\n", d.name.c_str(),
@@ -80,8 +86,9 @@ void printHelp(std::ostream& out) {
 
 ContactParameters parametersFrom(const Options& o) {
   ContactParameters p;
+  if (o.values.count("config")) loadConfigYaml(o.values.at("config"), &p);
   for (const auto& name : o.names)
-    if (name != "scenario") setParameter(&p, name, o.values.at(name));
+    if (name != "scenario" && name != "config") setParameter(&p, name, o.values.at(name));
   validate(p);
   return p;
 }

@@ -1,0 +1,274 @@
+#include "contact_node.hpp"
+
+#include <geometry_msgs/WrenchStamped.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+#include <stdexcept>
+#include <vector>
+
+#include "../cli/config_yaml.hpp"
+#include "wheel_rail_contact/ContactState.h"
+
+namespace wheel_rail_contact {
+
+static_assert(ContactState::STATUS_OK == 0 && ContactState::STATUS_NO_LOAD == 1 &&
+                  ContactState::STATUS_STANDSTILL == 2 && ContactState::STATUS_REJECTED == 3,
+              "contactStateStatus() follows ContactState.msg");
+
+namespace {
+
+/// A parameter value as the text setParameter() parses, so node and CLI share one rule.
+std::string parameterText(const std::string& name, XmlRpc::XmlRpcValue& v) {
+  switch (v.getType()) {
+    case XmlRpc::XmlRpcValue::TypeInt:
+      return std::to_string(static_cast<int>(v));
+    case XmlRpc::XmlRpcValue::TypeDouble: {
+      char text[64];
+      std::snprintf(text, sizeof text, "%.17g", static_cast<double>(v));
+      return text;
+    }
+    case XmlRpc::XmlRpcValue::TypeString:
+      return static_cast<std::string>(v);
+    default:
+      throw std::invalid_argument(name + ": expected a number or a name, got " + v.toXml());
+  }
+}
+
+double numberParameter(const ros::NodeHandle& pnh, const std::string& name, double value) {
+  XmlRpc::XmlRpcValue v;
+  if (!pnh.getParam(name, v)) return value;
+  const std::string text = parameterText(name, v);
+  char* end = nullptr;
+  const double d = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size())
+    throw std::invalid_argument(name + ": expected a number, got '" + text + "'");
+  return d;
+}
+
+int countParameter(const ros::NodeHandle& pnh, const std::string& name, int value) {
+  const double d = numberParameter(pnh, name, value);
+  if (!(d >= 1.0 && d <= 1e6) || d != static_cast<int>(d))
+    throw std::invalid_argument(name + ": must be an integer >= 1");
+  return static_cast<int>(d);
+}
+
+}  // namespace
+
+ContactNode::ContactNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
+    : nh_(nh), pnh_(pnh), updater_(nh, pnh) {}
+
+bool ContactNode::readParameters() {
+  try {
+    // Unknown private keys fail, as unknown options and YAML keys do in contact_cli.
+    std::set<std::string> known;
+    for (const auto& d : parameterDocs()) known.insert(d.name);
+    for (const auto& d : nodeParameterDocs()) known.insert(d.name);
+    std::vector<std::string> all;
+    ros::param::getParamNames(all);
+    const std::string prefix = pnh_.getNamespace() + "/";
+    for (const auto& name : all) {
+      if (name.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::string key =
+          name.substr(prefix.size(), name.find('/', prefix.size()) - prefix.size());
+      if (!known.count(key)) throw std::invalid_argument(key + ": unknown parameter");
+    }
+
+    ContactParameters p;
+    for (const auto& d : parameterDocs()) {
+      XmlRpc::XmlRpcValue v;
+      if (pnh_.getParam(d.name, v)) setParameter(&p, d.name, parameterText(d.name, v));
+    }
+    validate(p);
+
+    StepperOptions o;
+    o.max_dt = numberParameter(pnh_, "max_dt", o.max_dt);
+    o.time_jump_reset = numberParameter(pnh_, "time_jump_reset", o.time_jump_reset);
+    o.max_load_age = numberParameter(pnh_, "max_load_age", o.max_load_age);
+    validate(o);
+    XmlRpc::XmlRpcValue frame;
+    if (pnh_.getParam("frame_id", frame)) frameId_ = parameterText("frame_id", frame);
+    queueSize_ = countParameter(pnh_, "queue_size", queueSize_);
+    publishQueueSize_ = countParameter(pnh_, "publish_queue_size", publishQueueSize_);
+    diagnosticPeriod_ = numberParameter(pnh_, "diagnostic_period", diagnosticPeriod_);
+    if (!(diagnosticPeriod_ > 0.0)) throw std::invalid_argument("diagnostic_period: must be > 0 s");
+
+    stepper_ = std::make_unique<ContactStepper>(makeContactModel(p), o);
+    ROS_INFO(
+        "contact_node %s: model %s, G %g Pa, nu %g, mu %g, a0 %g m, b0 %g m, fz0 %g N, "
+        "mesh %s %dx%d, frame '%s'",
+        nh_.getNamespace().c_str(), p.model.c_str(), p.G, p.nu, p.mu, p.a0, p.b0, p.fz0,
+        p.mesh.c_str(), p.nx, p.ny, frameId_.c_str());
+    return true;
+  } catch (const std::exception& e) {
+    ROS_FATAL("contact_node: invalid parameter %s", e.what());
+    return false;
+  }
+}
+
+void ContactNode::start() {
+  forcePub_ = nh_.advertise<geometry_msgs::WrenchStamped>("creep_force", publishQueueSize_);
+  statePub_ = nh_.advertise<ContactState>("contact_state", publishQueueSize_);
+  resetSrv_ = nh_.advertiseService("reset", &ContactNode::resetService, this);
+  stepSrv_ = nh_.advertiseService("step", &ContactNode::stepService, this);
+  const auto hints = ros::TransportHints().tcpNoDelay();
+  loadSub_ = nh_.subscribe("normal_load", queueSize_, &ContactNode::loadCallback, this, hints);
+  creepageSub_ = nh_.subscribe("creepage", queueSize_, &ContactNode::creepageCallback, this, hints);
+
+  updater_.setHardwareID("wheel_rail_contact" + nh_.getNamespace());
+  updater_.add("contact " + nh_.getNamespace(), this, &ContactNode::diagnose);
+  lastDiagTime_ = ros::WallTime::now();
+  // A wall timer: diagnostics keep coming while sim time is paused.
+  diagnosticTimer_ =
+      nh_.createWallTimer(ros::WallDuration(diagnosticPeriod_),
+                          [this](const ros::WallTimerEvent&) { updater_.force_update(); });
+}
+
+void ContactNode::reset() {
+  stepper_->reset();
+}
+
+void ContactNode::creepageCallback(const CreepageConstPtr& msg) {
+  const StepResult r = stepper_->step(static_cast<int64_t>(msg->header.stamp.toNSec()),
+                                      msg->velocity, msg->longitudinal, msg->lateral, msg->spin);
+  report(r);
+  publish(msg->header.stamp, r);
+}
+
+void ContactNode::loadCallback(const NormalLoadConstPtr& msg) {
+  // An unstamped load is taken as received now.
+  const ros::Time stamp = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
+  const std::string why = stepper_->setLoad(static_cast<int64_t>(stamp.toNSec()), msg->force);
+  if (!why.empty())
+    ROS_WARN_THROTTLE(1.0, "%s: normal_load rejected: %s", nh_.getNamespace().c_str(), why.c_str());
+}
+
+bool ContactNode::resetService(Reset::Request&, Reset::Response& res) {
+  reset();
+  res.success = true;
+  res.message = "state reset (traction history, filter state, time base, latest load)";
+  ROS_INFO("%s: %s", nh_.getNamespace().c_str(), res.message.c_str());
+  return true;
+}
+
+bool ContactNode::stepService(Step::Request& req, Step::Response& res) {
+  const StepResult r =
+      stepper_->stepWithLoad(static_cast<int64_t>(req.stamp.toNSec()), req.velocity,
+                             req.longitudinal, req.lateral, req.spin, req.normal_force);
+  report(r);
+  res.fx = r.out.fx;
+  res.fy = r.out.fy;
+  res.fz = r.out.fz;
+  res.mz = r.out.mz;
+  res.a = r.out.a;
+  res.b = r.out.b;
+  res.adhesion_fraction = r.out.adhesionFraction;
+  res.model = stepper_->modelName();
+  res.dt = r.dt;
+  res.solver_time = r.solverTime;
+  res.status = contactStateStatus(r.out.status);
+  res.message = r.out.message;
+  publish(req.stamp, r);
+  return true;
+}
+
+void ContactNode::report(const StepResult& r) {
+  const char* ns = nh_.getNamespace().c_str();
+  if (r.timeJumpReset) ROS_WARN("%s: stamps jumped backwards: state reset", ns);
+  switch (r.event) {
+    case StepEvent::kNonFinite:
+      ROS_WARN_THROTTLE(1.0, "%s: creepage rejected (non-finite input): %s", ns,
+                        r.out.message.c_str());
+      return;
+    case StepEvent::kOutOfOrder:
+      ROS_WARN_THROTTLE(1.0, "%s: creepage rejected (out of order): %s", ns, r.out.message.c_str());
+      return;
+    case StepEvent::kDtTooLarge:
+      ROS_WARN_THROTTLE(1.0, "%s: creepage rejected: %s", ns, r.out.message.c_str());
+      return;
+    case StepEvent::kNoLoadYet:
+      ROS_WARN_THROTTLE(5.0, "%s: no normal_load received yet: zero forces", ns);
+      return;
+    case StepEvent::kStepped:
+      break;
+  }
+  if (r.out.status == StepStatus::kRejected)
+    ROS_WARN_THROTTLE(1.0, "%s: model refused the step: %s", ns, r.out.message.c_str());
+  if (r.staleLoad)
+    ROS_WARN_THROTTLE(5.0, "%s: the latest normal_load is %.3f s old (max_load_age)", ns,
+                      r.loadAge);
+}
+
+void ContactNode::publish(const ros::Time& stamp, const StepResult& r) {
+  geometry_msgs::WrenchStamped w;
+  w.header.stamp = stamp;
+  w.header.frame_id = frameId_;
+  w.wrench.force.x = r.out.fx;
+  w.wrench.force.y = r.out.fy;
+  w.wrench.force.z = r.out.fz;
+  w.wrench.torque.z = r.out.mz;
+  ContactState s;
+  s.header = w.header;
+  s.fx = r.out.fx;
+  s.fy = r.out.fy;
+  s.fz = r.out.fz;
+  s.mz = r.out.mz;
+  s.a = r.out.a;
+  s.b = r.out.b;
+  s.adhesion_fraction = r.out.adhesionFraction;
+  s.model = stepper_->modelName();
+  s.dt = r.dt;
+  s.solver_time = r.solverTime;
+  s.status = contactStateStatus(r.out.status);
+  s.message = r.out.message;
+  forcePub_.publish(w);
+  statePub_.publish(s);
+}
+
+void ContactNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  const StepperCounters& c = stepper_->counters();
+  const ros::WallTime now = ros::WallTime::now();
+  const double span = (now - lastDiagTime_).toSec();
+  const double rate =
+      span > 0.0 ? static_cast<double>(c.creepages - lastDiag_.creepages) / span : 0;
+  const uint64_t newRejected = c.rejected - lastDiag_.rejected;
+  const uint64_t newLoadRejected = c.loadsRejected - lastDiag_.loadsRejected;
+  const uint64_t newStale = c.staleLoad - lastDiag_.staleLoad;
+  if (newRejected + newLoadRejected > 0)
+    stat.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "%lu inputs rejected in the last %.1f s",
+                  static_cast<unsigned long>(newRejected + newLoadRejected), span);
+  else if (newStale > 0)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "normal load older than max_load_age");
+  else if (!stepper_->hasLoad())
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "no normal load yet");
+  else
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  stat.add("model", stepper_->modelName());
+  stat.addf("input rate [Hz]", "%.1f", rate);
+  stat.add("creepage messages", c.creepages);
+  stat.add("ok", c.ok);
+  stat.add("no load", c.noLoad);
+  stat.add("standstill", c.standstill);
+  stat.add("solver not converged (exact model)", c.notConverged);
+  stat.add("rejected", c.rejected);
+  stat.add("rejected: non-finite", c.nonFinite);
+  stat.add("rejected: creepage stamp out of order", c.outOfOrder);
+  stat.add("rejected: dt > max_dt", c.dtTooLarge);
+  stat.add("rejected: by the model", c.rejectedByModel);
+  stat.add("normal_load messages", c.loads);
+  stat.add("normal_load rejected", c.loadsRejected);
+  stat.add("normal_load stamp out of order", c.loadsOutOfOrder);
+  stat.add("stale load steps", c.staleLoad);
+  stat.add("latest load [N]", stepper_->load());
+  stat.add("resets", c.resets);
+  stat.add("time-jump resets", c.timeJumpResets);
+  stat.addf("solver time last [ms]", "%.4f", 1e3 * c.solverTimeLast);
+  stat.addf("solver time mean [ms]", "%.4f",
+            c.creepages > 0 ? 1e3 * c.solverTimeSum / static_cast<double>(c.creepages) : 0.0);
+  stat.addf("solver time max [ms]", "%.4f", 1e3 * c.solverTimeMax);
+  lastDiag_ = c;
+  lastDiagTime_ = now;
+}
+
+}  // namespace wheel_rail_contact

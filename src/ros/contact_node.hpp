@@ -1,0 +1,58 @@
+/// contact_node: a thin ROS wrapper over one ContactModel (via ContactStepper). Topics, services
+/// and parameters are documented in the README ("ROS node"); every name is relative, so several
+/// contacts run side by side under namespaces.
+#pragma once
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+
+#include <memory>
+#include <string>
+
+#include "contact_stepper.hpp"
+#include "wheel_rail_contact/Creepage.h"
+#include "wheel_rail_contact/NormalLoad.h"
+#include "wheel_rail_contact/Reset.h"
+#include "wheel_rail_contact/Step.h"
+
+namespace wheel_rail_contact {
+
+class ContactNode {
+ public:
+  ContactNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
+
+  /// Reads and validates every private parameter. On an invalid one: ROS_FATAL naming it, false.
+  bool readParameters();
+
+  /// Advertises the outputs and services and subscribes to the inputs (after readParameters).
+  void start();
+
+  /// Clears every piece of state (model, time base, latest load); counters are kept.
+  void reset();
+
+ private:
+  void creepageCallback(const CreepageConstPtr& msg);
+  void loadCallback(const NormalLoadConstPtr& msg);
+  bool resetService(Reset::Request& req, Reset::Response& res);
+  bool stepService(Step::Request& req, Step::Response& res);
+  void report(const StepResult& r);
+  void publish(const ros::Time& stamp, const StepResult& r);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
+
+  ros::NodeHandle nh_, pnh_;
+  std::unique_ptr<ContactStepper> stepper_;
+  std::string frameId_ = "contact";
+  int queueSize_ = 100;
+  int publishQueueSize_ = 100;
+  double diagnosticPeriod_ = 1.0;
+
+  ros::Subscriber creepageSub_, loadSub_;
+  ros::Publisher forcePub_, statePub_;
+  ros::ServiceServer resetSrv_, stepSrv_;
+  diagnostic_updater::Updater updater_;
+  ros::WallTimer diagnosticTimer_;
+  StepperCounters lastDiag_;
+  ros::WallTime lastDiagTime_;
+};
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,129 @@
+// contact_cli --config: the node's YAML read by the CLI (same names, same defaults, strict keys).
+#include <gtest/gtest.h>
+
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "../../src/cli/cli.hpp"
+#include "../../src/cli/config_yaml.hpp"
+#include "../../src/ros/contact_stepper.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string errorOf(const std::string& yaml) {
+  ContactParameters p;
+  try {
+    loadConfigYaml(writeTemp("bad.yaml", yaml), &p);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+int cli(const std::vector<std::string>& args, std::string* out, std::string* err = nullptr) {
+  std::ostringstream o, e;
+  const int code = runCli(args, o, e);
+  *out = o.str();
+  if (err) *err = e.str();
+  return code;
+}
+
+const std::string kDefaultYaml = std::string(WRC_SOURCE_DIR) + "/config/default.yaml";
+
+}  // namespace
+
+TEST(ConfigYaml, DefaultYamlHoldsTheCliDefaults) {
+  ContactParameters p;
+  p.G = 1.0;  // every key must be present and overwrite these
+  p.nu = 0.1;
+  p.mu = 0.9;
+  p.a0 = 1.0;
+  p.b0 = 1.0;
+  p.fz0 = 1.0;
+  p.nx = 3;
+  p.ny = 3;
+  p.model = "x";
+  p.mesh = "x";
+  p.fz_max = 7.0;
+  p.chi_table = "x";
+  loadConfigYaml(kDefaultYaml, &p);
+  const ContactParameters d;
+  EXPECT_EQ(p.G, d.G);
+  EXPECT_EQ(p.nu, d.nu);
+  EXPECT_EQ(p.mu, d.mu);
+  EXPECT_EQ(p.a0, d.a0);
+  EXPECT_EQ(p.b0, d.b0);
+  EXPECT_EQ(p.fz0, d.fz0);
+  EXPECT_EQ(p.nx, d.nx);
+  EXPECT_EQ(p.ny, d.ny);
+  EXPECT_EQ(p.model, d.model);
+  EXPECT_EQ(p.mesh, d.mesh);
+  EXPECT_EQ(p.fz_max, d.fz_max);
+  EXPECT_EQ(p.chi_table, d.chi_table);
+}
+
+TEST(ConfigYaml, DefaultYamlListsEveryParameterWithTheDocumentedDefaults) {
+  const YAML::Node root = YAML::LoadFile(kDefaultYaml);
+  for (const auto& d : parameterDocs()) EXPECT_TRUE(root[d.name]) << d.name;
+  for (const auto& d : nodeParameterDocs()) {
+    ASSERT_TRUE(root[d.name]) << d.name;
+    if (d.unit == "s" || d.unit == "-")
+      EXPECT_EQ(root[d.name].as<double>(), std::stod(d.default_value)) << d.name;
+    else
+      EXPECT_EQ(root[d.name].as<std::string>(), d.default_value) << d.name;
+  }
+  const StepperOptions o;
+  EXPECT_EQ(root["max_dt"].as<double>(), o.max_dt);
+  EXPECT_EQ(root["time_jump_reset"].as<double>(), o.time_jump_reset);
+  EXPECT_EQ(root["max_load_age"].as<double>(), o.max_load_age);
+}
+
+TEST(ConfigYaml, ErrorsNameTheKey) {
+  EXPECT_EQ(errorOf("nx: 20\nnxx: 3\n").rfind("nxx: unknown parameter", 0), 0u);
+  EXPECT_EQ(errorOf("G: [1, 2]\n").rfind("G: expected a single value", 0), 0u);
+  EXPECT_EQ(errorOf("mu: high\n").rfind("mu: expected a finite number", 0), 0u);
+  EXPECT_EQ(errorOf("nx: 2.5\n").rfind("nx: expected an integer", 0), 0u);
+  EXPECT_EQ(errorOf("G: true\n").rfind("G:", 0), 0u);
+  EXPECT_EQ(errorOf("- G\n").rfind("config:", 0), 0u);
+  EXPECT_EQ(errorOf("G: [1\n").rfind("config:", 0), 0u);
+  EXPECT_EQ(errorOf("frame_id: wheel\nmax_dt: 0.5\nqueue_size: 5\n"), "(no error)");
+  EXPECT_EQ(errorOf(""), "(no error)");
+}
+
+TEST(ConfigYaml, CliReadsItAndOptionsOverrideIt) {
+  const std::string scenario = writeTemp("s.csv",
+                                         "t,V,xi,eta,phi,fz\n0,1,0.001,0,0,400\n"
+                                         "0.01,1,0.002,0.001,0.5,450\n");
+  const std::string config = writeTemp("c.yaml",
+                                       "G: 1.0e+6\nnu: 0.28\nmu: 0.4\na0: 0.02\nb0: 0.02\n"
+                                       "fz0: 470.5\nnx: 8\nny: 6\nframe_id: left\n");
+  std::string viaConfig, viaOptions, viaOverride, err;
+  ASSERT_EQ(cli({"run", "--scenario", scenario, "--config", config}, &viaConfig, &err), 0) << err;
+  ASSERT_EQ(cli({"run", "--scenario", scenario, "--G", "1e6", "--mu", "0.4", "--a0", "0.02", "--b0",
+                 "0.02", "--fz0", "470.5", "--nx", "8", "--ny", "6"},
+                &viaOptions),
+            0);
+  EXPECT_EQ(viaConfig, viaOptions);
+  ASSERT_EQ(cli({"run", "--scenario", scenario, "--nx", "12", "--config", config}, &viaOverride),
+            0);
+  EXPECT_NE(viaOverride, viaConfig);
+  std::string nx12;
+  cli({"run", "--scenario", scenario, "--G", "1e6", "--mu", "0.4", "--a0", "0.02", "--b0", "0.02",
+       "--fz0", "470.5", "--nx", "12", "--ny", "6"},
+      &nx12);
+  EXPECT_EQ(viaOverride, nx12);
+  const std::string bad = writeTemp("b.yaml", "G: 1e6\nfram_id: x\n");
+  EXPECT_EQ(cli({"run", "--scenario", scenario, "--config", bad}, &viaConfig, &err), 1);
+  EXPECT_NE(err.find("fram_id: unknown parameter"), std::string::npos) << err;
+}
