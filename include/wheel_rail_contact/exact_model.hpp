@@ -3,8 +3,9 @@
 /// 1.1 b_max], a_max, b_max the patch at effectiveFzMax. Units as in contact_model.hpp.
 /// Each step() advances by V dt in internal sub-steps of exactly one element length dx (the
 /// scheme's condition dq = dx), with V, creepages and load interpolated linearly between the
-/// previous and the current input; the remainder below dx is carried to the next step. The output
-/// is the state after the last sub-step (it lags the step's end by less than dx/V). A step longer
+/// previous and the current input at the sub-step's position, except the last sub-step, which takes
+/// the row's own input; the remainder below dx is carried to the next step. The output is the
+/// state after that last sub-step (its position lags the row's by less than dx). A step longer
 /// than 10 nx elements restarts from rest 10 nx elements before its end (the memory of the start
 /// has decayed by e^-20 there). The pressure is the discrete Hertz normal problem at the
 /// sub-step's load (a, b scale as (fz/fz0)^(1/3)). Status rules as SteadyModel; the first step

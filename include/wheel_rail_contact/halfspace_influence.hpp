@@ -31,16 +31,14 @@ struct HalfspaceGrid {
 class InfluenceKernel {
  public:
   InfluenceKernel(const HalfspaceGrid& grid, double G, double nu);
-  /// di = ix_field - ix_source in (-mx, mx), dj likewise in (-my, my).
+  /// di = ix_field - ix_source in [-mx, mx], dj in (-my, my).
   double xx(int di, int dj) const { return xx_[at(di, dj)]; }
   double xy(int di, int dj) const { return xy_[at(di, dj)]; }
   double yy(int di, int dj) const { return yy_[at(di, dj)]; }
   const HalfspaceGrid& grid() const { return grid_; }
 
  private:
-  int at(int di, int dj) const {
-    return (di + grid_.mx - 1) * (2 * grid_.my - 1) + dj + grid_.my - 1;
-  }
+  int at(int di, int dj) const { return (di + grid_.mx) * (2 * grid_.my - 1) + dj + grid_.my - 1; }
   HalfspaceGrid grid_;
   std::vector<double> xx_, xy_, yy_;
 };

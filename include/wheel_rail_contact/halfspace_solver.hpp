@@ -52,8 +52,8 @@ struct HalfspaceSolution {
 class HalfspaceSolver {
  public:
   HalfspaceSolver(const HalfspaceGrid& grid, double G, double nu, SolverControl control = {});
-  /// Pressure per element [Pa]; p > 0 marks contact. Throws std::invalid_argument if a loaded
-  /// element lies in the last column (its upstream neighbour would be off the grid).
+  /// Pressure per element [Pa]; p > 0 marks contact. Outside the grid the traction is zero (a
+  /// loaded last column has its upstream neighbour one cell beyond the grid).
   void setPressure(const Eigen::VectorXd& p);
   /// The Hertzian case: the discrete normal problem (halfspace_normal.hpp) for the gap whose Hertz
   /// ellipse at load fz is (a, b), so the loaded elements are those CONTACT loads.

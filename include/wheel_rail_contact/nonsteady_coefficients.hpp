@@ -14,29 +14,31 @@
 #include <Eigen/Core>
 
 #include "wheel_rail_contact/creepage_kind.hpp"
+#include "wheel_rail_contact/kalker_coefficients.hpp"
 
 namespace wheel_rail_contact {
 
 /// Frequency response of the discrete scheme: harmonic unknowns tau^n = tau^ z^n, z = e^{i omega
 /// dt}, solve (A - B/z) tau^ = -dx w^ on the contact elements (A: influence at the element, B: at
-/// its upstream neighbour), folded by the y-symmetry of the kind (half the unknowns). Build once
-/// per (kind, a/b, nu, grid); every at() is one dense complex LU of about mx*my/1.6 unknowns.
+/// its upstream neighbour), folded by the y-symmetry of the kind (about mx*my/1.6 unknowns).
+/// Built once per (kind, a/b, nu, grid): A^-1 B = Q H Q^T (Hessenberg, about 6 n^3 flops), so
+/// that every at() is one O(n^2) Hessenberg solve of (I - H/z) y = Q^T A^-1 w.
 class NonSteadyCoefficients {
  public:
   NonSteadyCoefficients(CreepageKind kind, double a_over_b, double nu, int mx, int my);
   /// Complex coefficient at wavelength lambda = lambda_over_a * a (> 0).
   std::complex<double> at(double lambda_over_a) const;
   /// The same scheme in steady rolling (lambda -> infinity).
-  double steady() const;
-  int unknowns() const { return static_cast<int>(weight_.size()); }
+  double steady() const { return steady_; }
+  int unknowns() const { return static_cast<int>(g_.size()); }
 
  private:
   std::complex<double> solve(std::complex<double> zinv, std::complex<double> wmean) const;
   CreepageKind kind_;
-  double a_ = 1.0, b_ = 1.0, dx_ = 0.0;
-  Eigen::MatrixXd A_, B_;
-  Eigen::VectorXd shape_;   // rigid slip per unknown for unit creepage
-  Eigen::VectorXd weight_;  // force weight per unknown: dA times 1 or 2 (mirror), 0 if off-axis
+  double a_ = 1.0, b_ = 1.0, dx_ = 0.0, steady_ = 0.0;
+  Eigen::MatrixXd H_;  // Hessenberg form of A^-1 B
+  Eigen::VectorXd g_;  // Q^T A^-1 (rigid slip per unknown for unit creepage)
+  Eigen::VectorXd h_;  // Q^T (force weight per unknown: dA times 1 or 2 (mirror), 0 off-axis)
 };
 
 /// One coefficient (C11 for kXi, C22 for kEta, C23 for kPhi) at lambda/a.
@@ -48,7 +50,10 @@ std::vector<std::complex<double>> exactNonSteadyCurve(CreepageKind kind, double 
                                                       const std::vector<double>& lambda_over_a,
                                                       double nu, int mx, int my);
 
-/// Steady coefficient of the same scheme on the same grid.
+/// Steady coefficient of the same scheme on the same grid (one LU, no Hessenberg reduction).
 double exactSteadyCoefficient(CreepageKind kind, double a_over_b, double nu, int mx, int my);
+
+/// C11, C22 and C23 of the steady scheme on one grid: one normal problem, two LU factorisations.
+CreepCoefficients exactSteadyCoefficients(double a_over_b, double nu, int mx, int my);
 
 }  // namespace wheel_rail_contact

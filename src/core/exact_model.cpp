@@ -90,7 +90,8 @@ StepOutput ExactModel::step(const StepInput& in) {
       first = n - cap + 1;
       solver_.clearHistory();
     }
-    for (long k = first; k <= n; ++k) subStep(lerp(prev_, in, (k * dx - carry_) / travel));
+    for (long k = first; k <= n; ++k)  // the last one takes the row's own input
+      subStep(k == n ? in : lerp(prev_, in, (k * dx - carry_) / travel));
     carry_ = total - n * dx;
     if (n > 0) {
       const HalfspaceSolution& s = solver_.solution();

@@ -46,7 +46,7 @@ HalfspaceGrid HalfspaceGrid::covering(double a, double b, int mx, int my) {
 InfluenceKernel::InfluenceKernel(const HalfspaceGrid& grid, double G, double nu) : grid_(grid) {
   if (!(G > 0.0) || !(nu >= 0.0 && nu < 0.5))
     throw std::invalid_argument("influence: need G > 0 and nu in [0, 0.5)");
-  const int n = (2 * grid.mx - 1) * (2 * grid.my - 1);
+  const int n = (2 * grid.mx + 1) * (2 * grid.my - 1);
   xx_.resize(n);
   xy_.resize(n);
   yy_.resize(n);
@@ -54,14 +54,22 @@ InfluenceKernel::InfluenceKernel(const HalfspaceGrid& grid, double G, double nu)
   // u_y = Q/(2 pi G) nu x y/r^3. Two identical bodies with opposite tractions: twice that.
   const double c = 2.0 / (2.0 * M_PI * G);
   const double hx = 0.5 * grid.dx, hy = 0.5 * grid.dy;
-  for (int di = 1 - grid.mx; di < grid.mx; ++di) {
-    for (int dj = 1 - grid.my; dj < grid.my; ++dj) {
+  // One quadrant, mirrored: xx and yy are even in both offsets, xy odd in both (exact symmetry
+  // keeps the transient system matrix exactly symmetric).
+  for (int di = 0; di <= grid.mx; ++di) {
+    for (int dj = 0; dj < grid.my; ++dj) {
       const double X = di * grid.dx, Y = dj * grid.dy;
       const double i1 = overElement(pInvR, X, Y, hx, hy);
-      const int k = at(di, dj);
-      xx_[k] = c * ((1.0 - nu) * i1 + nu * overElement(pXX, X, Y, hx, hy));
-      yy_[k] = c * ((1.0 - nu) * i1 + nu * overElement(pYY, X, Y, hx, hy));
-      xy_[k] = c * nu * overElement(pXY, X, Y, hx, hy);
+      const double xx = c * ((1.0 - nu) * i1 + nu * overElement(pXX, X, Y, hx, hy));
+      const double yy = c * ((1.0 - nu) * i1 + nu * overElement(pYY, X, Y, hx, hy));
+      const double xy = di == 0 || dj == 0 ? 0.0 : c * nu * overElement(pXY, X, Y, hx, hy);
+      for (int sx : {-1, 1})
+        for (int sy : {-1, 1}) {
+          const int k = at(sx * di, sy * dj);
+          xx_[k] = xx;
+          yy_[k] = yy;
+          xy_[k] = sx * sy * xy;
+        }
     }
   }
 }
