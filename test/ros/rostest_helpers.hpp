@@ -1,0 +1,205 @@
+// Shared by the rostest nodes: a client of one contact_node (topics and services) and contact_cli.
+#pragma once
+
+#include <geometry_msgs/WrenchStamped.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "wheel_rail_contact/ContactState.h"
+#include "wheel_rail_contact/Creepage.h"
+#include "wheel_rail_contact/NormalLoad.h"
+#include "wheel_rail_contact/Reset.h"
+#include "wheel_rail_contact/Step.h"
+#include "wheel_rail_contact/contact_parameters.hpp"
+
+namespace wrc_test {
+
+using wheel_rail_contact::ContactState;
+
+/// Spins the global queue until pred() or timeout (wall seconds).
+template <class Pred>
+bool spinUntil(Pred pred, double timeout = 5.0) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    ros::spinOnce();
+    if (pred()) return true;
+    ros::WallDuration(0.0001).sleep();
+  }
+  ros::spinOnce();
+  return pred();
+}
+
+inline void spinFor(double seconds) {
+  spinUntil([] { return false; }, seconds);
+}
+
+/// One contact_node seen from outside: publishes inputs, collects both outputs, calls services.
+class ContactClient {
+ public:
+  ContactClient(ros::NodeHandle& nh, const std::string& ns) : ns_(ns) {
+    creepPub_ = nh.advertise<wheel_rail_contact::Creepage>(ns + "/creepage", 1000);
+    loadPub_ = nh.advertise<wheel_rail_contact::NormalLoad>(ns + "/normal_load", 1000);
+    stateSub_ = nh.subscribe(ns + "/contact_state", 10000, &ContactClient::onState, this,
+                             ros::TransportHints().tcpNoDelay());
+    forceSub_ = nh.subscribe(ns + "/creep_force", 10000, &ContactClient::onForce, this,
+                             ros::TransportHints().tcpNoDelay());
+    reset_ = nh.serviceClient<wheel_rail_contact::Reset>(ns + "/reset");
+    step_ = nh.serviceClient<wheel_rail_contact::Step>(ns + "/step");
+  }
+
+  bool connect(double timeout = 20.0) {
+    const bool topics = spinUntil(
+        [&] {
+          return creepPub_.getNumSubscribers() > 0 && loadPub_.getNumSubscribers() > 0 &&
+                 stateSub_.getNumPublishers() > 0 && forceSub_.getNumPublishers() > 0;
+        },
+        timeout);
+    return topics && reset_.waitForExistence(ros::Duration(timeout)) &&
+           step_.waitForExistence(ros::Duration(timeout));
+  }
+
+  bool reset() {
+    wheel_rail_contact::Reset srv;
+    return reset_.call(srv) && srv.response.success;
+  }
+
+  /// Publishes a load and gives the node `settle` wall seconds to take it (topics are not ordered
+  /// across connections; the contact_state's fz shows which load was used).
+  void load(const ros::Time& stamp, double fz, double settle = 0.01) {
+    wheel_rail_contact::NormalLoad m;
+    m.header.stamp = stamp;
+    m.force = fz;
+    loadPub_.publish(m);
+    if (settle > 0.0) spinFor(settle);
+  }
+
+  /// Publishes one creepage and waits for exactly one message on each output.
+  ::testing::AssertionResult creep(const ros::Time& stamp, double xi, double eta, double phi,
+                                   double V, ContactState* out = nullptr) {
+    const size_t s0 = states.size(), f0 = forces.size();
+    wheel_rail_contact::Creepage m;
+    m.header.stamp = stamp;
+    m.longitudinal = xi;
+    m.lateral = eta;
+    m.spin = phi;
+    m.velocity = V;
+    creepPub_.publish(m);
+    if (!spinUntil([&] { return states.size() > s0 && forces.size() > f0; }))
+      return ::testing::AssertionFailure() << ns_ << ": no output for the creepage at " << stamp;
+    if (states.size() != s0 + 1 || forces.size() != f0 + 1)
+      return ::testing::AssertionFailure() << ns_ << ": more than one output per input";
+    const ContactState& s = states.back();
+    const geometry_msgs::WrenchStamped& w = forces.back();
+    if (s.header.stamp != stamp || w.header.stamp != stamp)
+      return ::testing::AssertionFailure() << ns_ << ": stamp not copied";
+    if (w.wrench.force.x != s.fx || w.wrench.force.y != s.fy || w.wrench.force.z != s.fz ||
+        w.wrench.torque.z != s.mz)
+      return ::testing::AssertionFailure() << ns_ << ": creep_force differs from contact_state";
+    for (double v : {s.fx, s.fy, s.fz, s.mz, s.a, s.b, s.adhesion_fraction, s.dt, s.solver_time})
+      if (!std::isfinite(v)) return ::testing::AssertionFailure() << ns_ << ": non-finite output";
+    if (out) *out = s;
+    return ::testing::AssertionSuccess();
+  }
+
+  bool step(const ros::Time& stamp, double xi, double eta, double phi, double V, double fz,
+            wheel_rail_contact::Step::Response* out) {
+    wheel_rail_contact::Step srv;
+    srv.request.stamp = stamp;
+    srv.request.longitudinal = xi;
+    srv.request.lateral = eta;
+    srv.request.spin = phi;
+    srv.request.velocity = V;
+    srv.request.normal_force = fz;
+    if (!step_.call(srv)) return false;
+    *out = srv.response;
+    return true;
+  }
+
+  std::vector<ContactState> states;
+  std::vector<geometry_msgs::WrenchStamped> forces;
+
+ private:
+  void onState(const ContactState::ConstPtr& m) { states.push_back(*m); }
+  void onForce(const geometry_msgs::WrenchStamped::ConstPtr& m) { forces.push_back(*m); }
+
+  std::string ns_;
+  ros::Publisher creepPub_, loadPub_;
+  ros::Subscriber stateSub_, forceSub_;
+  ros::ServiceClient reset_, step_;
+};
+
+/// Runs a command, returns its exit code and output (stdout and stderr).
+inline int run(const std::string& command, std::string* output) {
+  FILE* p = popen((command + " 2>&1").c_str(), "r");
+  if (!p) return -1;
+  char buf[4096];
+  output->clear();
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) output->append(buf, n);
+  const int status = pclose(p);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+struct Row {
+  double t, fx, fy, mz, fz, a, b, adhesion;
+  std::string status;
+};
+
+/// Parses contact_cli run's CSV output.
+inline std::vector<Row> parseCliOutput(const std::string& text) {
+  std::vector<Row> rows;
+  std::istringstream in(text);
+  std::string line;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (header) {
+      header = line.rfind("t,fx", 0) != 0;
+      continue;
+    }
+    Row r;
+    char status[64] = {0};
+    if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%63[^\n]", &r.t, &r.fx, &r.fy,
+                    &r.mz, &r.fz, &r.a, &r.b, &r.adhesion, status) == 9) {
+      r.status = status;
+      rows.push_back(r);
+    }
+  }
+  return rows;
+}
+
+/// contact_cli's status text for a ContactState status.
+inline std::string statusText(int status) {
+  static const char* names[] = {"ok", "no load", "standstill", "rejected input"};
+  return status >= 0 && status < 4 ? names[status] : "?";
+}
+
+/// The contact_node's shared parameters as contact_cli options (--name value ...), read back from
+/// the parameter server, so contact_cli runs exactly the node's configuration.
+inline std::string cliOptionsOf(const std::string& nodeName) {
+  std::string opts;
+  for (const auto& d : wheel_rail_contact::parameterDocs()) {
+    XmlRpc::XmlRpcValue v;
+    if (!ros::param::get(nodeName + "/" + d.name, v)) continue;
+    std::string text;
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeString)
+      text = static_cast<std::string>(v);
+    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt)
+      text = std::to_string(static_cast<int>(v));
+    else if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.17g", static_cast<double>(v));
+      text = buf;
+    }
+    if (text.empty()) continue;
+    opts += " --" + d.name + " '" + text + "'";
+  }
+  return opts;
+}
+
+}  // namespace wrc_test

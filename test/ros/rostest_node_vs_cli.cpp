@@ -1,0 +1,150 @@
+// rostest: a scene through contact_node (topics, Step service, both mixed, after resets) gives the
+// forces `contact_cli run` gives for the same scenario, model, mesh and parameters, to 1e-9.
+// Private parameters: ns (the contact's namespace), scene (scenario CSV), config (the node's YAML).
+#include <fstream>
+
+#include "rostest_helpers.hpp"
+#include "wheel_rail_contact/scenario.hpp"
+
+using namespace wrc_test;
+
+namespace {
+
+std::string ns, scene, config;
+std::vector<wheel_rail_contact::ScenarioRow> rows;
+std::vector<Row> reference;
+const double kOffset = 1000.0;  // stamps = kOffset + t [s]
+
+ros::Time stampOf(double t) {
+  return ros::Time(kOffset + t);
+}
+
+double scaleOf(double Row::*field) {
+  double s = 1e-300;
+  for (const auto& r : reference) s = std::max(s, std::fabs(r.*field));
+  return s;
+}
+
+/// The node's k-th step against contact_cli's k-th row, each field to 1e-9 of its largest value.
+template <class Out>
+void expectMatches(size_t k, const Out& o) {
+  const Row& r = reference[k];
+  const double rel = 1e-9;
+  EXPECT_NEAR(o.fx, r.fx, rel * scaleOf(&Row::fx)) << "row " << k;
+  EXPECT_NEAR(o.fy, r.fy, rel * scaleOf(&Row::fy)) << "row " << k;
+  EXPECT_NEAR(o.mz, r.mz, rel * scaleOf(&Row::mz)) << "row " << k;
+  EXPECT_NEAR(o.fz, r.fz, rel * scaleOf(&Row::fz)) << "row " << k;
+  EXPECT_NEAR(o.a, r.a, rel * scaleOf(&Row::a)) << "row " << k;
+  EXPECT_NEAR(o.b, r.b, rel * scaleOf(&Row::b)) << "row " << k;
+  EXPECT_NEAR(o.adhesion_fraction, r.adhesion, 1e-9) << "row " << k;
+  EXPECT_EQ(statusText(o.status), r.status) << "row " << k;
+}
+
+void viaTopics(ContactClient& c, size_t from, size_t to, double* lastLoad) {
+  for (size_t k = from; k < to; ++k) {
+    const auto& row = rows[k];
+    if (row.fz != *lastLoad) c.load(stampOf(row.t), row.fz);
+    *lastLoad = row.fz;
+    ContactState s;
+    ASSERT_TRUE(c.creep(stampOf(row.t), row.xi, row.eta, row.phi, row.V, &s));
+    ASSERT_EQ(s.fz, row.fz) << "row " << k << ": the load did not reach the node before the "
+                            << "creepage (test harness timing)";
+    expectMatches(k, s);
+  }
+}
+
+void viaStep(ContactClient& c, size_t from, size_t to) {
+  for (size_t k = from; k < to; ++k) {
+    const auto& row = rows[k];
+    wheel_rail_contact::Step::Response res;
+    ASSERT_TRUE(c.step(stampOf(row.t), row.xi, row.eta, row.phi, row.V, row.fz, &res));
+    expectMatches(k, res);
+    EXPECT_EQ(res.dt, k == from && from == 0 ? 0.0 : res.dt);
+  }
+}
+
+class NodeVsCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    client = std::make_unique<ContactClient>(nh, ns);
+    ASSERT_TRUE(client->connect()) << "contact_node under " << ns << " not reachable";
+    ASSERT_TRUE(client->reset());
+  }
+  ros::NodeHandle nh;
+  std::unique_ptr<ContactClient> client;
+};
+
+}  // namespace
+
+TEST_F(NodeVsCli, ContactCliReadsTheNodeConfiguration) {
+  ASSERT_FALSE(rows.empty());
+  ASSERT_EQ(reference.size(), rows.size());
+  std::string model;
+  ASSERT_TRUE(ros::param::get(ns + "/contact_node/model", model));
+  for (const auto& r : reference) EXPECT_EQ(r.status, "ok");
+}
+
+TEST_F(NodeVsCli, TopicsGiveContactCliForces) {
+  double lastLoad = NAN;
+  viaTopics(*client, 0, rows.size(), &lastLoad);
+  EXPECT_EQ(client->states.size(), rows.size());
+  EXPECT_EQ(client->forces.size(), rows.size());
+  std::string frame;
+  ros::param::get(ns + "/contact_node/frame_id", frame);
+  EXPECT_EQ(client->forces.back().header.frame_id, frame);
+  EXPECT_EQ(client->states[0].dt, 0.0);
+  EXPECT_NEAR(client->states[1].dt, rows[1].t - rows[0].t, 1e-9);
+}
+
+TEST_F(NodeVsCli, StepServiceGivesContactCliForcesAndPublishesThem) {
+  viaStep(*client, 0, rows.size());
+  spinUntil([&] { return client->states.size() >= rows.size(); }, 2.0);
+  EXPECT_EQ(client->states.size(), rows.size());  // service steps are published too
+}
+
+TEST_F(NodeVsCli, TopicsAndStepServiceMixInOneTimeLine) {
+  double lastLoad = NAN;
+  const size_t half = rows.size() / 2;
+  viaTopics(*client, 0, half, &lastLoad);
+  viaStep(*client, half, rows.size());
+}
+
+TEST_F(NodeVsCli, ResetRestoresFreshStartOutputs) {
+  const size_t n = std::min<size_t>(rows.size(), 40);
+  double lastLoad = NAN;
+  viaTopics(*client, 0, n, &lastLoad);
+  const auto first = client->states;
+  ASSERT_TRUE(client->reset());
+  lastLoad = NAN;
+  viaTopics(*client, 0, n, &lastLoad);
+  ASSERT_EQ(client->states.size(), 2 * n);
+  for (size_t k = 0; k < n; ++k) {
+    const ContactState &a = first[k], &b = client->states[n + k];
+    EXPECT_EQ(a.fx, b.fx);
+    EXPECT_EQ(a.fy, b.fy);
+    EXPECT_EQ(a.mz, b.mz);
+    EXPECT_EQ(a.dt, b.dt);
+    EXPECT_EQ(a.status, b.status);
+  }
+}
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "node_vs_cli");
+  ros::NodeHandle pnh("~");
+  pnh.getParam("ns", ns);
+  pnh.getParam("scene", scene);
+  pnh.getParam("config", config);
+  std::ifstream in(scene);
+  rows = wheel_rail_contact::readScenario(in, scene);
+  // contact_cli with the node's YAML and every shared parameter the node really runs with.
+  std::string out;
+  const std::string command = std::string(WRC_CONTACT_CLI) + " run --scenario '" + scene +
+                              "' --config '" + config + "'" + cliOptionsOf(ns + "/contact_node");
+  if (run(command, &out) != 0) {
+    ADD_FAILURE() << command << "\n" << out;
+    return 1;
+  }
+  reference = parseCliOutput(out);
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,185 @@
+// rostest: every input contact_node must refuse gives exactly one output on both topics with the
+// documented status, finite zero forces, and the node stays up. Contacts: "r" (max_dt 0.5 s,
+// time_jump_reset 5 s, max_load_age 0.2 s) and "nojump" (time_jump_reset off).
+#include <diagnostic_msgs/DiagnosticArray.h>
+
+#include <limits>
+
+#include "rostest_helpers.hpp"
+
+using namespace wrc_test;
+
+namespace {
+
+const double kNan = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+const uint8_t kOk = ContactState::STATUS_OK, kNoLoad = ContactState::STATUS_NO_LOAD,
+              kStandstill = ContactState::STATUS_STANDSTILL,
+              kRejected = ContactState::STATUS_REJECTED;
+
+ros::Time at(double t) {
+  return ros::Time(100.0 + t);
+}
+
+void expectZero(const ContactState& s) {
+  EXPECT_EQ(s.fx, 0.0);
+  EXPECT_EQ(s.fy, 0.0);
+  EXPECT_EQ(s.mz, 0.0);
+}
+
+class Rejections : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    r = std::make_unique<ContactClient>(nh, "r");
+    ASSERT_TRUE(r->connect());
+    ASSERT_TRUE(r->reset());
+  }
+  /// A valid creepage after a load: status ok, forces non-zero.
+  void good(double t, ContactState* s = nullptr) {
+    ContactState tmp;
+    ASSERT_TRUE(r->creep(at(t), 0.01, 0.005, 0.1, 0.025, &tmp));
+    EXPECT_EQ(tmp.status, kOk) << tmp.message;
+    EXPECT_NE(tmp.fx, 0.0);
+    if (s) *s = tmp;
+  }
+  ros::NodeHandle nh;
+  std::unique_ptr<ContactClient> r;
+};
+
+}  // namespace
+
+TEST_F(Rejections, NoLoadYetAndNonPositiveLoadGiveZeroForcesWithNoLoadStatus) {
+  ContactState s;
+  ASSERT_TRUE(r->creep(at(0.0), 0.01, 0.0, 0.0, 0.025, &s));
+  EXPECT_EQ(s.status, kNoLoad);
+  EXPECT_NE(s.message.find("no normal load"), std::string::npos) << s.message;
+  expectZero(s);
+  for (double fz : {0.0, -50.0}) {
+    r->load(at(0.01), fz);
+    ASSERT_TRUE(r->creep(at(0.01 + (fz < 0 ? 0.01 : 0.0)), 0.01, 0.0, 0.0, 0.025, &s));
+    EXPECT_EQ(s.status, kNoLoad);
+    expectZero(s);
+  }
+}
+
+TEST_F(Rejections, NonFiniteFieldsAreRejectedAndTheNodeGoesOn) {
+  r->load(at(0.0), 470.5);
+  good(0.0);
+  const double bad[][4] = {{kNan, 0, 0, 0.025},
+                           {0.01, kInf, 0, 0.025},
+                           {0.01, 0, -kInf, 0.025},
+                           {0.01, 0, 0, kNan},
+                           {0.01, 0, 0, kInf}};
+  ContactState s;
+  for (const auto& b : bad) {
+    ASSERT_TRUE(r->creep(at(0.1), b[0], b[1], b[2], b[3], &s));
+    EXPECT_EQ(s.status, kRejected);
+    EXPECT_NE(s.message.find("not finite"), std::string::npos) << s.message;
+    expectZero(s);
+  }
+  r->load(at(0.05), kNan);  // a NaN load is dropped: the previous one stays
+  good(0.1, &s);
+  EXPECT_DOUBLE_EQ(s.dt, 0.1);  // from the last accepted message
+  EXPECT_EQ(s.fz, 470.5);
+  wheel_rail_contact::Step::Response res;
+  ASSERT_TRUE(r->step(at(0.2), 0.01, 0, 0, 0.025, kNan, &res));
+  EXPECT_EQ(res.status, kRejected);
+  EXPECT_EQ(res.fx, 0.0);
+}
+
+TEST_F(Rejections, OlderOrEqualStampsAreRejected) {
+  r->load(at(0.0), 470.5);
+  good(1.0);
+  ContactState s;
+  for (double t : {1.0, 0.5}) {
+    ASSERT_TRUE(r->creep(at(t), 0.01, 0, 0, 0.025, &s));
+    EXPECT_EQ(s.status, kRejected);
+    EXPECT_NE(s.message.find("not after"), std::string::npos) << s.message;
+    expectZero(s);
+  }
+  good(1.1);
+}
+
+TEST_F(Rejections, AbsurdDtIsRejectedAndTheNextMessageSteps) {
+  r->load(at(0.0), 470.5);
+  good(0.0);
+  ContactState s;
+  ASSERT_TRUE(r->creep(at(3.0), 0.01, 0, 0, 0.025, &s));  // dt 3 s > max_dt 0.5 s
+  EXPECT_EQ(s.status, kRejected);
+  EXPECT_NE(s.message.find("max_dt"), std::string::npos) << s.message;
+  expectZero(s);
+  good(3.1, &s);
+  EXPECT_NEAR(s.dt, 0.1, 1e-9);
+}
+
+TEST_F(Rejections, StandstillHoldsTheForcesAndBackwardsRollingIsRefusedOrModelled) {
+  r->load(at(0.0), 470.5);
+  ContactState before, s;
+  good(0.0, &before);
+  ASSERT_TRUE(r->creep(at(0.1), 0.02, 0.0, 0.0, 0.0, &s));  // V = 0
+  EXPECT_EQ(s.status, kStandstill);
+  EXPECT_EQ(s.fx, before.fx);
+  EXPECT_EQ(s.fy, before.fy);
+  ASSERT_TRUE(r->creep(at(0.2), 0.01, 0.0, 0.0, -0.025, &s));  // V < 0
+  if (s.status == kRejected) {
+    EXPECT_FALSE(s.message.empty());
+    expectZero(s);
+  } else {
+    EXPECT_EQ(s.status, kOk);  // a model that mirrors the march
+  }
+  good(0.3);
+}
+
+TEST_F(Rejections, BackwardsTimeJumpResetsOnlyWhenEnabled) {
+  // "r": a jump back beyond time_jump_reset = 5 s acts like a reset; the result equals a fresh
+  // start fed the same load and message.
+  r->load(at(10.0), 470.5);
+  good(10.0);
+  good(10.1);
+  r->load(at(0.0), 400.0);  // the simulator restarted: its load comes first
+  ContactState jumped, fresh;
+  ASSERT_TRUE(r->creep(at(0.0), 0.01, 0.005, 0.1, 0.025, &jumped));
+  EXPECT_EQ(jumped.status, kOk) << jumped.message;
+  EXPECT_EQ(jumped.dt, 0.0);
+  ASSERT_TRUE(r->reset());
+  r->load(at(0.0), 400.0);
+  ASSERT_TRUE(r->creep(at(0.0), 0.01, 0.005, 0.1, 0.025, &fresh));
+  EXPECT_EQ(jumped.fx, fresh.fx);
+  EXPECT_EQ(jumped.fy, fresh.fy);
+  EXPECT_EQ(jumped.fz, 400.0);
+
+  ContactClient nojump(nh, "nojump");
+  ASSERT_TRUE(nojump.connect());
+  nojump.load(at(10.0), 470.5);
+  ContactState s;
+  ASSERT_TRUE(nojump.creep(at(10.0), 0.01, 0, 0, 0.025, &s));
+  EXPECT_EQ(s.status, kOk);
+  ASSERT_TRUE(nojump.creep(at(0.0), 0.01, 0, 0, 0.025, &s));
+  EXPECT_EQ(s.status, kRejected);
+  expectZero(s);
+}
+
+TEST_F(Rejections, DiagnosticsCountTheRejections) {
+  r->load(at(0.0), 470.5);
+  good(0.0);
+  ContactState s;
+  ASSERT_TRUE(r->creep(at(0.0), 0.01, 0, 0, 0.025, &s));  // equal stamp
+  diagnostic_msgs::DiagnosticArray last;
+  bool found = false;
+  ros::Subscriber sub = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& st : m->status)
+          if (st.name.find("contact /r") != std::string::npos) {
+            for (const auto& kv : st.values)
+              if (kv.key == "rejected: creepage stamp out of order" && kv.value != "0")
+                found = true;
+          }
+      });
+  EXPECT_TRUE(spinUntil([&] { return found; }, 5.0)) << "no diagnostics with the rejections";
+}
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "rejections");
+  return RUN_ALL_TESTS();
+}
