@@ -30,6 +30,7 @@ PaperScene combinedCreepageScene(int which, int periods, double step) {
   PaperScene s;
   s.name = "combined" + std::to_string(which);
   s.params = paperMaterial(0.02);
+  s.params.fz_max = 470.5;  // constant load: the largest patch is the patch
   const double V = 0.025, lambda = c[4] * 0.02;
   s.period = lambda / V;
   const int n = static_cast<int>(std::round(periods * lambda / step));

@@ -1,0 +1,47 @@
+// The paper's scenes (Guiral et al. 2013, eqs. 16-18 and section 4.2) against our exact solver at
+// a coarse CI grid (20x20). Tolerance: at this grid the exact reference itself is about 5 % too
+// stiff in adhesion (its steady C11 is 4.43 against Kalker's 4.23), so the CI bound on nss is 8 %
+// of the peak force; the 5 % figures in the README come from the 40x40 run of accuracy_report.
+// What must hold at any grid: nss beats shen-li and steady FastSim on every scene.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "wheel_rail_contact/paper_scenes.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+double error(const PaperScene& s, const char* model, const std::vector<StepOutput>& exact) {
+  ContactParameters p = s.params;
+  p.model = model;
+  p.mesh = "fixed";
+  p.nx = p.ny = 20;
+  auto m = makeContactModel(p);
+  return sceneError(s, runScene(*m, s.rows), exact).rmsOverPeak;
+}
+
+void check(const PaperScene& s) {
+  ContactParameters p = s.params;
+  p.model = "exact";
+  p.nx = p.ny = 20;
+  auto exactModel = makeContactModel(p);
+  const std::vector<StepOutput> exact = runScene(*exactModel, s.rows);
+  const double nss = error(s, "nss", exact), shenLi = error(s, "shen-li", exact),
+               steady = error(s, "steady", exact);
+  EXPECT_LT(nss, 0.08) << s.name;
+  EXPECT_LT(nss, shenLi) << s.name;
+  EXPECT_LT(nss, steady) << s.name;
+}
+
+}  // namespace
+
+TEST(PaperScenes, CombinedCreepages) {
+  for (int c = 1; c <= 3; ++c) check(combinedCreepageScene(c, 3, 2.2 * 0.02 / 20));
+}
+
+TEST(PaperScenes, VaryingLoad) {
+  for (double xi : {0.002, 0.01, 0.05})
+    check(varyingLoadScene(xi, 15.0, 3, 2.2 * 0.02 * 1.08 / 20));
+}
