@@ -88,6 +88,7 @@ class HalfspaceSolver {
   Eigen::MatrixXd m_;
   int systemKind_ = -1;  // -1 none, 0 symmetric (transient/shift), 1 steady
   bool systemUsed_ = false;
+  bool lastFullAdhesion_ = true;
   Eigen::LLT<Eigen::MatrixXd> llt_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   bool factored_ = false;

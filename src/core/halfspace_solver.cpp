@@ -94,18 +94,35 @@ void HalfspaceSolver::previousDisplacement(RollingMode mode, Eigen::VectorXd* c)
   const int n = static_cast<int>(elems_.size());
   c->setZero(2 * n);
   if (mode == RollingMode::kSteady) return;
-  std::vector<int> src;
-  for (int k = 0; k < g.size(); ++k)
-    if (histX_[k] != 0.0 || histY_[k] != 0.0) src.push_back(k);
+  // The loaded part of each grid column is one run of y-neighbours: walk the kernel tables along
+  // it with unit stride.
+  struct Run {
+    int ix, lo, len;
+  };
+  std::vector<Run> runs;
+  for (int ix = 0; ix < g.mx; ++ix) {
+    int lo = g.my, hi = -1;
+    for (int iy = 0; iy < g.my; ++iy)
+      if (histX_[g.index(ix, iy)] != 0.0 || histY_[g.index(ix, iy)] != 0.0) {
+        lo = std::min(lo, iy);
+        hi = iy;
+      }
+    if (hi >= lo) runs.push_back({ix, lo, hi - lo + 1});
+  }
   const int shift = mode == RollingMode::kTransient ? 1 : 0;
+  const double *kxx = kernel_.xxData(), *kxy = kernel_.xyData(), *kyy = kernel_.yyData();
   for (int i = 0; i < n; ++i) {
     const int ix = elems_[i] / g.my + shift, iy = elems_[i] % g.my;
     double ux = 0.0, uy = 0.0;
-    for (int k : src) {
-      const int di = ix - k / g.my, dj = iy - k % g.my;
-      const double xy = kernel_.xy(di, dj);
-      ux += kernel_.xx(di, dj) * histX_[k] + xy * histY_[k];
-      uy += xy * histX_[k] + kernel_.yy(di, dj) * histY_[k];
+    for (const Run& r : runs) {
+      // source iy = r.lo + t sits at dj = iy - r.lo - t: table entries go down with t.
+      const int o = kernel_.offset(ix - r.ix, iy - r.lo);
+      const double *hx = histX_.data() + g.index(r.ix, r.lo),
+                   *hy = histY_.data() + g.index(r.ix, r.lo);
+      for (int t = 0; t < r.len; ++t) {
+        ux += kxx[o - t] * hx[t] + kxy[o - t] * hy[t];
+        uy += kxy[o - t] * hx[t] + kyy[o - t] * hy[t];
+      }
     }
     (*c)[2 * i] = ux;
     (*c)[2 * i + 1] = uy;
@@ -203,26 +220,29 @@ const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepage
   Eigen::VectorXd tau;
   if (steady) {
     if (n > 0 && !directAdhesion(true, rhs, &tau)) return steadyByMarching(w, mu, tau);
-  } else if (n > 0 && !(systemUsed_ && directAdhesion(false, rhs, &tau))) {
-    if (!systemUsed_) {  // start from the previous traction carried one cell downstream
-      tau.setZero(2 * n);
-      const int shift = mode == RollingMode::kTransient ? 1 : 0;
-      for (int i = 0; i < n; ++i) {
-        const int ix = elems_[i] / g.my + shift, iy = elems_[i] % g.my;
-        if (ix < g.mx) {  // beyond the grid: no traction
-          tau[2 * i] = histX_[g.index(ix, iy)];
-          tau[2 * i + 1] = histY_[g.index(ix, iy)];
+  } else if (n > 0) {
+    // Direct adhesion solve when it is likely to hold (the last step was in full adhesion);
+    // otherwise Gauss-Seidel from the last traction at the same elements: in rolling the traction
+    // field is nearly stationary in the patch frame, so this start is close.
+    const bool tryDirect = systemUsed_ && lastFullAdhesion_;
+    if (!(tryDirect && directAdhesion(false, rhs, &tau))) {
+      if (!tryDirect) {
+        tau.resize(2 * n);
+        for (int i = 0; i < n; ++i) {
+          tau[2 * i] = histX_[elems_[i]];
+          tau[2 * i + 1] = histY_[elems_[i]];
         }
       }
+      for (int i = 0; i < n; ++i) {  // project onto the Coulomb disc
+        const double t = std::hypot(tau[2 * i], tau[2 * i + 1]);
+        if (t > bound_[i]) tau.segment<2>(2 * i) *= bound_[i] / t;
+      }
+      gaussSeidel(mode, c, w, dq, &tau);
     }
-    for (int i = 0; i < n; ++i) {  // project onto the Coulomb disc
-      const double t = std::hypot(tau[2 * i], tau[2 * i + 1]);
-      if (t > bound_[i]) tau.segment<2>(2 * i) *= bound_[i] / t;
-    }
-    gaussSeidel(mode, c, w, dq, &tau);
   }
   systemUsed_ = true;
   output(tau);
+  lastFullAdhesion_ = sol_.adhesionFraction == 1.0;
   if (!steady) {
     histX_ = sol_.tx;
     histY_ = sol_.ty;
