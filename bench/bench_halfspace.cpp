@@ -43,7 +43,7 @@ void transientStep(benchmark::State& state, double xi0, double mu) {
 }
 
 void BM_TransientStepFullAdhesion(benchmark::State& state) {
-  transientStep(state, 1e-6, 0.3);
+  transientStep(state, 1e-4, 1000.0);
 }
 void BM_TransientStepPartialSlip(benchmark::State& state) {
   transientStep(state, 6e-4, 0.3);
