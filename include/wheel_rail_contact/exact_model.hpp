@@ -8,7 +8,8 @@
 /// state after that last sub-step (its position lags the row's by less than dx). A step longer
 /// than 10 nx elements restarts from rest 10 nx elements before its end (the memory of the start
 /// has decayed by e^-20 there). The pressure is the discrete Hertz normal problem at the
-/// sub-step's load (a, b scale as (fz/fz0)^(1/3)). Status rules as SteadyModel; the first step
+/// sub-step's load (a, b scale as (fz/fz0)^(1/3)), solved again whenever the load has moved by
+/// more than 0.5 % and scaled to the load in between. Status rules as SteadyModel; the first step
 /// after start, reset or loss of contact starts from zero traction and returns zero force.
 #pragma once
 
@@ -20,7 +21,7 @@ namespace wheel_rail_contact {
 
 class ExactModel : public ContactModel {
  public:
-  /// Throws std::invalid_argument if nx * ny exceeds 6400 (dense matrices on the contact set).
+  /// Throws std::invalid_argument if nx * ny exceeds 3600 (dense matrices on the contact set).
   explicit ExactModel(const ContactParameters& p);
   StepOutput step(const StepInput& in) override;
   void reset() override;
@@ -37,8 +38,9 @@ class ExactModel : public ContactModel {
   double fzMax_;
   StepInput prev_;
   bool started_ = false;
-  double carry_ = 0.0;  // distance rolled since the last sub-step [m]
-  double loadedFz_ = -1.0;
+  double carry_ = 0.0;              // distance rolled since the last sub-step [m]
+  double loadedFz_ = -1.0;          // load of the last normal solve [N]
+  Eigen::VectorXd normalPressure_;  // its pressure [Pa]
   int subSteps_ = 0;
   StepOutput last_;
 };

@@ -36,6 +36,11 @@ class InfluenceKernel {
   double xy(int di, int dj) const { return xy_[at(di, dj)]; }
   double yy(int di, int dj) const { return yy_[at(di, dj)]; }
   const HalfspaceGrid& grid() const { return grid_; }
+  /// Raw tables for tight loops: entry (di, dj) at offset(di, dj); dj + 1 is the next entry.
+  int offset(int di, int dj) const { return at(di, dj); }
+  const double* xxData() const { return xx_.data(); }
+  const double* xyData() const { return xy_.data(); }
+  const double* yyData() const { return yy_.data(); }
 
  private:
   int at(int di, int dj) const { return (di + grid_.mx) * (2 * grid_.my - 1) + dj + grid_.my - 1; }

@@ -159,7 +159,7 @@ int freqCommand(const Options& o, std::ostream& out) {
   const CreepageKind kind = parseCreepageKind(o.values.at("kind"));
   const double ab = parseList("ab", o.values.at("ab")).at(0);
   if (!(ab >= 0.05 && ab <= 20.0)) throw std::invalid_argument("ab: must be in [0.05, 20]");
-  if (p.nx * p.ny > 6400) throw std::invalid_argument("nx: at most nx * ny = 6400 elements");
+  if (p.nx * p.ny > 3600) throw std::invalid_argument("nx: at most nx * ny = 3600 elements");
   const std::vector<double> lambdas = parseList("lambda-over-a", o.values.at("lambda-over-a"));
   const FrequencyResponse r = frequencyResponse(p, kind, ab, lambdas);
   out << "lambda_over_a,c_real,c_imag,magnitude,phase_deg,c_steady,magnitude_over_steady\n";

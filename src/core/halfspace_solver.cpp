@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "wheel_rail_contact/halfspace_normal.hpp"
@@ -84,6 +85,14 @@ void HalfspaceSolver::buildSystem(bool steady) {
       m_(2 * i + 1, 2 * j + 1) = yy;
     }
   }
+  runs_.clear();
+  for (int i = 0; i < n; ++i) {
+    const int ix = elems_[i] / g.my, iy = elems_[i] % g.my;
+    if (!runs_.empty() && runs_.back().ix == ix && runs_.back().lo + runs_.back().len == iy)
+      ++runs_.back().len;
+    else
+      runs_.push_back({ix, iy, 1, i});
+  }
   systemKind_ = steady ? 1 : 0;
   systemUsed_ = false;
   factored_ = false;
@@ -94,18 +103,35 @@ void HalfspaceSolver::previousDisplacement(RollingMode mode, Eigen::VectorXd* c)
   const int n = static_cast<int>(elems_.size());
   c->setZero(2 * n);
   if (mode == RollingMode::kSteady) return;
-  std::vector<int> src;
-  for (int k = 0; k < g.size(); ++k)
-    if (histX_[k] != 0.0 || histY_[k] != 0.0) src.push_back(k);
+  // The loaded part of each grid column is one run of y-neighbours: walk the kernel tables along
+  // it with unit stride.
+  struct Run {
+    int ix, lo, len;
+  };
+  std::vector<Run> runs;
+  for (int ix = 0; ix < g.mx; ++ix) {
+    int lo = g.my, hi = -1;
+    for (int iy = 0; iy < g.my; ++iy)
+      if (histX_[g.index(ix, iy)] != 0.0 || histY_[g.index(ix, iy)] != 0.0) {
+        lo = std::min(lo, iy);
+        hi = iy;
+      }
+    if (hi >= lo) runs.push_back({ix, lo, hi - lo + 1});
+  }
   const int shift = mode == RollingMode::kTransient ? 1 : 0;
+  const double *kxx = kernel_.xxData(), *kxy = kernel_.xyData(), *kyy = kernel_.yyData();
   for (int i = 0; i < n; ++i) {
     const int ix = elems_[i] / g.my + shift, iy = elems_[i] % g.my;
     double ux = 0.0, uy = 0.0;
-    for (int k : src) {
-      const int di = ix - k / g.my, dj = iy - k % g.my;
-      const double xy = kernel_.xy(di, dj);
-      ux += kernel_.xx(di, dj) * histX_[k] + xy * histY_[k];
-      uy += xy * histX_[k] + kernel_.yy(di, dj) * histY_[k];
+    for (const Run& r : runs) {
+      // source iy = r.lo + t sits at dj = iy - r.lo - t: table entries go down with t.
+      const int o = kernel_.offset(ix - r.ix, iy - r.lo);
+      const double *hx = histX_.data() + g.index(r.ix, r.lo),
+                   *hy = histY_.data() + g.index(r.ix, r.lo);
+      for (int t = 0; t < r.len; ++t) {
+        ux += kxx[o - t] * hx[t] + kxy[o - t] * hy[t];
+        uy += kxy[o - t] * hx[t] + kyy[o - t] * hy[t];
+      }
     }
     (*c)[2 * i] = ux;
     (*c)[2 * i + 1] = uy;
@@ -127,57 +153,120 @@ bool HalfspaceSolver::directAdhesion(bool steady, const Eigen::VectorXd& rhs,
   return true;
 }
 
-void HalfspaceSolver::gaussSeidel(RollingMode mode, const Eigen::VectorXd& c, const Creepages& w,
-                                  double dq, Eigen::VectorXd* tau) {
+double HalfspaceSolver::sweep(const Eigen::VectorXd& c, const Creepages& w, double dq,
+                              Eigen::VectorXd* tau, Eigen::VectorXd* v) const {
   const HalfspaceGrid& g = grid();
   const int n = static_cast<int>(elems_.size());
-  Eigen::VectorXd v = m_ * (*tau);
-  sol_.converged = false;
-  const double omega = control_.relaxation;
-  for (int it = 1; it <= control_.maxIterations; ++it) {
-    double maxd = 0.0, maxt = 0.0;
-    // Leading edge first: upstream elements settle before the ones they feed.
-    for (int i = n - 1; i >= 0; --i) {
-      const int ix = elems_[i] / g.my, iy = elems_[i] % g.my;
-      const double dxx = m_(2 * i, 2 * i) / dq, dyy = m_(2 * i + 1, 2 * i + 1) / dq;
-      double& tx = (*tau)[2 * i];
-      double& ty = (*tau)[2 * i + 1];
-      // Slip with this element's traction removed.
-      const double cx = w.xi - w.phi * g.yc(iy) + (v[2 * i] - c[2 * i]) / dq - dxx * tx;
-      const double cy = w.eta + w.phi * g.xc(ix) + (v[2 * i + 1] - c[2 * i + 1]) / dq - dyy * ty;
-      const double gb = bound_[i];
-      double nx = -cx / dxx, ny = -cy / dyy;  // adhesion: s = 0
-      if (std::hypot(nx, ny) > gb) {          // slip at the bound
-        double ex = 0.0, ey = 0.0;
-        if (gb > 0.0) slipDirection(cx, cy, gb, dxx, dyy, &ex, &ey);
-        nx = -gb * ex;
-        ny = -gb * ey;
-      } else if (omega != 1.0) {  // over-relaxed adhesion update (projected SOR)
-        nx = tx + omega * (nx - tx);
-        ny = ty + omega * (ny - ty);
-        const double t = std::hypot(nx, ny);
-        if (t > gb) {
-          nx *= gb / t;
-          ny *= gb / t;
-        }
-      }
-      const double ddx = nx - tx, ddy = ny - ty;
-      if (ddx != 0.0 || ddy != 0.0) {
-        v.noalias() += m_.col(2 * i) * ddx + m_.col(2 * i + 1) * ddy;
-        tx = nx;
-        ty = ny;
-      }
-      maxd = std::max(maxd, std::hypot(ddx, ddy));
-      maxt = std::max(maxt, std::hypot(nx, ny));
+  double maxd = 0.0, maxt = 0.0;
+  // Leading edge first: upstream elements settle before the ones they feed.
+  for (int i = n - 1; i >= 0; --i) {
+    const int ix = elems_[i] / g.my, iy = elems_[i] % g.my;
+    const double dxx = m_(2 * i, 2 * i) / dq, dyy = m_(2 * i + 1, 2 * i + 1) / dq;
+    double& tx = (*tau)[2 * i];
+    double& ty = (*tau)[2 * i + 1];
+    // Slip with this element's traction removed.
+    const double cx = w.xi - w.phi * g.yc(iy) + ((*v)[2 * i] - c[2 * i]) / dq - dxx * tx;
+    const double cy = w.eta + w.phi * g.xc(ix) + ((*v)[2 * i + 1] - c[2 * i + 1]) / dq - dyy * ty;
+    const double gb = bound_[i];
+    double nx = -cx / dxx, ny = -cy / dyy;  // adhesion: s = 0
+    if (std::hypot(nx, ny) > gb) {          // slip at the bound
+      double ex = 0.0, ey = 0.0;
+      if (gb > 0.0) slipDirection(cx, cy, gb, dxx, dyy, &ex, &ey);
+      nx = -gb * ex;
+      ny = -gb * ey;
     }
-    sol_.iterations = it;
-    sol_.residual = maxt > 0.0 ? maxd / maxt : 0.0;
-    if (sol_.residual <= control_.tolerance) {
-      sol_.converged = true;
-      break;
+    const double ddx = nx - tx, ddy = ny - ty;
+    if (ddx != 0.0 || ddy != 0.0) {
+      addInfluence(i, ddx, ddy, v);
+      tx = nx;
+      ty = ny;
+    }
+    maxd = std::max(maxd, std::hypot(ddx, ddy));
+    maxt = std::max(maxt, std::hypot(nx, ny));
+  }
+  return maxt > 0.0 ? maxd / maxt : 0.0;
+}
+
+void HalfspaceSolver::addInfluence(int i, double dx, double dy, Eigen::VectorXd* v) const {
+  // v += M(:, i) (dx, dy) from the kernel tables (small enough to stay in cache, unlike M) along
+  // the runs of loaded elements, unit stride in the tables.
+  const HalfspaceGrid& g = grid();
+  const int ix = elems_[i] / g.my, iy = elems_[i] % g.my;
+  const double *kxx = kernel_.xxData(), *kxy = kernel_.xyData(), *kyy = kernel_.yyData();
+  double* out = v->data();
+  for (const ContactRun& r : runs_) {
+    const int o = kernel_.offset(r.ix - ix, r.lo - iy);
+    double* u = out + 2 * r.first;
+    for (int t = 0; t < r.len; ++t) {
+      u[2 * t] += kxx[o + t] * dx + kxy[o + t] * dy;
+      u[2 * t + 1] += kxy[o + t] * dx + kyy[o + t] * dy;
     }
   }
-  (void)mode;
+}
+
+void HalfspaceSolver::projectOntoDiscs(Eigen::VectorXd* tau, Eigen::VectorXd* v) const {
+  for (int i = 0; i < static_cast<int>(elems_.size()); ++i) {
+    const double t = std::hypot((*tau)[2 * i], (*tau)[2 * i + 1]);
+    if (t <= bound_[i]) continue;
+    const double f = t > 0.0 ? bound_[i] / t - 1.0 : 0.0;
+    const double dx = f * (*tau)[2 * i], dy = f * (*tau)[2 * i + 1];
+    (*tau)[2 * i] += dx;
+    (*tau)[2 * i + 1] += dy;
+    v->noalias() += m_.col(2 * i) * dx + m_.col(2 * i + 1) * dy;
+  }
+}
+
+void HalfspaceSolver::gaussSeidel(const Eigen::VectorXd& c, const Creepages& w, double dq,
+                                  Eigen::VectorXd* tau) {
+  // Block Gauss-Seidel sweeps G, accelerated by Anderson mixing of the last few sweeps: the next
+  // input is G(x_k) - dG gamma with gamma the least-squares fit of the sweep change f = G(x) - x
+  // by its recent differences dF. v = M tau is mixed alongside (it is linear in tau), and the
+  // mixed traction is put back into the Coulomb discs. Convergence is judged on a plain sweep.
+  Eigen::VectorXd v = m_ * (*tau);
+  const int depth = control_.andersonDepth;
+  std::vector<Eigen::VectorXd> dG, dF, dV;
+  Eigen::VectorXd gPrev, fPrev, vPrev;
+  double best = std::numeric_limits<double>::infinity();
+  sol_.converged = false;
+  for (int it = 1; it <= control_.maxIterations; ++it) {
+    const Eigen::VectorXd x = *tau;
+    sol_.iterations = it;
+    sol_.residual = sweep(c, w, dq, tau, &v);
+    if (sol_.residual <= control_.tolerance) {
+      sol_.converged = true;
+      return;
+    }
+    if (depth == 0) continue;
+    const Eigen::VectorXd f = *tau - x;
+    if (sol_.residual > 10.0 * best) {  // mixing went astray: restart from this sweep
+      dG.clear();
+      dF.clear();
+      dV.clear();
+    } else if (gPrev.size() == tau->size()) {
+      dG.push_back(*tau - gPrev);
+      dF.push_back(f - fPrev);
+      dV.push_back(v - vPrev);
+      if (static_cast<int>(dF.size()) > depth) {
+        dG.erase(dG.begin());
+        dF.erase(dF.begin());
+        dV.erase(dV.begin());
+      }
+    }
+    best = std::min(best, sol_.residual);
+    gPrev = *tau;
+    fPrev = f;
+    vPrev = v;
+    const int k = static_cast<int>(dF.size());
+    if (k == 0) continue;
+    Eigen::MatrixXd F(f.size(), k);
+    for (int j = 0; j < k; ++j) F.col(j) = dF[j];
+    const Eigen::VectorXd gamma = F.colPivHouseholderQr().solve(f);
+    for (int j = 0; j < k; ++j) {
+      *tau -= gamma[j] * dG[j];
+      v -= gamma[j] * dV[j];
+    }
+    projectOntoDiscs(tau, &v);
+  }
 }
 
 const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepages& w, double mu,
@@ -203,26 +292,29 @@ const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepage
   Eigen::VectorXd tau;
   if (steady) {
     if (n > 0 && !directAdhesion(true, rhs, &tau)) return steadyByMarching(w, mu, tau);
-  } else if (n > 0 && !(systemUsed_ && directAdhesion(false, rhs, &tau))) {
-    if (!systemUsed_) {  // start from the previous traction carried one cell downstream
-      tau.setZero(2 * n);
-      const int shift = mode == RollingMode::kTransient ? 1 : 0;
-      for (int i = 0; i < n; ++i) {
-        const int ix = elems_[i] / g.my + shift, iy = elems_[i] % g.my;
-        if (ix < g.mx) {  // beyond the grid: no traction
-          tau[2 * i] = histX_[g.index(ix, iy)];
-          tau[2 * i + 1] = histY_[g.index(ix, iy)];
+  } else if (n > 0) {
+    // Direct adhesion solve when it is likely to hold (the last step was in full adhesion);
+    // otherwise Gauss-Seidel from the last traction at the same elements: in rolling the traction
+    // field is nearly stationary in the patch frame, so this start is close.
+    const bool tryDirect = systemUsed_ && lastFullAdhesion_;
+    if (!(tryDirect && directAdhesion(false, rhs, &tau))) {
+      if (!tryDirect) {
+        tau.resize(2 * n);
+        for (int i = 0; i < n; ++i) {
+          tau[2 * i] = histX_[elems_[i]];
+          tau[2 * i + 1] = histY_[elems_[i]];
         }
       }
+      for (int i = 0; i < n; ++i) {  // project onto the Coulomb disc
+        const double t = std::hypot(tau[2 * i], tau[2 * i + 1]);
+        if (t > bound_[i]) tau.segment<2>(2 * i) *= bound_[i] / t;
+      }
+      gaussSeidel(c, w, dq, &tau);
     }
-    for (int i = 0; i < n; ++i) {  // project onto the Coulomb disc
-      const double t = std::hypot(tau[2 * i], tau[2 * i + 1]);
-      if (t > bound_[i]) tau.segment<2>(2 * i) *= bound_[i] / t;
-    }
-    gaussSeidel(mode, c, w, dq, &tau);
   }
   systemUsed_ = true;
   output(tau);
+  lastFullAdhesion_ = sol_.adhesionFraction == 1.0;
   if (!steady) {
     histX_ = sol_.tx;
     histY_ = sol_.ty;

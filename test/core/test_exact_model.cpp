@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "../../src/cli/cli.hpp"
 #include "wheel_rail_contact/exact_model.hpp"
@@ -107,4 +109,26 @@ TEST(ExactModel, CliFreqPrintsTheContract) {
       runCli({"freq", "--model", "exact", "--kind", "zeta", "--ab", "1", "--lambda-over-a", "2"},
              out3, err3),
       0);
+}
+
+TEST(ExactModel, CliRunWritesOneRowPerScenarioRow) {
+  // Rows spaced 0, 0.1 mm, 5 mm and 60 mm of rolling apart (dx = 0.825 mm at 16 x 16): the model
+  // sub-steps internally and still writes exactly one row per input row, at its t.
+  const std::string path = ::testing::TempDir() + "exact_rows.csv";
+  std::ofstream(path) << "t,V,xi,eta,phi,fz\n0,10,1e-3,0,0,8e4\n0.00001,10,1e-3,0,0,8e4\n"
+                         "0.00051,10,1e-3,0,0,8e4\n0.00651,10,-1e-3,0,0,7e4\n";
+  std::ostringstream out, err;
+  ASSERT_EQ(runCli({"run", "--scenario", path, "--model", "exact", "--nx", "16", "--ny", "16",
+                    "--fz_max", "8e4"},
+                   out, err),
+            0)
+      << err.str();
+  std::istringstream in(out.str());
+  std::string line;
+  std::vector<std::string> lines;
+  while (std::getline(in, line)) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 5u);
+  EXPECT_EQ(lines[4].rfind("0.0065", 0), 0u);
+  EXPECT_NE(lines[4].find(",ok"), std::string::npos);
+  EXPECT_GT(std::stod(lines[4].substr(lines[4].find(',') + 1)), 0.0);  // xi < 0: Fx > 0
 }
