@@ -129,7 +129,19 @@ void ContactNode::reset() {
   stepper_->reset();
 }
 
-void ContactNode::creepageCallback(const CreepageConstPtr& msg) {
+void ContactNode::creepageCallback(const ros::MessageEvent<const Creepage>& event) {
+  const CreepageConstPtr& msg = event.getConstMessage();
+  // roscpp numbers each publisher's messages: a gap is a message dropped before this callback.
+  auto seen = lastSeq_.find(event.getPublisherName());
+  if (seen != lastSeq_.end() && msg->header.seq > seen->second + 1) {
+    lostCreepages_ += msg->header.seq - seen->second - 1;
+    ROS_WARN_THROTTLE(1.0,
+                      "%s: %lu creepage messages lost before the node (subscriber queue_size %d "
+                      "too small for the bursts?)",
+                      nh_.getNamespace().c_str(), static_cast<unsigned long>(lostCreepages_),
+                      queueSize_);
+  }
+  lastSeq_[event.getPublisherName()] = msg->header.seq;
   const StepResult r = stepper_->step(static_cast<int64_t>(msg->header.stamp.toNSec()),
                                       msg->velocity, msg->longitudinal, msg->lateral, msg->spin);
   report(r);
@@ -235,7 +247,12 @@ void ContactNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   const uint64_t newRejected = c.rejected - lastDiag_.rejected;
   const uint64_t newLoadRejected = c.loadsRejected - lastDiag_.loadsRejected;
   const uint64_t newStale = c.staleLoad - lastDiag_.staleLoad;
-  if (newRejected + newLoadRejected > 0)
+  const bool newLost = lostCreepages_ > lastLost_;
+  lastLost_ = lostCreepages_;
+  if (newLost)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                 "creepage messages lost before the node: raise queue_size");
+  else if (newRejected + newLoadRejected > 0)
     stat.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "%lu inputs rejected in the last %.1f s",
                   static_cast<unsigned long>(newRejected + newLoadRejected), span);
   else if (newStale > 0)
@@ -256,6 +273,7 @@ void ContactNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("rejected: creepage stamp out of order", c.outOfOrder);
   stat.add("rejected: dt > max_dt", c.dtTooLarge);
   stat.add("rejected: by the model", c.rejectedByModel);
+  stat.add("creepage lost before the node (queue_size)", lostCreepages_);
   stat.add("normal_load messages", c.loads);
   stat.add("normal_load rejected", c.loadsRejected);
   stat.add("normal_load stamp out of order", c.loadsOutOfOrder);

@@ -6,6 +6,7 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 
+#include <map>
 #include <memory>
 #include <string>
 
@@ -31,7 +32,7 @@ class ContactNode {
   void reset();
 
  private:
-  void creepageCallback(const CreepageConstPtr& msg);
+  void creepageCallback(const ros::MessageEvent<const Creepage>& event);
   void loadCallback(const NormalLoadConstPtr& msg);
   bool resetService(Reset::Request& req, Reset::Response& res);
   bool stepService(Step::Request& req, Step::Response& res);
@@ -53,6 +54,9 @@ class ContactNode {
   ros::WallTimer diagnosticTimer_;
   StepperCounters lastDiag_;
   ros::WallTime lastDiagTime_;
+  /// Creepage header.seq per publisher: a gap means the subscriber queue (queue_size) overflowed.
+  std::map<std::string, uint32_t> lastSeq_;
+  uint64_t lostCreepages_ = 0, lastLost_ = 0;
 };
 
 }  // namespace wheel_rail_contact
