@@ -58,4 +58,9 @@ std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p);
 /// Checks shared by every model: finite fields, dt >= 0. Returns an empty string if fine, else why.
 std::string checkStepInput(const StepInput& in);
 
+/// The step rules every model shares (doc/conventions.md), applied before any physics: non-finite
+/// input, dt < 0 or V < 0 give kRejected; fz <= 0 gives kNoLoad (the caller clears its history).
+/// Fills `out` with zero forces and the status and returns true when the step ends there.
+bool screenStep(const StepInput& in, StepOutput* out);
+
 }  // namespace wheel_rail_contact

@@ -50,12 +50,18 @@ struct TractionField {
 void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
                     Eigen::ArrayXd* bound);
 
-/// Per-strip running sums of one sweep, so the march integrates the forces as it goes.
+/// Running sums of one strip, so the march integrates the forces as it goes.
+struct StripSums {
+  double tx = 0.0, ty = 0.0, xnTy = 0.0;  ///< sums of tx, ty and (x/a) ty over the strip [Pa]
+  int stuck = 0, loaded = 0;              ///< nodes in adhesion, nodes with pressure
+  /// Saturates (tx, ty) at the bound g (Coulomb, direction kept), stores node k of `f` and adds it.
+  void node(int k, double xn, double g, double* tx, double* ty, TractionField* f);
+};
+
+/// Strip sums into forces and moment (midpoint rule).
 class ForceSums {
  public:
-  /// Strip j's sums: traction sums, sum of (x/a) ty, nodes in adhesion and loaded nodes.
-  void addStrip(const PatchMesh& mesh, int j, double tx, double ty, double xnTy, int stuck,
-                int loaded);
+  void addStrip(const PatchMesh& mesh, int j, const StripSums& s);
   CreepForces forces() const;
 
  private:

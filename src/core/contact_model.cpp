@@ -36,6 +36,23 @@ std::string checkStepInput(const StepInput& in) {
   return {};
 }
 
+bool screenStep(const StepInput& in, StepOutput* out) {
+  *out = StepOutput();
+  out->message = checkStepInput(in);
+  if (out->message.empty() && in.V < 0.0)
+    out->message = "rolling backwards (V < 0) is not modelled";
+  if (!out->message.empty()) {
+    out->status = StepStatus::kRejected;
+    return true;
+  }
+  if (!(in.fz > 0.0)) {
+    out->status = StepStatus::kNoLoad;
+    out->message = "fz <= 0: no contact, history cleared";
+    return true;
+  }
+  return false;
+}
+
 std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
   validate(p);
   if (p.model == "steady") return std::make_unique<SteadyModel>(p);

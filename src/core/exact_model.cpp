@@ -57,19 +57,16 @@ void ExactModel::subStep(const StepInput& in) {
 StepOutput ExactModel::step(const StepInput& in) {
   StepOutput out;
   subSteps_ = 0;
-  out.message = checkStepInput(in);
-  if (out.message.empty() && in.V < 0.0) out.message = "rolling backwards (V < 0) is not modelled";
-  if (out.message.empty() && in.fz > fzMax_ * (1.0 + 1e-12))
-    out.message = "fz above fz_max: the fixed grid does not cover the patch";
-  if (!out.message.empty()) {
-    out.status = StepStatus::kRejected;
+  if (screenStep(in, &out)) {
+    if (out.status == StepStatus::kNoLoad) {
+      reset();
+      last_ = out;
+    }
     return out;
   }
-  if (!(in.fz > 0.0)) {
-    reset();
-    out.status = StepStatus::kNoLoad;
-    out.message = "fz <= 0: no contact";
-    last_ = out;
+  if (in.fz > fzMax_ * (1.0 + 1e-12)) {
+    out.status = StepStatus::kRejected;
+    out.message = "fz above fz_max: the fixed grid does not cover the patch";
     return out;
   }
   if (in.V == 0.0 && started_) {

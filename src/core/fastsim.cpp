@@ -44,14 +44,31 @@ void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double
   *bound *= (sum > 0.0) ? mu * fz / sum : 0.0;
 }
 
-void ForceSums::addStrip(const PatchMesh& mesh, int j, double tx, double ty, double xnTy, int stuck,
-                         int loaded) {
+void StripSums::node(int k, double xn, double g, double* tx, double* ty, TractionField* f) {
+  const double t2 = *tx * *tx + *ty * *ty;
+  const bool slips = t2 > g * g;
+  if (slips) {
+    const double s = g / std::sqrt(t2);
+    *tx *= s;
+    *ty *= s;
+  }
+  f->tx(k) = *tx;
+  f->ty(k) = *ty;
+  f->slip(k) = slips;
+  this->tx += *tx;
+  this->ty += *ty;
+  xnTy += xn * *ty;
+  loaded += g > 0.0;
+  stuck += g > 0.0 && !slips;
+}
+
+void ForceSums::addStrip(const PatchMesh& mesh, int j, const StripSums& s) {
   const double dA = mesh.nodeArea(j);
-  f_.fx += tx * dA;
-  f_.fy += ty * dA;
-  f_.mz += (mesh.a() * xnTy - mesh.stripY(j) * tx) * dA;
-  stuck_ += stuck * dA;
-  loaded_ += loaded * dA;
+  f_.fx += s.tx * dA;
+  f_.fy += s.ty * dA;
+  f_.mz += (mesh.a() * s.xnTy - mesh.stripY(j) * s.tx) * dA;
+  stuck_ += s.stuck * dA;
+  loaded_ += s.loaded * dA;
 }
 
 CreepForces ForceSums::forces() const {
@@ -63,17 +80,16 @@ CreepForces ForceSums::forces() const {
 CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& f) {
   ForceSums sums;
   for (int j = 0; j < mesh.ny(); ++j) {
-    double tx = 0.0, ty = 0.0, xnTy = 0.0;
-    int stuck = 0, loaded = 0;
+    StripSums strip;
     for (int i = 0; i < mesh.nx(); ++i) {
       const int k = mesh.index(i, j);
-      tx += f.tx(k);
-      ty += f.ty(k);
-      xnTy += mesh.xNorms()(k) * f.ty(k);
-      loaded += f.bound(k) > 0.0;
-      stuck += f.bound(k) > 0.0 && !f.slip(k);
+      strip.tx += f.tx(k);
+      strip.ty += f.ty(k);
+      strip.xnTy += mesh.xNorms()(k) * f.ty(k);
+      strip.loaded += f.bound(k) > 0.0;
+      strip.stuck += f.bound(k) > 0.0 && !f.slip(k);
     }
-    sums.addStrip(mesh, j, tx, ty, xnTy, stuck, loaded);
+    sums.addStrip(mesh, j, strip);
   }
   return sums.forces();
 }
@@ -85,8 +101,8 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
   for (int j = 0; j < mesh.ny(); ++j) {
     const double dx = mesh.stripStep(j), aj = mesh.stripHalfLength(j);
     const double sx = gx - gphi * mesh.stripY(j);
-    double tx = 0.0, ty = 0.0, sumX = 0.0, sumY = 0.0, xnTy = 0.0;
-    int stuck = 0, loaded = 0;
+    double tx = 0.0, ty = 0.0;
+    StripSums strip;
     for (int i = 0; i < mesh.nx(); ++i) {
       const int k = mesh.index(i, j);
       // Step from the upstream node (the leading edge for i = 0); the spin term is linear in x, so
@@ -95,23 +111,9 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
       const double xMid = aj - (i + 0.5) * dx + 0.5 * h;
       tx -= h * sx;
       ty -= h * (gy + gphi * xMid);
-      const double t2 = tx * tx + ty * ty, g = f->bound(k);
-      const bool slips = t2 > g * g;
-      if (slips) {
-        const double s = g / std::sqrt(t2);
-        tx *= s;
-        ty *= s;
-      }
-      f->tx(k) = tx;
-      f->ty(k) = ty;
-      f->slip(k) = slips;
-      sumX += tx;
-      sumY += ty;
-      xnTy += mesh.xNorms()(k) * ty;
-      loaded += g > 0.0;
-      stuck += g > 0.0 && !slips;
+      strip.node(k, mesh.xNorms()(k), f->bound(k), &tx, &ty, f);
     }
-    sums.addStrip(mesh, j, sumX, sumY, xnTy, stuck, loaded);
+    sums.addStrip(mesh, j, strip);
   }
   return sums.forces();
 }

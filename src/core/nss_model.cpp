@@ -85,20 +85,8 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
 
 StepOutput NssModel::step(const StepInput& in) {
   StepOutput out;
-  out.message = checkStepInput(in);
-  if (!out.message.empty()) {
-    out.status = StepStatus::kRejected;
-    return out;
-  }
-  if (in.V < 0.0) {
-    out.status = StepStatus::kRejected;
-    out.message = "rolling backwards (V < 0) is not modelled";
-    return out;
-  }
-  if (!(in.fz > 0.0)) {
-    reset();  // loss of contact clears the history
-    out.status = StepStatus::kNoLoad;
-    out.message = "fz <= 0: no contact, history cleared";
+  if (screenStep(in, &out)) {
+    if (out.status == StepStatus::kNoLoad) reset();  // loss of contact clears the history
     return out;
   }
   if (in.V == 0.0) return hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");

@@ -12,20 +12,8 @@ SteadyModel::SteadyModel(const ContactParameters& p)
 
 StepOutput SteadyModel::step(const StepInput& in) {
   StepOutput out;
-  out.message = checkStepInput(in);
-  if (!out.message.empty()) {
-    out.status = StepStatus::kRejected;
-    return out;
-  }
-  if (in.V < 0.0) {
-    out.status = StepStatus::kRejected;
-    out.message = "rolling backwards (V < 0) is not modelled";
-    return out;
-  }
-  if (!(in.fz > 0.0)) {
-    out.status = StepStatus::kNoLoad;
-    out.message = "fz <= 0: no contact";
-    last_ = out;
+  if (screenStep(in, &out)) {
+    if (out.status == StepStatus::kNoLoad) last_ = out;
     return out;
   }
   if (in.V == 0.0) {

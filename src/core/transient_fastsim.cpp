@@ -46,8 +46,8 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
   for (int j = 0; j < mesh.ny(); ++j) {
     const double dx = mesh.stripStep(j), aj = mesh.stripHalfLength(j);
     const double sx = gx - gphi * mesh.stripY(j);
-    double tx = 0.0, ty = 0.0, sumX = 0.0, sumY = 0.0, xnTy = 0.0;
-    int stuck = 0, loaded = 0;
+    double tx = 0.0, ty = 0.0;
+    StripSums strip;
     // 1 / (1 + h beta) for the half step at the leading edge and the full steps after it.
     const double ix[2] = {1.0 / (1.0 + 0.5 * dx * X.beta), 1.0 / (1.0 + dx * X.beta)};
     const double iy[2] = {1.0 / (1.0 + 0.5 * dx * Y.beta), 1.0 / (1.0 + dx * Y.beta)};
@@ -59,27 +59,13 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
       const double ox = st->tx(k), oy = st->ty(k), qx = st->sx(k), qy = st->sy(k);
       tx = (tx + h * (X.beta * ox - qx * X.invV - sx)) * ix[full];
       ty = (ty + h * (Y.beta * oy - qy * Y.invV - gy - gphi * xMid)) * iy[full];
-      const double t2 = tx * tx + ty * ty, g = f->bound(k);
-      const bool slips = t2 > g * g;
-      if (slips) {
-        const double s = g / std::sqrt(t2);
-        tx *= s;
-        ty *= s;
-      }
-      f->tx(k) = tx;
-      f->ty(k) = ty;
-      f->slip(k) = slips;
+      strip.node(k, mesh.xNorms()(k), f->bound(k), &tx, &ty, f);
       st->sx(k) = X.nextState(tx, ox, qx);
       st->sy(k) = Y.nextState(ty, oy, qy);
       st->tx(k) = tx;
       st->ty(k) = ty;
-      sumX += tx;
-      sumY += ty;
-      xnTy += mesh.xNorms()(k) * ty;
-      loaded += g > 0.0;
-      stuck += g > 0.0 && !slips;
     }
-    sums.addStrip(mesh, j, sumX, sumY, xnTy, stuck, loaded);
+    sums.addStrip(mesh, j, strip);
   }
   return sums.forces();
 }
