@@ -44,6 +44,7 @@ struct HalfspaceSolution {
   double fy = 0.0;                  ///< [N]
   double mz = 0.0;                  ///< about the patch centre, sum of (x tau_y - y tau_x) dA [N m]
   Eigen::VectorXd tx, ty;           ///< traction on the wheel [Pa], 0 outside contact
+  Eigen::VectorXd sx, sy;           ///< slip per unit rolled distance [-] (shift: per dq)
   std::vector<ElementState> state;  ///< adhesion/slip map
   double adhesionFraction = 1.0;    ///< adhesion elements / contact elements [-]
   int iterations = 0;               ///< Gauss-Seidel sweeps (0: direct adhesion solve sufficed)
@@ -80,6 +81,8 @@ class HalfspaceSolver {
   double sweep(const Eigen::VectorXd& c, const Creepages& w, double dq, Eigen::VectorXd* tau,
                Eigen::VectorXd* v) const;
   void addInfluence(int i, double dx, double dy, Eigen::VectorXd* v) const;
+  void recordSlip(const Eigen::VectorXd& c, const Creepages& w, double dq,
+                  const Eigen::VectorXd& v);
   void projectOntoDiscs(Eigen::VectorXd* tau, Eigen::VectorXd* v) const;
   void output(const Eigen::VectorXd& tau);
   const HalfspaceSolution& steadyByMarching(const Creepages& w, double mu, Eigen::VectorXd tau);
@@ -88,6 +91,7 @@ class HalfspaceSolver {
   double G_, nu_;
   SolverControl control_;
   Eigen::VectorXd p_, bound_;  // per contact element: pressure, mu p
+  Eigen::VectorXd slip_;       // per contact unknown (x, y interleaved), of the last solve
   std::vector<int> elems_;
   Eigen::VectorXd histX_, histY_;  // previous traction per grid element
   // System matrix over contact unknowns (x, y interleaved per element), valid for elems_.

@@ -234,7 +234,7 @@ void HalfspaceSolver::gaussSeidel(const Eigen::VectorXd& c, const Creepages& w, 
     sol_.residual = sweep(c, w, dq, tau, &v);
     if (sol_.residual <= control_.tolerance) {
       sol_.converged = true;
-      return;
+      break;
     }
     if (depth == 0) continue;
     const Eigen::VectorXd f = *tau - x;
@@ -267,6 +267,7 @@ void HalfspaceSolver::gaussSeidel(const Eigen::VectorXd& c, const Creepages& w, 
     }
     projectOntoDiscs(tau, &v);
   }
+  recordSlip(c, w, dq, v);
 }
 
 const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepages& w, double mu,
@@ -290,6 +291,7 @@ const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepage
   sol_.residual = 0.0;
   sol_.steadySteps = 0;
   Eigen::VectorXd tau;
+  slip_.setZero(2 * n);  // the direct adhesion solve leaves s = 0
   if (steady) {
     if (n > 0 && !directAdhesion(true, rhs, &tau)) return steadyByMarching(w, mu, tau);
   } else if (n > 0) {
@@ -358,12 +360,25 @@ const HalfspaceSolution& HalfspaceSolver::steadyByMarching(const Creepages& w, d
   return sol_;
 }
 
+void HalfspaceSolver::recordSlip(const Eigen::VectorXd& c, const Creepages& w, double dq,
+                                 const Eigen::VectorXd& v) {
+  const HalfspaceGrid& g = grid();
+  slip_.resize(v.size());
+  for (int i = 0; i < static_cast<int>(elems_.size()); ++i) {
+    const int ix = elems_[i] / g.my, iy = elems_[i] % g.my;
+    slip_[2 * i] = w.xi - w.phi * g.yc(iy) + (v[2 * i] - c[2 * i]) / dq;
+    slip_[2 * i + 1] = w.eta + w.phi * g.xc(ix) + (v[2 * i + 1] - c[2 * i + 1]) / dq;
+  }
+}
+
 void HalfspaceSolver::output(const Eigen::VectorXd& tau) {
   const HalfspaceGrid& g = grid();
   const int n = static_cast<int>(elems_.size());
   const double dA = g.dx * g.dy;
   sol_.tx.setZero(g.size());
   sol_.ty.setZero(g.size());
+  sol_.sx.setZero(g.size());
+  sol_.sy.setZero(g.size());
   sol_.state.assign(g.size(), ElementState::kExterior);
   sol_.fx = sol_.fy = sol_.mz = 0.0;
   int adhesion = 0;
@@ -372,6 +387,8 @@ void HalfspaceSolver::output(const Eigen::VectorXd& tau) {
     const double tx = tau[2 * i], ty = tau[2 * i + 1];
     sol_.tx[k] = tx;
     sol_.ty[k] = ty;
+    sol_.sx[k] = slip_[2 * i];
+    sol_.sy[k] = slip_[2 * i + 1];
     const bool slip = std::hypot(tx, ty) >= bound_[i] * (1.0 - 1e-9);
     sol_.state[k] = slip ? ElementState::kSlip : ElementState::kAdhesion;
     adhesion += slip ? 0 : 1;
