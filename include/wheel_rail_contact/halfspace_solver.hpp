@@ -22,6 +22,12 @@ namespace wheel_rail_contact {
 
 enum class RollingMode { kSteady, kTransient, kShift };
 
+namespace detail {
+struct ContactRun {
+  int ix, lo, len, first;  // grid column, first row, length, index of its first loaded element
+};
+}  // namespace detail
+
 enum class ElementState : unsigned char { kExterior = 0, kAdhesion, kSlip };
 
 /// Full adhesion is solved directly (Cholesky, or LU for steady rolling, factored once per contact
@@ -96,11 +102,8 @@ class HalfspaceSolver {
   Eigen::VectorXd histX_, histY_;  // previous traction per grid element
   // System matrix over contact unknowns (x, y interleaved per element), valid for elems_.
   Eigen::MatrixXd m_;
-  struct ContactRun {
-    int ix, lo, len, first;  // grid column, first row, length, index of its first element
-  };
-  std::vector<ContactRun> runs_;  // loaded elements as runs of y-neighbours
-  int systemKind_ = -1;           // -1 none, 0 symmetric (transient/shift), 1 steady
+  std::vector<detail::ContactRun> runs_;  // loaded elements as runs of y-neighbours
+  int systemKind_ = -1;                   // -1 none, 0 symmetric (transient/shift), 1 steady
   bool systemUsed_ = false;
   bool lastFullAdhesion_ = true;
   Eigen::LLT<Eigen::MatrixXd> llt_;
