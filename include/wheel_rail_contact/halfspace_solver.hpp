@@ -22,6 +22,12 @@ namespace wheel_rail_contact {
 
 enum class RollingMode { kSteady, kTransient, kShift };
 
+namespace detail {
+struct ContactRun {
+  int ix, lo, len, first;  // grid column, first row, length, index of its first loaded element
+};
+}  // namespace detail
+
 enum class ElementState : unsigned char { kExterior = 0, kAdhesion, kSlip };
 
 /// Full adhesion is solved directly (Cholesky, or LU for steady rolling, factored once per contact
@@ -44,6 +50,7 @@ struct HalfspaceSolution {
   double fy = 0.0;                  ///< [N]
   double mz = 0.0;                  ///< about the patch centre, sum of (x tau_y - y tau_x) dA [N m]
   Eigen::VectorXd tx, ty;           ///< traction on the wheel [Pa], 0 outside contact
+  Eigen::VectorXd sx, sy;           ///< slip per unit rolled distance [-] (shift: per dq)
   std::vector<ElementState> state;  ///< adhesion/slip map
   double adhesionFraction = 1.0;    ///< adhesion elements / contact elements [-]
   int iterations = 0;               ///< Gauss-Seidel sweeps (0: direct adhesion solve sufficed)
@@ -80,6 +87,8 @@ class HalfspaceSolver {
   double sweep(const Eigen::VectorXd& c, const Creepages& w, double dq, Eigen::VectorXd* tau,
                Eigen::VectorXd* v) const;
   void addInfluence(int i, double dx, double dy, Eigen::VectorXd* v) const;
+  void recordSlip(const Eigen::VectorXd& c, const Creepages& w, double dq,
+                  const Eigen::VectorXd& v);
   void projectOntoDiscs(Eigen::VectorXd* tau, Eigen::VectorXd* v) const;
   void output(const Eigen::VectorXd& tau);
   const HalfspaceSolution& steadyByMarching(const Creepages& w, double mu, Eigen::VectorXd tau);
@@ -88,15 +97,13 @@ class HalfspaceSolver {
   double G_, nu_;
   SolverControl control_;
   Eigen::VectorXd p_, bound_;  // per contact element: pressure, mu p
+  Eigen::VectorXd slip_;       // per contact unknown (x, y interleaved), of the last solve
   std::vector<int> elems_;
   Eigen::VectorXd histX_, histY_;  // previous traction per grid element
   // System matrix over contact unknowns (x, y interleaved per element), valid for elems_.
   Eigen::MatrixXd m_;
-  struct ContactRun {
-    int ix, lo, len, first;  // grid column, first row, length, index of its first element
-  };
-  std::vector<ContactRun> runs_;  // loaded elements as runs of y-neighbours
-  int systemKind_ = -1;           // -1 none, 0 symmetric (transient/shift), 1 steady
+  std::vector<detail::ContactRun> runs_;  // loaded elements as runs of y-neighbours
+  int systemKind_ = -1;                   // -1 none, 0 symmetric (transient/shift), 1 steady
   bool systemUsed_ = false;
   bool lastFullAdhesion_ = true;
   Eigen::LLT<Eigen::MatrixXd> llt_;

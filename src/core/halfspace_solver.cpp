@@ -30,6 +30,25 @@ void slipDirection(double cx, double cy, double g, double dx, double dy, double*
   *ey = y / n;
 }
 
+// u += M(:, element at (ix, iy)) (dx, dy) over the runs of loaded elements, u planar (x of every
+// element, then y at ux + n): the Gauss-Seidel hot loop, unit stride in the kernel tables. On
+// x86-64 also compiled for AVX2 and chosen at run time (same results up to rounding).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void addRuns(const InfluenceKernel& k, const std::vector<detail::ContactRun>& runs, int ix, int iy,
+             double dx, double dy, double* ux, double* uy) {
+  const double *kxx = k.xxData(), *kxy = k.xyData(), *kyy = k.yyData();
+  for (const detail::ContactRun& r : runs) {
+    const int o = k.offset(r.ix - ix, r.lo - iy);
+    double *px = ux + r.first, *py = uy + r.first;
+    for (int t = 0; t < r.len; ++t) {
+      px[t] += kxx[o + t] * dx + kxy[o + t] * dy;
+      py[t] += kxy[o + t] * dx + kyy[o + t] * dy;
+    }
+  }
+}
+
 }  // namespace
 
 HalfspaceSolver::HalfspaceSolver(const HalfspaceGrid& grid, double G, double nu,
@@ -165,8 +184,8 @@ double HalfspaceSolver::sweep(const Eigen::VectorXd& c, const Creepages& w, doub
     double& tx = (*tau)[2 * i];
     double& ty = (*tau)[2 * i + 1];
     // Slip with this element's traction removed.
-    const double cx = w.xi - w.phi * g.yc(iy) + ((*v)[2 * i] - c[2 * i]) / dq - dxx * tx;
-    const double cy = w.eta + w.phi * g.xc(ix) + ((*v)[2 * i + 1] - c[2 * i + 1]) / dq - dyy * ty;
+    const double cx = w.xi - w.phi * g.yc(iy) + ((*v)[i] - c[2 * i]) / dq - dxx * tx;
+    const double cy = w.eta + w.phi * g.xc(ix) + ((*v)[n + i] - c[2 * i + 1]) / dq - dyy * ty;
     const double gb = bound_[i];
     double nx = -cx / dxx, ny = -cy / dyy;  // adhesion: s = 0
     if (std::hypot(nx, ny) > gb) {          // slip at the bound
@@ -188,20 +207,9 @@ double HalfspaceSolver::sweep(const Eigen::VectorXd& c, const Creepages& w, doub
 }
 
 void HalfspaceSolver::addInfluence(int i, double dx, double dy, Eigen::VectorXd* v) const {
-  // v += M(:, i) (dx, dy) from the kernel tables (small enough to stay in cache, unlike M) along
-  // the runs of loaded elements, unit stride in the tables.
-  const HalfspaceGrid& g = grid();
-  const int ix = elems_[i] / g.my, iy = elems_[i] % g.my;
-  const double *kxx = kernel_.xxData(), *kxy = kernel_.xyData(), *kyy = kernel_.yyData();
-  double* out = v->data();
-  for (const ContactRun& r : runs_) {
-    const int o = kernel_.offset(r.ix - ix, r.lo - iy);
-    double* u = out + 2 * r.first;
-    for (int t = 0; t < r.len; ++t) {
-      u[2 * t] += kxx[o + t] * dx + kxy[o + t] * dy;
-      u[2 * t + 1] += kxy[o + t] * dx + kyy[o + t] * dy;
-    }
-  }
+  // From the kernel tables, small enough to stay in cache, unlike M.
+  const int n = static_cast<int>(elems_.size()), my = grid().my;
+  addRuns(kernel_, runs_, elems_[i] / my, elems_[i] % my, dx, dy, v->data(), v->data() + n);
 }
 
 void HalfspaceSolver::projectOntoDiscs(Eigen::VectorXd* tau, Eigen::VectorXd* v) const {
@@ -212,7 +220,7 @@ void HalfspaceSolver::projectOntoDiscs(Eigen::VectorXd* tau, Eigen::VectorXd* v)
     const double dx = f * (*tau)[2 * i], dy = f * (*tau)[2 * i + 1];
     (*tau)[2 * i] += dx;
     (*tau)[2 * i + 1] += dy;
-    v->noalias() += m_.col(2 * i) * dx + m_.col(2 * i + 1) * dy;
+    addInfluence(i, dx, dy, v);
   }
 }
 
@@ -222,7 +230,14 @@ void HalfspaceSolver::gaussSeidel(const Eigen::VectorXd& c, const Creepages& w, 
   // input is G(x_k) - dG gamma with gamma the least-squares fit of the sweep change f = G(x) - x
   // by its recent differences dF. v = M tau is mixed alongside (it is linear in tau), and the
   // mixed traction is put back into the Coulomb discs. Convergence is judged on a plain sweep.
-  Eigen::VectorXd v = m_ * (*tau);
+  // v = M tau, kept planar (x of every element, then y) for unit-stride updates.
+  const int n = static_cast<int>(elems_.size());
+  const Eigen::VectorXd mt = m_ * (*tau);
+  Eigen::VectorXd v(2 * n);
+  for (int i = 0; i < n; ++i) {
+    v[i] = mt[2 * i];
+    v[n + i] = mt[2 * i + 1];
+  }
   const int depth = control_.andersonDepth;
   std::vector<Eigen::VectorXd> dG, dF, dV;
   Eigen::VectorXd gPrev, fPrev, vPrev;
@@ -234,7 +249,7 @@ void HalfspaceSolver::gaussSeidel(const Eigen::VectorXd& c, const Creepages& w, 
     sol_.residual = sweep(c, w, dq, tau, &v);
     if (sol_.residual <= control_.tolerance) {
       sol_.converged = true;
-      return;
+      break;
     }
     if (depth == 0) continue;
     const Eigen::VectorXd f = *tau - x;
@@ -267,6 +282,7 @@ void HalfspaceSolver::gaussSeidel(const Eigen::VectorXd& c, const Creepages& w, 
     }
     projectOntoDiscs(tau, &v);
   }
+  recordSlip(c, w, dq, v);
 }
 
 const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepages& w, double mu,
@@ -290,6 +306,7 @@ const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepage
   sol_.residual = 0.0;
   sol_.steadySteps = 0;
   Eigen::VectorXd tau;
+  slip_.setZero(2 * n);  // the direct adhesion solve leaves s = 0
   if (steady) {
     if (n > 0 && !directAdhesion(true, rhs, &tau)) return steadyByMarching(w, mu, tau);
   } else if (n > 0) {
@@ -358,12 +375,26 @@ const HalfspaceSolution& HalfspaceSolver::steadyByMarching(const Creepages& w, d
   return sol_;
 }
 
+void HalfspaceSolver::recordSlip(const Eigen::VectorXd& c, const Creepages& w, double dq,
+                                 const Eigen::VectorXd& v) {
+  const HalfspaceGrid& g = grid();
+  const int n = static_cast<int>(elems_.size());
+  slip_.resize(2 * n);
+  for (int i = 0; i < n; ++i) {
+    const int ix = elems_[i] / g.my, iy = elems_[i] % g.my;
+    slip_[2 * i] = w.xi - w.phi * g.yc(iy) + (v[i] - c[2 * i]) / dq;
+    slip_[2 * i + 1] = w.eta + w.phi * g.xc(ix) + (v[n + i] - c[2 * i + 1]) / dq;
+  }
+}
+
 void HalfspaceSolver::output(const Eigen::VectorXd& tau) {
   const HalfspaceGrid& g = grid();
   const int n = static_cast<int>(elems_.size());
   const double dA = g.dx * g.dy;
   sol_.tx.setZero(g.size());
   sol_.ty.setZero(g.size());
+  sol_.sx.setZero(g.size());
+  sol_.sy.setZero(g.size());
   sol_.state.assign(g.size(), ElementState::kExterior);
   sol_.fx = sol_.fy = sol_.mz = 0.0;
   int adhesion = 0;
@@ -372,6 +403,8 @@ void HalfspaceSolver::output(const Eigen::VectorXd& tau) {
     const double tx = tau[2 * i], ty = tau[2 * i + 1];
     sol_.tx[k] = tx;
     sol_.ty[k] = ty;
+    sol_.sx[k] = slip_[2 * i];
+    sol_.sy[k] = slip_[2 * i + 1];
     const bool slip = std::hypot(tx, ty) >= bound_[i] * (1.0 - 1e-9);
     sol_.state[k] = slip ? ElementState::kSlip : ElementState::kAdhesion;
     adhesion += slip ? 0 : 1;

@@ -39,3 +39,24 @@ TEST(HalfspaceNormal, DiscreteHertzCarriesTheLoadOnTheEllipse) {
     }
   EXPECT_NEAR(loaded * g.dx * g.dy, M_PI * a * b, 0.05 * M_PI * a * b);
 }
+
+TEST(HalfspaceNormal, PatchFollowsTheLoadOnAFixedGrid) {
+  // The reference patch scaled as (fz/fz0)^(1/3) has fixed curvatures (the undeformed distance
+  // does not change with the load), and on one grid the loaded area grows as fz^(2/3) (within
+  // 8 %, whole elements on a 24 x 24 grid).
+  const ReferencePatch ref{6e-3, 4e-3, 8e4};
+  double A0, B0;
+  hertzCurvatures(ref.a0, ref.b0, ref.fz0, 8.2e10, 0.28, &A0, &B0);
+  const HertzEllipse big = ref.at(1.5 * ref.fz0);
+  const HalfspaceGrid g = HalfspaceGrid::covering(big.a, big.b, 24, 24);
+  for (double f : {0.4, 1.0, 1.5}) {
+    const HertzEllipse h = ref.at(f * ref.fz0);
+    double A, B;
+    hertzCurvatures(h.a, h.b, f * ref.fz0, 8.2e10, 0.28, &A, &B);
+    EXPECT_NEAR(A, A0, 1e-9 * A0);
+    EXPECT_NEAR(B, B0, 1e-9 * B0);
+    const Eigen::VectorXd p = hertzianGridPressure(g, h.a, h.b, f * ref.fz0, 8.2e10, 0.28);
+    const double area = (p.array() > 0.0).count() * g.dx * g.dy;
+    EXPECT_NEAR(area, M_PI * h.a * h.b, 0.08 * M_PI * h.a * h.b) << f;
+  }
+}
