@@ -5,8 +5,11 @@
 // Private parameters: scene (path, required), time_scale (scene s per wall s, default 1),
 // start_delay (wall s after the node subscribed, default 1), subscribers (wait for this many
 // creepage subscribers, default 1), stamp_offset (s; < 0 = ros::Time::now() at start, the default),
-// load_lead (wall s, default 0.002).
+// load_lead (wall s, default 0.002), wait_for (a list of topics, relative, that must each have a
+// subscriber before the scene starts, e.g. [contact_state] so a recorder sees the first step).
 #include <ros/ros.h>
+
+#include <ros/master.h>
 
 #include <fstream>
 #include <stdexcept>
@@ -14,6 +17,21 @@
 #include "wheel_rail_contact/Creepage.h"
 #include "wheel_rail_contact/NormalLoad.h"
 #include "wheel_rail_contact/scenario.hpp"
+
+namespace {
+
+/// True if the master lists a subscriber of `topic` (a resolved name).
+bool hasSubscriber(const std::string& topic) {
+  XmlRpc::XmlRpcValue request, response, payload;
+  request[0] = ros::this_node::getName();
+  if (!ros::master::execute("getSystemState", request, response, payload, false)) return false;
+  const XmlRpc::XmlRpcValue& subscribers = payload[1];
+  for (int i = 0; i < subscribers.size(); ++i)
+    if (static_cast<std::string>(subscribers[i][0]) == topic) return subscribers[i][1].size() > 0;
+  return false;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "scene_player");
@@ -26,6 +44,8 @@ int main(int argc, char** argv) {
   pnh.param("stamp_offset", stampOffset, stampOffset);
   pnh.param("load_lead", loadLead, loadLead);
   pnh.param("subscribers", subscribers, subscribers);
+  std::vector<std::string> waitFor;
+  pnh.param("wait_for", waitFor, waitFor);
   if (!pnh.getParam("scene", scene)) {
     ROS_FATAL("scene_player: scene: parameter ~scene (a scenario CSV) is required");
     return 1;
@@ -49,6 +69,8 @@ int main(int argc, char** argv) {
   while (ros::ok() && (static_cast<int>(creepPub.getNumSubscribers()) < subscribers ||
                        static_cast<int>(loadPub.getNumSubscribers()) < subscribers))
     ros::WallDuration(0.01).sleep();
+  for (const auto& topic : waitFor)
+    while (ros::ok() && !hasSubscriber(nh.resolveName(topic))) ros::WallDuration(0.05).sleep();
   ros::WallDuration(startDelay).sleep();
   if (!ros::ok()) return 0;
 

@@ -71,7 +71,7 @@ class ContactClient {
 
   /// Publishes a load and gives the node `settle` wall seconds to take it (topics are not ordered
   /// across connections; the contact_state's fz shows which load was used).
-  void load(const ros::Time& stamp, double fz, double settle = 0.01) {
+  void load(const ros::Time& stamp, double fz, double settle = 0.02) {
     wheel_rail_contact::NormalLoad m;
     m.header.stamp = stamp;
     m.force = fz;

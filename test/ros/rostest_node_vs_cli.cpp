@@ -40,17 +40,30 @@ void expectMatches(size_t k, const Out& o) {
   EXPECT_EQ(statusText(o.status), r.status) << "row " << k;
 }
 
-void viaTopics(ContactClient& c, size_t from, size_t to, double* lastLoad) {
-  for (size_t k = from; k < to; ++k) {
-    const auto& row = rows[k];
-    if (row.fz != *lastLoad) c.load(stampOf(row.t), row.fz);
-    *lastLoad = row.fz;
-    ContactState s;
-    ASSERT_TRUE(c.creep(stampOf(row.t), row.xi, row.eta, row.phi, row.V, &s));
-    ASSERT_EQ(s.fz, row.fz) << "row " << k << ": the load did not reach the node before the "
-                            << "creepage (test harness timing)";
-    expectMatches(k, s);
+/// Rows [0, n) through the topics after a reset. Topics are not ordered across connections, so
+/// the test gives each new load `settle` seconds to arrive; when a step still used another load
+/// (contact_state.fz shows it: harness timing, not the node) the run is redone with a longer wait.
+std::vector<ContactState> viaTopics(ContactClient& c, size_t n) {
+  std::vector<ContactState> out;
+  for (double settle : {0.01, 0.05, 0.25}) {
+    out.clear();
+    EXPECT_TRUE(c.reset());
+    double lastLoad = NAN;
+    for (size_t k = 0; k < n; ++k) {
+      const auto& row = rows[k];
+      if (row.fz != lastLoad) c.load(stampOf(row.t), row.fz, settle);
+      lastLoad = row.fz;
+      ContactState s;
+      EXPECT_TRUE(c.creep(stampOf(row.t), row.xi, row.eta, row.phi, row.V, &s));
+      if (s.fz != row.fz) break;
+      out.push_back(s);
+    }
+    if (out.size() == n) break;
+    ROS_WARN("row %zu: the load had not reached the node after %g s; again", out.size(), settle);
   }
+  EXPECT_EQ(out.size(), n) << "the loads did not reach the node before the creepages";
+  for (size_t k = 0; k < out.size(); ++k) expectMatches(k, out[k]);
+  return out;
 }
 
 void viaStep(ContactClient& c, size_t from, size_t to) {
@@ -85,15 +98,13 @@ TEST_F(NodeVsCli, ContactCliReadsTheNodeConfiguration) {
 }
 
 TEST_F(NodeVsCli, TopicsGiveContactCliForces) {
-  double lastLoad = NAN;
-  viaTopics(*client, 0, rows.size(), &lastLoad);
-  EXPECT_EQ(client->states.size(), rows.size());
-  EXPECT_EQ(client->forces.size(), rows.size());
+  const auto out = viaTopics(*client, rows.size());
+  ASSERT_EQ(out.size(), rows.size());
   std::string frame;
   ros::param::get(ns + "/contact_node/frame_id", frame);
   EXPECT_EQ(client->forces.back().header.frame_id, frame);
-  EXPECT_EQ(client->states[0].dt, 0.0);
-  EXPECT_NEAR(client->states[1].dt, rows[1].t - rows[0].t, 1e-9);
+  EXPECT_EQ(out[0].dt, 0.0);
+  EXPECT_NEAR(out[1].dt, rows[1].t - rows[0].t, 1e-9);
 }
 
 TEST_F(NodeVsCli, StepServiceGivesContactCliForcesAndPublishesThem) {
@@ -103,23 +114,24 @@ TEST_F(NodeVsCli, StepServiceGivesContactCliForcesAndPublishesThem) {
 }
 
 TEST_F(NodeVsCli, TopicsAndStepServiceMixInOneTimeLine) {
-  double lastLoad = NAN;
   const size_t half = rows.size() / 2;
-  viaTopics(*client, 0, half, &lastLoad);
+  ASSERT_EQ(viaTopics(*client, half).size(), half);
   viaStep(*client, half, rows.size());
 }
 
 TEST_F(NodeVsCli, ResetRestoresFreshStartOutputs) {
   const size_t n = std::min<size_t>(rows.size(), 40);
-  double lastLoad = NAN;
-  viaTopics(*client, 0, n, &lastLoad);
-  const auto first = client->states;
-  ASSERT_TRUE(client->reset());
-  lastLoad = NAN;
-  viaTopics(*client, 0, n, &lastLoad);
-  ASSERT_EQ(client->states.size(), 2 * n);
+  const auto first = viaTopics(*client, n);
+  // Leave every piece of state dirty: history, a later time base, another load.
+  wheel_rail_contact::Step::Response res;
+  for (int k = 0; k < 5; ++k)
+    ASSERT_TRUE(
+        client->step(stampOf(1e3 + k), 0.03, -0.02, 1.0, rows[0].V, 0.7 * rows[0].fz, &res));
+  const auto second = viaTopics(*client, n);  // starts with a reset
+  ASSERT_EQ(first.size(), n);
+  ASSERT_EQ(second.size(), n);
   for (size_t k = 0; k < n; ++k) {
-    const ContactState &a = first[k], &b = client->states[n + k];
+    const ContactState &a = first[k], &b = second[k];
     EXPECT_EQ(a.fx, b.fx);
     EXPECT_EQ(a.fy, b.fy);
     EXPECT_EQ(a.mz, b.mz);
