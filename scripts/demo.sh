@@ -3,12 +3,12 @@
 # roslaunch launch/demo.launch — two real contact_nodes fed the paper's combined-creepage and
 # varying-load scenes by scene_player, recorded by force_recorder — then plots the forces and checks
 # them against `contact_cli run` on the same scenes. Ends by itself; prints where its outputs are.
-# Environment: DEMO_MODEL (default steady), DEMO_TIME_SCALE (scene s per wall s, default 8).
+# Environment: DEMO_MODEL (default nss), DEMO_TIME_SCALE (scene s per wall s, default 8).
 set -eo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
 out="$here/build/demo"
-model="${DEMO_MODEL:-steady}"
+model="${DEMO_MODEL:-nss}"
 rm -rf "$out" && mkdir -p "$out"
 export ROS_HOSTNAME="${ROS_HOSTNAME:-localhost}" ROS_HOME="${ROS_HOME:-$here/build/ros_home}"
 mkdir -p "$ROS_HOME"
