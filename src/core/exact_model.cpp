@@ -73,6 +73,7 @@ StepOutput ExactModel::step(const StepInput& in) {
     return out;
   }
   if (in.V == 0.0 && started_) {
+    prev_ = in;  // the next step's travel starts from rest
     out = last_;
     out.status = StepStatus::kStandstill;
     out.message = "V = 0: no travel, forces held";
@@ -120,6 +121,10 @@ StepOutput ExactModel::step(const StepInput& in) {
   out.a = h.a;
   out.b = h.b;
   last_ = out;
+  if (in.V == 0.0) {  // the first step at rest
+    out.status = StepStatus::kStandstill;
+    out.message = "V = 0: no travel, forces held";
+  }
   return out;
 }
 
