@@ -11,6 +11,8 @@ namespace {
 
 HalfspaceGrid gridFor(const ContactParameters& p) {
   validate(p);
+  if (p.mesh != "fixed")
+    throw std::invalid_argument("mesh: the exact model uses one fixed grid (mesh = fixed)");
   if (p.nx * p.ny > 3600)  // dense matrices over the loaded elements: about 180 MB at 60 x 60
     throw std::invalid_argument("nx: the exact model supports at most nx * ny = 3600 elements");
   const double s = std::cbrt(effectiveFzMax(p) / p.fz0);

@@ -58,6 +58,8 @@ HalfspaceSolver::HalfspaceSolver(const HalfspaceGrid& grid, double G, double nu,
   histY_ = Eigen::VectorXd::Zero(grid.size());
   sol_.tx = Eigen::VectorXd::Zero(grid.size());
   sol_.ty = Eigen::VectorXd::Zero(grid.size());
+  sol_.sx = Eigen::VectorXd::Zero(grid.size());
+  sol_.sy = Eigen::VectorXd::Zero(grid.size());
   sol_.state.assign(grid.size(), ElementState::kExterior);
 }
 

@@ -58,6 +58,9 @@ TEST(ExactModel, StatusRules) {
         ExactModel big(p);
       }(),
       std::invalid_argument);
+  ContactParameters adaptive = coarse();
+  adaptive.mesh = "adaptive";
+  EXPECT_THROW(ExactModel{adaptive}, std::invalid_argument);
 }
 
 TEST(ExactModel, SubStepsOfOneElementAndSteadyLimit) {
