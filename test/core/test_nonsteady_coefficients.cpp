@@ -92,7 +92,9 @@ TEST(NonSteadyCoefficients, LongWavesTendToSteadyShortWavesLag) {
     const NonSteadyCoefficients c(k, 0.5, 0.28, 16, 16);
     EXPECT_NEAR(c.at(1e5).real(), c.steady(), 1e-3 * c.steady()) << toString(k);
     EXPECT_LT(std::abs(c.at(2.0)), 0.5 * c.steady()) << toString(k);
-    if (k != CreepageKind::kPhi) EXPECT_LT(c.at(5.0).imag(), 0.0) << toString(k);  // a lag
+    if (k != CreepageKind::kPhi) {
+      EXPECT_LT(c.at(5.0).imag(), 0.0) << toString(k);  // a lag
+    }
   }
   EXPECT_THROW(NonSteadyCoefficients(CreepageKind::kXi, -1.0, 0.28, 10, 10), std::invalid_argument);
 }
