@@ -21,7 +21,8 @@ namespace wheel_rail_contact {
 
 class ExactModel : public ContactModel {
  public:
-  /// Throws std::invalid_argument if nx * ny exceeds 3600 (dense matrices on the contact set).
+  /// Throws std::invalid_argument if nx * ny exceeds 3600 (dense matrices on the contact set) or
+  /// mesh is not "fixed".
   explicit ExactModel(const ContactParameters& p);
   StepOutput step(const StepInput& in) override;
   void reset() override;

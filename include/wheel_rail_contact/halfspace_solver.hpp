@@ -6,6 +6,10 @@
 ///   steady:    u at the upstream neighbour (x + dx) now, dq = dx;
 ///   transient: u at the upstream neighbour at the previous step, dq = dx (one cell per step);
 ///   shift:     u at I itself at the previous step, dq the tangential shift (Cattaneo from rest).
+/// Rigid slip w = (xi - phi y, eta + phi (x + kSpinOffset dq)) at element centres: in rolling the
+/// spin term is taken dq/6 downstream of the centre, as CONTACT does (its "offset 1/6 dq used in
+/// rolling problems"); this O(dx) term moves C23 by C22 (dx/6)/sqrt(ab) and makes our C23 equal to
+/// CONTACT's. Shift: no offset.
 /// Coulomb: |tau| <= mu p; adhesion where |tau| < mu p (s = 0), else tau = -mu p s/|s|.
 #pragma once
 
@@ -21,6 +25,9 @@
 namespace wheel_rail_contact {
 
 enum class RollingMode { kSteady, kTransient, kShift };
+
+/// Position of the spin rigid slip in rolling, downstream of the element centre, per unit dq.
+constexpr double kSpinOffset = 1.0 / 6.0;
 
 namespace detail {
 struct ContactRun {
@@ -98,6 +105,7 @@ class HalfspaceSolver {
   SolverControl control_;
   Eigen::VectorXd p_, bound_;  // per contact element: pressure, mu p
   Eigen::VectorXd slip_;       // per contact unknown (x, y interleaved), of the last solve
+  double spinOffset_ = 0.0;    // kSpinOffset dq in rolling, 0 in a shift [m]
   std::vector<int> elems_;
   Eigen::VectorXd histX_, histY_;  // previous traction per grid element
   // System matrix over contact unknowns (x, y interleaved per element), valid for elems_.

@@ -11,6 +11,8 @@ namespace {
 
 HalfspaceGrid gridFor(const ContactParameters& p) {
   validate(p);
+  if (p.mesh != "fixed")
+    throw std::invalid_argument("mesh: the exact model uses one fixed grid (mesh = fixed)");
   if (p.nx * p.ny > 3600)  // dense matrices over the loaded elements: about 180 MB at 60 x 60
     throw std::invalid_argument("nx: the exact model supports at most nx * ny = 3600 elements");
   const double s = std::cbrt(effectiveFzMax(p) / p.fz0);
@@ -70,6 +72,7 @@ StepOutput ExactModel::step(const StepInput& in) {
     return out;
   }
   if (in.V == 0.0 && started_) {
+    prev_ = in;  // the next step's travel starts from rest
     out = last_;
     out.status = StepStatus::kStandstill;
     out.message = "V = 0: no travel, forces held";
@@ -117,6 +120,10 @@ StepOutput ExactModel::step(const StepInput& in) {
   out.a = h.a;
   out.b = h.b;
   last_ = out;
+  if (in.V == 0.0) {  // the first step at rest
+    out.status = StepStatus::kStandstill;
+    out.message = "V = 0: no travel, forces held";
+  }
   return out;
 }
 

@@ -58,6 +58,8 @@ HalfspaceSolver::HalfspaceSolver(const HalfspaceGrid& grid, double G, double nu,
   histY_ = Eigen::VectorXd::Zero(grid.size());
   sol_.tx = Eigen::VectorXd::Zero(grid.size());
   sol_.ty = Eigen::VectorXd::Zero(grid.size());
+  sol_.sx = Eigen::VectorXd::Zero(grid.size());
+  sol_.sy = Eigen::VectorXd::Zero(grid.size());
   sol_.state.assign(grid.size(), ElementState::kExterior);
 }
 
@@ -185,7 +187,8 @@ double HalfspaceSolver::sweep(const Eigen::VectorXd& c, const Creepages& w, doub
     double& ty = (*tau)[2 * i + 1];
     // Slip with this element's traction removed.
     const double cx = w.xi - w.phi * g.yc(iy) + ((*v)[i] - c[2 * i]) / dq - dxx * tx;
-    const double cy = w.eta + w.phi * g.xc(ix) + ((*v)[n + i] - c[2 * i + 1]) / dq - dyy * ty;
+    const double cy =
+        w.eta + w.phi * (g.xc(ix) + spinOffset_) + ((*v)[n + i] - c[2 * i + 1]) / dq - dyy * ty;
     const double gb = bound_[i];
     double nx = -cx / dxx, ny = -cy / dyy;  // adhesion: s = 0
     if (std::hypot(nx, ny) > gb) {          // slip at the bound
@@ -292,6 +295,7 @@ const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepage
   if (!(dq > 0.0) || !(mu >= 0.0)) throw std::invalid_argument("solve: need dq > 0, mu >= 0");
   const bool steady = mode == RollingMode::kSteady;
   const int n = static_cast<int>(elems_.size());
+  spinOffset_ = mode == RollingMode::kShift ? 0.0 : kSpinOffset * dq;
   if (systemKind_ != (steady ? 1 : 0)) buildSystem(steady);
   bound_ = mu * p_;
   Eigen::VectorXd c;
@@ -299,7 +303,7 @@ const HalfspaceSolution& HalfspaceSolver::solve(RollingMode mode, const Creepage
   Eigen::VectorXd rhs(2 * n);
   for (int i = 0; i < n; ++i) {  // adhesion: u_I - u'_I = -dq w_I
     rhs[2 * i] = c[2 * i] - dq * (w.xi - w.phi * g.yc(elems_[i] % g.my));
-    rhs[2 * i + 1] = c[2 * i + 1] - dq * (w.eta + w.phi * g.xc(elems_[i] / g.my));
+    rhs[2 * i + 1] = c[2 * i + 1] - dq * (w.eta + w.phi * (g.xc(elems_[i] / g.my) + spinOffset_));
   }
   sol_.iterations = 0;
   sol_.converged = true;
@@ -383,7 +387,7 @@ void HalfspaceSolver::recordSlip(const Eigen::VectorXd& c, const Creepages& w, d
   for (int i = 0; i < n; ++i) {
     const int ix = elems_[i] / g.my, iy = elems_[i] % g.my;
     slip_[2 * i] = w.xi - w.phi * g.yc(iy) + (v[i] - c[2 * i]) / dq;
-    slip_[2 * i + 1] = w.eta + w.phi * g.xc(ix) + (v[n + i] - c[2 * i + 1]) / dq;
+    slip_[2 * i + 1] = w.eta + w.phi * (g.xc(ix) + spinOffset_) + (v[n + i] - c[2 * i + 1]) / dq;
   }
 }
 

@@ -7,6 +7,7 @@
 
 #include "wheel_rail_contact/halfspace_influence.hpp"
 #include "wheel_rail_contact/halfspace_normal.hpp"
+#include "wheel_rail_contact/halfspace_solver.hpp"
 
 namespace wheel_rail_contact {
 
@@ -66,8 +67,8 @@ Eigen::VectorXd shape(const FoldedSystem& f, CreepageKind kind) {
   Eigen::VectorXd v(f.u.size());
   for (size_t i = 0; i < f.u.size(); ++i) {
     const double x = f.g.xc(f.u[i].ix), y = f.g.yc(f.u[i].iy);
-    if (kind == CreepageKind::kPhi)
-      v[i] = f.u[i].comp == 0 ? -y : x;
+    if (kind == CreepageKind::kPhi)  // the spin term sits dx/6 downstream, as in the solver
+      v[i] = f.u[i].comp == 0 ? -y : x + kSpinOffset * f.g.dx;
     else
       v[i] = f.u[i].comp == (kind == CreepageKind::kXi ? 0 : 1) ? 1.0 : 0.0;
   }

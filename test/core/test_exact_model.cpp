@@ -37,6 +37,14 @@ TEST(ExactModel, StatusRules) {
   o = m.step({1e-3, 0.0, 1e-3, 0, 0, 8e4});
   EXPECT_EQ(o.status, StepStatus::kStandstill);
   EXPECT_EQ(o.fx, held);
+  m.reset();
+  o = m.step({0.0, 0.0, 1e-3, 0, 0, 8e4});  // starting at rest
+  EXPECT_EQ(o.status, StepStatus::kStandstill);
+  EXPECT_EQ(o.fx, 0.0);
+  o = m.step({1e-3, 0.0, 1e-3, 0, 0, 8e4});
+  EXPECT_EQ(m.subSteps(), 0);
+  o = m.step({1e-3, 20.0, 1e-3, 0, 0, 8e4});  // 10 mm rolled (trapezoid from rest)
+  EXPECT_EQ(m.subSteps(), static_cast<int>(std::floor(0.01 / (2.2 * 6e-3 / 16))));
   EXPECT_EQ(m.step({1e-3, -1.0, 0, 0, 0, 8e4}).status, StepStatus::kRejected);
   EXPECT_EQ(m.step({1e-3, NAN, 0, 0, 0, 8e4}).status, StepStatus::kRejected);
   EXPECT_EQ(m.step({1e-3, 20.0, 0, 0, 0, 2e5}).status, StepStatus::kRejected);  // above fz_max
@@ -50,6 +58,9 @@ TEST(ExactModel, StatusRules) {
         ExactModel big(p);
       }(),
       std::invalid_argument);
+  ContactParameters adaptive = coarse();
+  adaptive.mesh = "adaptive";
+  EXPECT_THROW(ExactModel{adaptive}, std::invalid_argument);
 }
 
 TEST(ExactModel, SubStepsOfOneElementAndSteadyLimit) {

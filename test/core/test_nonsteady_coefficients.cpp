@@ -41,8 +41,8 @@ double kalker(CreepageKind k, double ab) {
 }  // namespace
 
 TEST(NonSteadyCoefficients, SteadyReproducesKalkersTableAt40x40) {
-  // Kalker's table is the continuum; a 40 x 40 grid over 1.1 times the patch sits 0-2 % above it
-  // (how the whole elements cover the ellipse). Required: within 3 %.
+  // Kalker's table is the continuum; a 40 x 40 grid over 1.1 times the patch sits 0.9-2.3 % above
+  // it (how the whole elements cover the ellipse). Required: within 3 %.
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0}) {
     const CreepCoefficients c = exactSteadyCoefficients(ab, 0.28, 40, 40);
     for (CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
@@ -53,11 +53,10 @@ TEST(NonSteadyCoefficients, SteadyReproducesKalkersTableAt40x40) {
 }
 
 TEST(NonSteadyCoefficients, ReproducesContactSteadyCoefficientsAt50x50) {
-  // CONTACT's own 50 x 50 values (../shared/reference/contact_steady_coefficients.csv). C11 and
-  // C22: same grid, same discrete normal problem, same scheme: 1e-3 relative (we reach 2e-5
-  // except 6e-4 at a/b = 0.2, where a boundary element of the normal problem may differ).
-  // C23 is 1.3-2.2 % below CONTACT (CONTACT's spin rigid slip is discretised differently; our
-  // value is the closer one to Kalker's table): 2.5 %.
+  // CONTACT's own 50 x 50 values (../shared/reference/contact_steady_coefficients.csv): same grid,
+  // same discrete normal problem, same scheme (spin slip taken dx/6 downstream, as CONTACT does).
+  // 2e-3 relative: we reach 1e-5 except at a/b = 0.2 (up to 9e-4; a boundary element of the
+  // normal problem may differ).
   const auto rows = readCsv(kReference + "contact_steady_coefficients.csv");
   ASSERT_EQ(rows.size(), 15u);
   std::map<double, CreepCoefficients> cache;
@@ -65,8 +64,7 @@ TEST(NonSteadyCoefficients, ReproducesContactSteadyCoefficientsAt50x50) {
     const double ab = std::stod(r[0]), value = std::stod(r[8]);
     if (!cache.count(ab)) cache[ab] = exactSteadyCoefficients(ab, 0.28, 50, 50);
     const double c = r[7] == "C11" ? cache[ab].c11 : r[7] == "C22" ? cache[ab].c22 : cache[ab].c23;
-    const CreepageKind k = r[7] == "C23" ? CreepageKind::kPhi : CreepageKind::kXi;
-    EXPECT_NEAR(c, value, (k == CreepageKind::kPhi ? 0.025 : 1e-3) * value) << ab << " " << r[7];
+    EXPECT_NEAR(c, value, 2e-3 * value) << ab << " " << r[7];
   }
 }
 
@@ -94,7 +92,9 @@ TEST(NonSteadyCoefficients, LongWavesTendToSteadyShortWavesLag) {
     const NonSteadyCoefficients c(k, 0.5, 0.28, 16, 16);
     EXPECT_NEAR(c.at(1e5).real(), c.steady(), 1e-3 * c.steady()) << toString(k);
     EXPECT_LT(std::abs(c.at(2.0)), 0.5 * c.steady()) << toString(k);
-    if (k != CreepageKind::kPhi) EXPECT_LT(c.at(5.0).imag(), 0.0) << toString(k);  // a lag
+    if (k != CreepageKind::kPhi) {
+      EXPECT_LT(c.at(5.0).imag(), 0.0) << toString(k);  // a lag
+    }
   }
   EXPECT_THROW(NonSteadyCoefficients(CreepageKind::kXi, -1.0, 0.28, 10, 10), std::invalid_argument);
 }
