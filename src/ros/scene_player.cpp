@@ -1,7 +1,7 @@
 // scene_player: stands in for a vehicle simulator. Replays a scenario CSV (t,V,xi,eta,phi,fz, the
 // format contact_cli run reads) on the relative topics normal_load and creepage, one row per step,
 // stamps = stamp_offset + t, paced in wall time by time_scale. For each row the load goes first,
-// load_lead seconds before the creepage, so the node steps with that row's load.
+// load_lead seconds before the creepage when it changed, so the node steps with that row's load.
 // Private parameters: scene (path, required), time_scale (scene s per wall s, default 1),
 // start_delay (wall s after the node subscribed, default 1), subscribers (wait for this many
 // creepage subscribers, default 1), stamp_offset (s; < 0 = ros::Time::now() at start, the default),
@@ -11,6 +11,7 @@
 
 #include <ros/master.h>
 
+#include <cmath>
 #include <fstream>
 #include <stdexcept>
 
@@ -78,6 +79,7 @@ int main(int argc, char** argv) {
   const ros::WallTime start = ros::WallTime::now();
   ROS_INFO("scene_player %s: %zu rows of %s at %gx", nh.getNamespace().c_str(), rows.size(),
            scene.c_str(), timeScale);
+  double lastLoad = std::nan("");
   for (const auto& r : rows) {
     const ros::WallTime due = start + ros::WallDuration((r.t - rows.front().t) / timeScale);
     const ros::WallDuration wait = due - ros::WallTime::now();
@@ -88,7 +90,8 @@ int main(int argc, char** argv) {
     load.header.stamp = stamp;
     load.force = r.fz;
     loadPub.publish(load);
-    if (loadLead > 0.0) ros::WallDuration(loadLead).sleep();
+    if (loadLead > 0.0 && r.fz != lastLoad) ros::WallDuration(loadLead).sleep();
+    lastLoad = r.fz;
     wheel_rail_contact::Creepage c;
     c.header.stamp = stamp;
     c.longitudinal = r.xi;

@@ -90,6 +90,7 @@ class ContactClient {
     m.spin = phi;
     m.velocity = V;
     creepPub_.publish(m);
+    ++sent;
     if (!spinUntil([&] { return states.size() > s0 && forces.size() > f0; }))
       return ::testing::AssertionFailure() << ns_ << ": no output for the creepage at " << stamp;
     if (states.size() != s0 + 1 || forces.size() != f0 + 1)
@@ -117,12 +118,22 @@ class ContactClient {
     srv.request.velocity = V;
     srv.request.normal_force = fz;
     if (!step_.call(srv)) return false;
+    ++sent;
     *out = srv.response;
     return true;
   }
 
+  /// After a short wait: exactly one message on each output per creepage and step call.
+  ::testing::AssertionResult oneOutputPerInput() {
+    spinFor(0.2);
+    if (states.size() == sent && forces.size() == sent) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << ns_ << ": " << sent << " inputs, " << states.size()
+                                         << " contact_state, " << forces.size() << " creep_force";
+  }
+
   std::vector<ContactState> states;
   std::vector<geometry_msgs::WrenchStamped> forces;
+  size_t sent = 0;  ///< creepage messages and step calls
 
  private:
   void onState(const ContactState::ConstPtr& m) { states.push_back(*m); }
