@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/kalker_coefficients.hpp"
 #include "wheel_rail_contact/patch_mesh.hpp"
 
@@ -33,6 +34,9 @@ struct CreepForces {
   double mz = 0.0;                ///< spin moment about the patch centre [N m]
   double adhesionFraction = 1.0;  ///< loaded area in adhesion / loaded area [-]
 };
+
+/// A computed step's output (status ok) from the integrated forces, the load and the patch.
+StepOutput stepOutput(const CreepForces& f, double fz, double a, double b);
 
 /// Per-node fields on a PatchMesh (index = mesh.index(i, j)).
 struct TractionField {

@@ -12,6 +12,18 @@ Flexibilities kalkerFlexibilities(double a, double b, double G, const CreepCoeff
   return L;
 }
 
+StepOutput stepOutput(const CreepForces& f, double fz, double a, double b) {
+  StepOutput out;
+  out.fx = f.fx;
+  out.fy = f.fy;
+  out.mz = f.mz;
+  out.fz = fz;
+  out.a = a;
+  out.b = b;
+  out.adhesionFraction = f.adhesionFraction;
+  return out;
+}
+
 void TractionField::resize(int n) {
   tx.setZero(n);
   ty.setZero(n);

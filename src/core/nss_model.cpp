@@ -103,13 +103,7 @@ StepOutput NssModel::step(const StepInput& in) {
   } else {
     f = integrateTraction(mesh_, field_);  // no time has passed: the history stands
   }
-  out.fx = f.fx;
-  out.fy = f.fy;
-  out.mz = f.mz;
-  out.fz = in.fz;
-  out.a = h.a;
-  out.b = h.b;
-  out.adhesionFraction = f.adhesionFraction;
+  out = stepOutput(f, in.fz, h.a, h.b);
   if (!adaptive_ && (h.a > mesh_.a() * (1 + 1e-12)))
     out.message = "fz exceeds fz_max: the patch is clipped to the fixed mesh";
   last_ = out;

@@ -27,13 +27,7 @@ StepOutput SteadyModel::step(const StepInput& in) {
   parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_.bound);
   const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, c_),
                                       {in.xi, in.eta, in.phi}, &field_);
-  out.fx = f.fx;
-  out.fy = f.fy;
-  out.mz = f.mz;
-  out.fz = in.fz;
-  out.a = h.a;
-  out.b = h.b;
-  out.adhesionFraction = f.adhesionFraction;
+  out = stepOutput(f, in.fz, h.a, h.b);
   last_ = out;
   return out;
 }
