@@ -5,8 +5,8 @@ Guiral, Alonso, Baeza, Gimenez 2013, combined case eq. 17 and the varying-load c
 on a circular patch a = b = 20 mm at Fz0 = 470.5 N, G = 1 MPa, nu = 0.28, mu = 0.4013,
 V = 25 mm/s (see config/paper.yaml). lambda = 10 a. One row per step of V dt = 2a/20 (one
 FastSim element at nx = 20), two wavelengths.
-Spin: the paper gives phi = 0.001 without units; we read it as the dimensionless spin
-phi * sqrt(a b) = 0.001, i.e. phi = 0.05 1/m here (choice).
+Spin: the paper gives phi = 0.001 without units; we read it in CONTACT's unit 1/mm, i.e.
+phi = 1 1/m (choice, the same as src/core/paper_scenes.cpp and the README).
 usage: make_scenes.py [OUT_DIR]   (default: scenes/)
 """
 import math
@@ -19,7 +19,7 @@ V = 0.025  # m/s
 LAM = 10 * A
 DT = (2 * A / 20) / V  # s, V dt = one element at nx = 20
 ROWS = int(round(2 * LAM / (V * DT))) + 1
-PHI = 0.001 / A  # 1/m, phi * sqrt(ab) = 0.001
+PHI = 1.0  # 1/m: the paper's 0.001 read in 1/mm
 
 
 def write(path, header, rows):
@@ -45,7 +45,7 @@ def main(out):
     note = "# written by scripts/make_scenes.py; parameters in config/paper.yaml\n"
     write(out / "paper_combined.csv",
           "# Combined creepages (paper eq. 17): xi = 0.052 cos(2 pi q/lambda),\n"
-          "# eta = 0.052 cos(2 pi (q - lambda/2)/lambda), phi sqrt(ab) = 0.001, lambda/a = 10\n" + note,
+          "# eta = 0.052 cos(2 pi (q - lambda/2)/lambda), phi = 0.001 /mm = 1 1/m, lambda/a = 10\n" + note,
           combined)
     write(out / "paper_varying_load.csv",
           "# Varying load (paper section 4.2): Fz = Fz0 (1 + 0.25 sin(2 pi q/lambda)), xi = 0.052,\n"
