@@ -19,6 +19,23 @@ static_assert(ContactState::STATUS_OK == 0 && ContactState::STATUS_NO_LOAD == 1 
 
 namespace {
 
+// ContactState and Step's response carry the same state fields under the same names.
+template <class State>
+void fillState(const StepResult& r, const std::string& model, State* m) {
+  m->fx = r.out.fx;
+  m->fy = r.out.fy;
+  m->fz = r.out.fz;
+  m->mz = r.out.mz;
+  m->a = r.out.a;
+  m->b = r.out.b;
+  m->adhesion_fraction = r.out.adhesionFraction;
+  m->model = model;
+  m->dt = r.dt;
+  m->solver_time = r.solverTime;
+  m->status = contactStateStatus(r.out.status);
+  m->message = r.out.message;
+}
+
 /// A parameter value as the text setParameter() parses, so node and CLI share one rule.
 std::string parameterText(const std::string& name, XmlRpc::XmlRpcValue& v) {
   switch (v.getType()) {
@@ -169,18 +186,7 @@ bool ContactNode::stepService(Step::Request& req, Step::Response& res) {
       stepper_->stepWithLoad(static_cast<int64_t>(req.stamp.toNSec()), req.velocity,
                              req.longitudinal, req.lateral, req.spin, req.normal_force);
   report(r);
-  res.fx = r.out.fx;
-  res.fy = r.out.fy;
-  res.fz = r.out.fz;
-  res.mz = r.out.mz;
-  res.a = r.out.a;
-  res.b = r.out.b;
-  res.adhesion_fraction = r.out.adhesionFraction;
-  res.model = stepper_->modelName();
-  res.dt = r.dt;
-  res.solver_time = r.solverTime;
-  res.status = contactStateStatus(r.out.status);
-  res.message = r.out.message;
+  fillState(r, stepper_->modelName(), &res);
   publish(req.stamp, r);
   return true;
 }
@@ -222,18 +228,7 @@ void ContactNode::publish(const ros::Time& stamp, const StepResult& r) {
   w.wrench.torque.z = r.out.mz;
   ContactState s;
   s.header = w.header;
-  s.fx = r.out.fx;
-  s.fy = r.out.fy;
-  s.fz = r.out.fz;
-  s.mz = r.out.mz;
-  s.a = r.out.a;
-  s.b = r.out.b;
-  s.adhesion_fraction = r.out.adhesionFraction;
-  s.model = stepper_->modelName();
-  s.dt = r.dt;
-  s.solver_time = r.solverTime;
-  s.status = contactStateStatus(r.out.status);
-  s.message = r.out.message;
+  fillState(r, stepper_->modelName(), &s);
   forcePub_.publish(w);
   statePub_.publish(s);
 }
