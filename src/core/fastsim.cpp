@@ -117,12 +117,9 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
     StripSums strip;
     for (int i = 0; i < mesh.nx(); ++i) {
       const int k = mesh.index(i, j);
-      // Step from the upstream node (the leading edge for i = 0); the spin term is linear in x, so
-      // its value at the step's midpoint integrates it exactly.
-      const double h = (i == 0) ? 0.5 * dx : dx;
-      const double xMid = aj - (i + 0.5) * dx + 0.5 * h;
-      tx -= h * sx;
-      ty -= h * (gy + gphi * xMid);
+      const UpstreamStep step(i, dx, aj);
+      tx -= step.h * sx;
+      ty -= step.h * (gy + gphi * step.xMid);
       strip.node(k, mesh.xNorms()(k), f->bound(k), &tx, &ty, f);
     }
     sums.addStrip(mesh, j, strip);

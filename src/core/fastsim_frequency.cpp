@@ -22,8 +22,8 @@ std::complex<double> fastsimNonSteadyCoefficient(CreepageKind kind, double a_ove
     const double dx = mesh.stripStep(j), aj = mesh.stripHalfLength(j);
     C tau = 0.0, strip = 0.0;
     for (int i = 0; i < nx; ++i) {
-      const double h = (i == 0) ? 0.5 * dx : dx;
-      const double xMid = aj - (i + 0.5) * dx + 0.5 * h;
+      const UpstreamStep step(i, dx, aj);
+      const double h = step.h, xMid = step.xMid;
       const double drive = kind == CreepageKind::kXi    ? 1.0 / L.L1
                            : kind == CreepageKind::kEta ? 1.0 / L.L2
                                                         : xMid / L.L3;

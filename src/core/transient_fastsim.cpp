@@ -54,8 +54,8 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
     for (int i = 0; i < mesh.nx(); ++i) {
       const int k = mesh.index(i, j);
       const int full = i > 0;
-      const double h = full ? dx : 0.5 * dx;
-      const double xMid = aj - (i + 0.5) * dx + 0.5 * h;
+      const UpstreamStep step(i, dx, aj);
+      const double h = step.h, xMid = step.xMid;
       const double ox = st->tx(k), oy = st->ty(k), qx = st->sx(k), qy = st->sy(k);
       tx = (tx + h * (X.beta * ox - qx * X.invV - sx)) * ix[full];
       ty = (ty + h * (Y.beta * oy - qy * Y.invV - gy - gphi * xMid)) * iy[full];

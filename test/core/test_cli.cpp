@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../../src/cli/cli.hpp"
+#include "csv_rows.hpp"
 #include "wheel_rail_contact/kalker_coefficients.hpp"
 
 using namespace wheel_rail_contact;
@@ -32,17 +33,8 @@ std::string writeTemp(const std::string& name, const std::string& text) {
 }
 
 std::vector<std::vector<std::string>> parseCsv(const std::string& text) {
-  std::vector<std::vector<std::string>> rows;
   std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    std::string c;
-    while (std::getline(ss, c, ',')) cells.push_back(c);
-    rows.push_back(cells);
-  }
-  return rows;
+  return csvRows(in);
 }
 
 }  // namespace

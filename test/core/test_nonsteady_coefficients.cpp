@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "csv_rows.hpp"
 #include "wheel_rail_contact/halfspace_solver.hpp"
 #include "wheel_rail_contact/kalker_coefficients.hpp"
 #include "wheel_rail_contact/nonsteady_coefficients.hpp"
@@ -18,17 +19,9 @@ namespace {
 
 std::vector<std::vector<std::string>> readCsv(const std::string& path) {
   std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    std::string c;
-    while (std::getline(ss, c, ',')) cells.push_back(c);
-    rows.push_back(cells);
-  }
-  return rows;
+  std::string header;
+  std::getline(in, header);
+  return csvRows(in);
 }
 
 const std::string kReference = std::string(WRC_SOURCE_DIR) + "/../shared/reference/";
