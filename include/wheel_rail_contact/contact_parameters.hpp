@@ -16,8 +16,11 @@ struct ContactParameters {
   double fz0 = 8.0e4;            ///< reference normal load [N]
   int nx = 20;                   ///< FastSim nodes per strip [-]
   int ny = 20;                   ///< FastSim strips [-]
-  std::string model = "steady";  ///< steady | shen-li | nss | exact
-  std::string mesh = "fixed";    ///< fixed | adaptive
+  std::string model = "steady";  ///< steady | shen-li | nss | exact | auto
+  std::string mesh = "fixed";    ///< fixed | adaptive | auto
+  /// Error the "auto" model may spend, as a fraction of the peak force [-]: it sets the mesh size
+  /// (nx, ny are then chosen, not read) and when steady FastSim is enough.
+  double tolerance = 0.05;
   /// Largest normal load the fixed mesh must cover [N]; 0 = 1.5 * fz0.
   double fz_max = 0.0;
   /// chi table file for nss; empty = the table shipped in the package (config/chi_table.csv).

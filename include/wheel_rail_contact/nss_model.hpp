@@ -1,7 +1,9 @@
 /// The non-steady FastSim models behind ContactModel: "shen-li" (time term with the static
 /// flexibilities, F == 1) and "nss" (Alonso & Gimenez dynamic flexibility with the weighted chi of
 /// Guiral et al. 2013, eq. 15), on a fixed mesh (sized for fz_max) or an adaptive one (follows
-/// a(t), b(t), history remapped by eq. 19). Units as in contact_model.hpp.
+/// a(t), b(t), history remapped by eq. 19) or an "auto" one (held while the patch stays within a
+/// narrow band under it, remapped only when the patch leaves the band). Units as in
+/// contact_model.hpp.
 #pragma once
 
 #include "wheel_rail_contact/chi_table.hpp"
@@ -20,11 +22,27 @@ class NssModel : public ContactModel {
   void reset() override;
   std::string name() const override { return p_.model; }
 
+  /// A steady FastSim step on this model's own mesh that leaves its steady traction as the
+  /// history (filter at rest): the state the time-term march holds after `in` has been kept for
+  /// long. A later step() continues from it without a jump; what the "auto" model runs while the
+  /// inputs change slowly.
+  StepOutput settle(const StepInput& in);
+  /// Steady FastSim for `in` on the mesh and bound the last step() or settle() used, with the
+  /// history untouched: what "auto" blends towards when it hands back to steady FastSim.
+  StepOutput steadyAlongside(const StepInput& in);
+
   const PatchMesh& mesh() const { return mesh_; }
   const TractionField& traction() const { return field_; }
 
  private:
+  /// Screens `in`, sizes the mesh (carrying the history along when `carry`) and the bound for its
+  /// load; false when the step ends there with `out` filled.
+  bool prepare(const StepInput& in, bool carry, HertzEllipse* h, StepOutput* out);
+  /// The mesh semi-axes the patch h asks for; false when the current mesh may stay.
+  bool meshFor(const HertzEllipse& h, double* a, double* b) const;
   void followPatch(const HertzEllipse& h);
+  void updateWeights(const Creepages& c, double a, double b);
+  StepOutput finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h);
   void keepDisplacement(double a);
   void chooseFilters(const Creepages& c, double a, double b, double V, double dt);
   StepOutput hold(StepStatus status, const char* why) const;
@@ -33,11 +51,12 @@ class NssModel : public ContactModel {
   ReferencePatch ref_;
   CreepCoefficients kalker_;
   bool adaptive_ = false;
+  double band_ = 0.0;     // mesh "auto": relative margin of the mesh over the patch (else 0)
   bool dynamic_ = false;  // nss (else shen-li)
   ChiParameters chi_[3];  // kinds 11, 22, 23 at this a/b (a/b does not change with load)
   PatchMesh mesh_, spare_;
   TransientState state_, remapped_;
-  TractionField field_;
+  TractionField field_, scratch_;
   FilterZ zx_, zy_;
   double wx_[2], wy_[2];  // eq. 15 weights, kept while both vanish
   StepOutput last_;

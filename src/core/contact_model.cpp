@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "wheel_rail_contact/auto_model.hpp"
 #include "wheel_rail_contact/exact_model.hpp"
 #include "wheel_rail_contact/nss_model.hpp"
 #include "wheel_rail_contact/steady_model.hpp"
@@ -58,13 +59,16 @@ std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
   if (p.model == "steady") return std::make_unique<SteadyModel>(p);
   if (p.model == "exact") return std::make_unique<ExactModel>(p);
   if (p.model == "shen-li") return std::make_unique<NssModel>(p, ChiTable::uniform({}));
-  if (p.model == "nss") {
+  if (p.model == "nss" || p.model == "auto") {
     const std::string path = p.chi_table.empty() ? ChiTable::defaultPath() : p.chi_table;
+    ChiTable chi;
     try {
-      return std::make_unique<NssModel>(p, ChiTable::load(path));
+      chi = ChiTable::load(path);
     } catch (const std::runtime_error& e) {
       throw std::invalid_argument(std::string("chi_table: ") + e.what());
     }
+    if (p.model == "auto") return std::make_unique<AutoModel>(p, chi);
+    return std::make_unique<NssModel>(p, chi);
   }
   throw std::invalid_argument("model: '" + p.model + "' is not available in this build yet");
 }

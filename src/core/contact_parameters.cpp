@@ -50,8 +50,11 @@ std::vector<ParameterDoc> parameterDocs() {
       {"fz0", "N", str(d.fz0), "reference normal load; a, b scale as (fz/fz0)^(1/3) (> 0)"},
       {"nx", "-", std::to_string(d.nx), "FastSim nodes per strip, [2, 400]"},
       {"ny", "-", std::to_string(d.ny), "FastSim strips, [1, 400]"},
-      {"model", "", d.model, "steady | shen-li | nss | exact"},
-      {"mesh", "", d.mesh, "fixed (grid for fz_max) | adaptive (grid follows the patch)"},
+      {"model", "", d.model, "steady | shen-li | nss | exact | auto (steady or nss, as needed)"},
+      {"mesh", "", d.mesh,
+       "fixed (grid for fz_max) | adaptive (grid follows the patch) | auto (remap when needed)"},
+      {"tolerance", "-", str(d.tolerance),
+       "model auto: force error allowed, fraction of the peak force, (0, 1)"},
       {"fz_max", "N", str(d.fz_max), "largest load the fixed mesh covers; 0 = 1.5 fz0"},
       {"chi_table", "", "(shipped)", "chi table CSV for nss; empty = config/chi_table.csv"},
   };
@@ -69,10 +72,13 @@ void validate(const ContactParameters& p) {
     fail("b0", "a0/b0 = " + str(ab) + " is outside Kalker's table [0.1, 10]");
   if (p.nx < 2 || p.nx > 400) fail("nx", "must be in [2, 400], got " + std::to_string(p.nx));
   if (p.ny < 1 || p.ny > 400) fail("ny", "must be in [1, 400], got " + std::to_string(p.ny));
-  if (p.model != "steady" && p.model != "shen-li" && p.model != "nss" && p.model != "exact")
-    fail("model", "must be one of steady, shen-li, nss, exact; got '" + p.model + "'");
-  if (p.mesh != "fixed" && p.mesh != "adaptive")
-    fail("mesh", "must be fixed or adaptive, got '" + p.mesh + "'");
+  if (p.model != "steady" && p.model != "shen-li" && p.model != "nss" && p.model != "exact" &&
+      p.model != "auto")
+    fail("model", "must be one of steady, shen-li, nss, exact, auto; got '" + p.model + "'");
+  if (p.mesh != "fixed" && p.mesh != "adaptive" && p.mesh != "auto")
+    fail("mesh", "must be fixed, adaptive or auto, got '" + p.mesh + "'");
+  if (!(p.tolerance > 0.0 && p.tolerance < 1.0))
+    fail("tolerance", "must be in (0, 1), got " + str(p.tolerance));
   if (!(p.fz_max >= 0.0) || !std::isfinite(p.fz_max))
     fail("fz_max", "must be >= 0 (0 = 1.5 fz0), got " + str(p.fz_max));
 }
@@ -98,6 +104,8 @@ void setParameter(ContactParameters* p, const std::string& name, const std::stri
     p->model = value;
   else if (name == "mesh")
     p->mesh = value;
+  else if (name == "tolerance")
+    p->tolerance = parseDouble(name, value);
   else if (name == "fz_max")
     p->fz_max = parseDouble(name, value);
   else if (name == "chi_table")

@@ -4,20 +4,29 @@
 
 namespace wheel_rail_contact {
 
+namespace {
+// Mesh "auto": the mesh stands 2 % proud of the patch and is kept until the patch outgrows it or
+// shrinks 4 % inside it. A load varying by +-25 % (a by +-8 %) then remaps a few times a period
+// instead of every step: cheaper, and less interpolation smearing of the history.
+constexpr double kMeshBand = 0.02;
+}  // namespace
+
 NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
     : p_(p),
       ref_{p.a0, p.b0, p.fz0},
       kalker_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
-      adaptive_(p.mesh == "adaptive"),
+      adaptive_(p.mesh != "fixed"),
+      band_(p.mesh == "auto" ? kMeshBand : 0.0),
       dynamic_(p.model == "nss") {
   for (int k = 0; k < 3; ++k)
     chi_[k] = dynamic_ ? chi.at(static_cast<CreepageKind>(k), p.a0 / p.b0) : ChiParameters{};
   const HertzEllipse largest = ref_.at(adaptive_ ? p.fz0 : effectiveFzMax(p));
-  mesh_ = PatchMesh(p.nx, p.ny, largest.a, largest.b);
+  mesh_ = PatchMesh(p.nx, p.ny, largest.a * (1.0 + band_), largest.b * (1.0 + band_));
   spare_ = mesh_;
   state_.resize(mesh_.size());
   remapped_.resize(mesh_.size());
   field_.resize(mesh_.size());
+  scratch_.resize(mesh_.size());
   reset();
 }
 
@@ -32,7 +41,7 @@ void NssModel::reset() {
   wx_[1] = wy_[1] = 0.0;
   last_ = StepOutput();
   lastA_ = 0.0;
-  if (adaptive_) mesh_.scale(ref_.a0, ref_.b0);
+  if (adaptive_) mesh_.scale(ref_.a0 * (1.0 + band_), ref_.b0 * (1.0 + band_));
 }
 
 StepOutput NssModel::hold(StepStatus status, const char* why) const {
@@ -42,12 +51,21 @@ StepOutput NssModel::hold(StepStatus status, const char* why) const {
   return out;
 }
 
+bool NssModel::meshFor(const HertzEllipse& h, double* a, double* b) const {
+  if (!adaptive_) return false;
+  if (band_ > 0.0 && h.a <= mesh_.a() && h.a * (1.0 + 2.0 * band_) >= mesh_.a()) return false;
+  *a = h.a * (1.0 + band_);
+  *b = h.b * (1.0 + band_);
+  return *a != mesh_.a() || *b != mesh_.b();
+}
+
 void NssModel::followPatch(const HertzEllipse& h) {
-  if (!adaptive_ || (h.a == mesh_.a() && h.b == mesh_.b())) return;
-  spare_.scale(h.a, h.b);
+  double a = 0.0, b = 0.0;
+  if (!meshFor(h, &a, &b)) return;
+  spare_.scale(a, b);
   remapState(mesh_, state_, spare_, &remapped_);
   std::swap(state_, remapped_);
-  mesh_.scale(h.a, h.b);
+  mesh_.scale(a, b);
 }
 
 void NssModel::keepDisplacement(double a) {
@@ -63,11 +81,7 @@ void NssModel::keepDisplacement(double a) {
   lastA_ = a;
 }
 
-void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, double dt) {
-  if (!dynamic_) {
-    zx_ = zy_ = FilterZ{};
-    return;
-  }
+void NssModel::updateWeights(const Creepages& c, double a, double b) {
   const double spin = std::abs(c.phi) * std::sqrt(a * b);
   if (std::abs(c.xi) + spin > 0.0) {
     wx_[0] = std::abs(c.xi);
@@ -77,23 +91,79 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
     wy_[0] = std::abs(c.eta);
     wy_[1] = spin;
   }
+}
+
+void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, double dt) {
+  if (!dynamic_) {
+    zx_ = zy_ = FilterZ{};
+    return;
+  }
+  updateWeights(c, a, b);
   const FilterZ z11 = discretise(chi_[0], a, V, dt), z22 = discretise(chi_[1], a, V, dt),
                 z23 = discretise(chi_[2], a, V, dt);
   zx_ = weightedFilter(z11, wx_[0], z23, wx_[1]);
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
 }
 
+bool NssModel::prepare(const StepInput& in, bool carry, HertzEllipse* h, StepOutput* out) {
+  if (screenStep(in, out)) {
+    if (out->status == StepStatus::kNoLoad) reset();  // loss of contact clears the history
+    return false;
+  }
+  if (in.V == 0.0) {
+    *out = hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");
+    return false;
+  }
+  *h = ref_.at(in.fz);
+  double a = 0.0, b = 0.0;
+  if (carry) {
+    followPatch(*h);
+    keepDisplacement(h->a);
+  } else {  // the caller overwrites the history
+    if (meshFor(*h, &a, &b)) mesh_.scale(a, b);
+    lastA_ = h->a;
+  }
+  parabolicBound(mesh_, h->a, h->b, in.fz, p_.mu, &field_.bound);
+  return true;
+}
+
+StepOutput NssModel::finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h) {
+  StepOutput out = stepOutput(f, in.fz, h.a, h.b);
+  if (!adaptive_ && (h.a > mesh_.a() * (1 + 1e-12)))
+    out.message = "fz exceeds fz_max: the patch is clipped to the fixed mesh";
+  last_ = out;
+  return out;
+}
+
+StepOutput NssModel::settle(const StepInput& in) {
+  StepOutput out;
+  HertzEllipse h;
+  if (!prepare(in, false, &h, &out)) return out;
+  const Creepages c{in.xi, in.eta, in.phi};
+  updateWeights(c, h.a, h.b);
+  const CreepForces f =
+      steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, &field_);
+  // Under constant input the time-term march's fixed point is this traction with the filter at
+  // rest (zero traction rate), so the next step() starts from it without a jump.
+  state_.tx = field_.tx;
+  state_.ty = field_.ty;
+  state_.sx.setZero();
+  state_.sy.setZero();
+  return finish(f, in, h);
+}
+
+StepOutput NssModel::steadyAlongside(const StepInput& in) {
+  const HertzEllipse h = ref_.at(in.fz);
+  scratch_.bound = field_.bound;
+  const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_),
+                                      {in.xi, in.eta, in.phi}, &scratch_);
+  return stepOutput(f, in.fz, h.a, h.b);
+}
+
 StepOutput NssModel::step(const StepInput& in) {
   StepOutput out;
-  if (screenStep(in, &out)) {
-    if (out.status == StepStatus::kNoLoad) reset();  // loss of contact clears the history
-    return out;
-  }
-  if (in.V == 0.0) return hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");
-  const HertzEllipse h = ref_.at(in.fz);
-  followPatch(h);
-  keepDisplacement(h.a);
-  parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_.bound);
+  HertzEllipse h;
+  if (!prepare(in, true, &h, &out)) return out;
   CreepForces f;
   if (in.dt > 0.0) {
     const Creepages c{in.xi, in.eta, in.phi};
@@ -103,11 +173,7 @@ StepOutput NssModel::step(const StepInput& in) {
   } else {
     f = integrateTraction(mesh_, field_);  // no time has passed: the history stands
   }
-  out = stepOutput(f, in.fz, h.a, h.b);
-  if (!adaptive_ && (h.a > mesh_.a() * (1 + 1e-12)))
-    out.message = "fz exceeds fz_max: the patch is clipped to the fixed mesh";
-  last_ = out;
-  return out;
+  return finish(f, in, h);
 }
 
 }  // namespace wheel_rail_contact

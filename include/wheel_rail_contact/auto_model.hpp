@@ -1,0 +1,73 @@
+/// Model "auto": no more model than the scene needs. Steady FastSim while the inputs change slowly
+/// compared with the patch's relaxation length, NSS-FastSim while they do not; both on one mesh
+/// whose size comes from the error tolerance. Steady FastSim leaves its traction as the history, so
+/// NSS-FastSim takes over without a jump; the way back blends the two over two patch transits.
+/// Units as in contact_model.hpp; lengths m, travelled distance q m.
+#pragma once
+
+#include "wheel_rail_contact/kalker_coefficients.hpp"
+#include "wheel_rail_contact/nss_model.hpp"
+
+namespace wheel_rail_contact {
+
+/// How fast the inputs change per distance rolled, as the force error steady FastSim would make:
+/// a first-order lag of relaxation length l gives F_steady - F = l dF/dq, so the estimate is
+/// l |dF_lin/dq| / |F_lin| (linear-theory force of the creepages, peak envelopes over `memory`),
+/// and l |dfz/dq| / fz for the load.
+class SteadinessMonitor {
+ public:
+  /// l: relaxation length [m]; memory: distance over which the envelopes decay by 1/e [m];
+  /// c: Kalker's coefficients weighting xi, eta and spin into a force; sqrtAb: sqrt(a0 b0) [m].
+  SteadinessMonitor(double l, double memory, const CreepCoefficients& c, double sqrtAb);
+  /// One usable step (dq = V dt > 0, fz > 0). Returns the current estimate [-].
+  double update(const StepInput& in);
+  void reset();
+  double estimate() const { return estimate_; }
+
+ private:
+  double l_, memory_, sqrtAb_;
+  CreepCoefficients c_;
+  bool primed_ = false;
+  double fx_ = 0.0, fy_ = 0.0, fz_ = 0.0;  // previous linear force (per G a b) and load
+  double slope_ = 0.0, size_ = 0.0, load_ = 0.0, estimate_ = 0.0;
+};
+
+class AutoModel : public ContactModel {
+ public:
+  /// p.model must be "auto"; p.nx, p.ny are replaced by meshForTolerance(p, half the tolerance).
+  AutoModel(const ContactParameters& p, const ChiTable& chi);
+  StepOutput step(const StepInput& in) override;
+  void reset() override;
+  /// "auto:steady", "auto:nss" or "auto:blend": what produced the last step.
+  std::string name() const override;
+
+  bool nonSteady() const { return mode_ != Mode::kSteady; }  ///< the last step ran NSS-FastSim
+  int meshSize() const { return n_; }                        ///< nodes per strip and strips chosen
+  double relaxationLength() const { return l_; }             ///< at fz0 [m]
+  const SteadinessMonitor& monitor() const { return monitor_; }
+
+ private:
+  ContactParameters p_;
+  int n_;
+  double l_;
+  NssModel nss_;
+  enum class Mode { kSteady, kNss, kHandBack };
+  void choose(const StepInput& in);
+  StepOutput handBack(const StepInput& in);
+
+  SteadinessMonitor monitor_;
+  Mode mode_ = Mode::kSteady;
+  double calm_ = 0.0;    // distance rolled since the estimate fell below the return threshold [m]
+  double handed_ = 0.0;  // distance rolled since the hand-back began [m]
+};
+
+/// The smallest n in 5..40 whose n x n steady FastSim forces stay within share * mu fz of a
+/// 60 x 60 mesh over adhesion, partial slip, full slip, spin and combined creepage at fz0; 40 if
+/// none does.
+int meshForTolerance(const ContactParameters& p, double share);
+
+/// The relaxation length l [m] at fz0 of NSS-FastSim with `chi`: the l of a first-order lag with
+/// the same steady-state error |1 - C^(lambda)/C| at lambda/a = 50, the largest over the kinds.
+double nssRelaxationLength(const ContactParameters& p, const ChiTable& chi);
+
+}  // namespace wheel_rail_contact

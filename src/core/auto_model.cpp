@@ -1,0 +1,174 @@
+#include "wheel_rail_contact/auto_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "wheel_rail_contact/fastsim_frequency.hpp"
+#include "wheel_rail_contact/steady_model.hpp"
+
+namespace wheel_rail_contact {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// The estimate may spend half the tolerance on the mesh and half on leaving out the time term;
+// NSS-FastSim starts above that half and hands back below a quarter, after the patch has rolled
+// kCalmTransits lengths 2a in calm, so its history has flushed through the patch.
+constexpr double kMeshShare = 0.5;
+constexpr double kStartShare = 0.5;
+constexpr double kReturnShare = 0.25;
+constexpr double kCalmTransits = 2.0;
+
+// The envelopes forget over half the longest wavelength that still needs NSS-FastSim
+// (2 pi l / (kStartShare tolerance)), so a harmonic input keeps one mode over its whole period.
+double envelopeMemory(double l, double tolerance) {
+  return kPi * l / (kStartShare * tolerance);
+}
+
+ContactParameters withMesh(ContactParameters p, int n, const char* model) {
+  p.nx = p.ny = n;
+  p.model = model;
+  return p;
+}
+
+}  // namespace
+
+SteadinessMonitor::SteadinessMonitor(double l, double memory, const CreepCoefficients& c,
+                                     double sqrtAb)
+    : l_(l), memory_(memory), sqrtAb_(sqrtAb), c_(c) {}
+
+void SteadinessMonitor::reset() {
+  primed_ = false;
+  slope_ = size_ = load_ = estimate_ = 0.0;
+}
+
+double SteadinessMonitor::update(const StepInput& in) {
+  const double dq = in.V * in.dt;
+  const double fx = c_.c11 * in.xi, fy = c_.c22 * in.eta + c_.c23 * in.phi * sqrtAb_;
+  if (primed_) {
+    const double fade = std::exp(-dq / memory_);
+    slope_ = std::max(std::hypot(fx - fx_, fy - fy_) / dq, slope_ * fade);
+    load_ = std::max(std::abs(in.fz - fz_) / (in.fz * dq), load_ * fade);
+    size_ = std::max(std::hypot(fx, fy), size_ * fade);
+  } else {
+    size_ = std::hypot(fx, fy);
+  }
+  fx_ = fx;
+  fy_ = fy;
+  fz_ = in.fz;
+  primed_ = true;
+  estimate_ = l_ * std::max(size_ > 0.0 ? slope_ / size_ : 0.0, load_);
+  return estimate_;
+}
+
+int meshForTolerance(const ContactParameters& p, double share) {
+  const CreepCoefficients c = kalkerCoefficients(p.a0 / p.b0, p.nu);
+  // Creepages at fractions of full slip of the simplified theory (3 mu fz over G a b C).
+  const double s = 3.0 * p.mu * p.fz0 / (p.G * p.a0 * p.b0);
+  const double xi = s / c.c11, eta = s / c.c22, phi = s / (c.c23 * std::sqrt(p.a0 * p.b0));
+  const StepInput cases[] = {
+      {0.0, 1.0, 0.2 * xi, 0.0, 0.0, p.fz0},       {0.0, 1.0, 0.6 * xi, 0.0, 0.0, p.fz0},
+      {0.0, 1.0, 0.9 * xi, 0.0, 0.0, p.fz0},       {0.0, 1.0, 0.0, 0.5 * eta, 0.0, p.fz0},
+      {0.0, 1.0, 0.0, 0.0, 0.5 * phi, p.fz0},      {0.0, 1.0, 0.0, 0.0, 1.5 * phi, p.fz0},
+      {0.0, 1.0, 0.4 * xi, 0.4 * eta, 0.0, p.fz0}, {0.0, 1.0, 0.3 * xi, 0.0, 0.5 * phi, p.fz0}};
+  SteadyModel fine(withMesh(p, 60, "steady"));
+  double fx[8], fy[8];
+  for (int k = 0; k < 8; ++k) {
+    const StepOutput o = fine.step(cases[k]);
+    fx[k] = o.fx;
+    fy[k] = o.fy;
+  }
+  for (const int n : {5, 6, 8, 10, 12, 15, 20, 25, 30}) {
+    SteadyModel coarse(withMesh(p, n, "steady"));
+    double worst = 0.0;
+    for (int k = 0; k < 8; ++k) {
+      const StepOutput o = coarse.step(cases[k]);
+      worst = std::max(worst, std::hypot(o.fx - fx[k], o.fy - fy[k]) / (p.mu * p.fz0));
+    }
+    if (worst <= share) return n;
+  }
+  return 40;
+}
+
+double nssRelaxationLength(const ContactParameters& p, const ChiTable& chi) {
+  const double ab = p.a0 / p.b0, lambdaOverA = 50.0;
+  double worst = 0.0;
+  for (const CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
+    const std::complex<double> c =
+        fastsimNonSteadyCoefficient(k, ab, p.nu, 10, 10, chi.at(k, ab), lambdaOverA);
+    worst = std::max(worst, std::abs(1.0 - c / fastsimSteadyCoefficient(k, ab, p.nu, 10, 10)));
+  }
+  // A first-order lag 1 / (1 + i 2 pi l / lambda) errs by about 2 pi l / lambda.
+  return worst * lambdaOverA * p.a0 / (2.0 * kPi);
+}
+
+AutoModel::AutoModel(const ContactParameters& p, const ChiTable& chi)
+    : p_(p),
+      n_(meshForTolerance(p, kMeshShare * p.tolerance)),
+      l_(nssRelaxationLength(p, chi)),
+      nss_(withMesh(p, n_, "nss"), chi),
+      monitor_(l_, envelopeMemory(l_, p.tolerance), kalkerCoefficients(p.a0 / p.b0, p.nu),
+               std::sqrt(p.a0 * p.b0)) {}
+
+void AutoModel::reset() {
+  nss_.reset();
+  monitor_.reset();
+  mode_ = Mode::kSteady;
+  calm_ = handed_ = 0.0;
+}
+
+std::string AutoModel::name() const {
+  return mode_ == Mode::kSteady ? "auto:steady" : mode_ == Mode::kNss ? "auto:nss" : "auto:blend";
+}
+
+void AutoModel::choose(const StepInput& in) {
+  const bool moving = checkStepInput(in).empty() && in.V > 0.0 && in.dt > 0.0;
+  if (!moving) return;
+  if (!(in.fz > 0.0)) {
+    monitor_.reset();  // contact lost: the next contact starts a new record
+    return;
+  }
+  const double e = monitor_.update(in), dq = in.V * in.dt, transit = 2.0 * nss_.mesh().a();
+  if (e > kStartShare * p_.tolerance) {
+    mode_ = Mode::kNss;
+    calm_ = 0.0;
+  } else if (mode_ == Mode::kNss) {
+    // Hand back only once the history has flushed through the patch in calm.
+    calm_ = e < kReturnShare * p_.tolerance ? calm_ + dq : 0.0;
+    if (calm_ > kCalmTransits * transit) {
+      mode_ = Mode::kHandBack;
+      handed_ = 0.0;
+    }
+  } else if (mode_ == Mode::kHandBack) {
+    handed_ += dq;
+    if (handed_ >= kCalmTransits * transit) mode_ = Mode::kSteady;
+  }
+}
+
+StepOutput AutoModel::handBack(const StepInput& in) {
+  StepOutput out = nss_.step(in);
+  if (out.status != StepStatus::kOk) return out;
+  // NSS-FastSim's lag error is small here but not zero: fade it out instead of dropping it.
+  const StepOutput st = nss_.steadyAlongside(in);
+  const double w = 1.0 - handed_ / (kCalmTransits * 2.0 * nss_.mesh().a());
+  out.fx = w * out.fx + (1.0 - w) * st.fx;
+  out.fy = w * out.fy + (1.0 - w) * st.fy;
+  out.mz = w * out.mz + (1.0 - w) * st.mz;
+  out.adhesionFraction = w * out.adhesionFraction + (1.0 - w) * st.adhesionFraction;
+  return out;
+}
+
+StepOutput AutoModel::step(const StepInput& in) {
+  choose(in);
+  switch (mode_) {
+    case Mode::kNss:
+      return nss_.step(in);
+    case Mode::kHandBack:
+      return handBack(in);
+    case Mode::kSteady:
+      break;
+  }
+  return nss_.settle(in);
+}
+
+}  // namespace wheel_rail_contact
