@@ -40,6 +40,7 @@ class AutoModel : public ContactModel {
   void reset() override;
   /// "auto:steady", "auto:nss" or "auto:blend": what produced the last step.
   std::string name() const override;
+  std::string choices() const override;
 
   bool nonSteady() const { return mode_ != Mode::kSteady; }  ///< the last step ran NSS-FastSim
   int meshSize() const { return n_; }                        ///< nodes per strip and strips chosen

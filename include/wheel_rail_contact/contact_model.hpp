@@ -49,6 +49,9 @@ class ContactModel {
   /// Clear every piece of state: the next outputs equal those of a fresh model.
   virtual void reset() = 0;
   virtual std::string name() const = 0;
+  /// What the model chose at construction that the parameters do not say (auto's mesh), for the
+  /// start-up log; empty if nothing.
+  virtual std::string choices() const { return {}; }
 };
 
 /// The model named by p.model. Validates p (std::invalid_argument naming the parameter).

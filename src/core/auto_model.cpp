@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "wheel_rail_contact/fastsim_frequency.hpp"
 #include "wheel_rail_contact/steady_model.hpp"
@@ -119,6 +120,15 @@ void AutoModel::reset() {
 
 std::string AutoModel::name() const {
   return mode_ == Mode::kSteady ? "auto:steady" : mode_ == Mode::kNss ? "auto:nss" : "auto:blend";
+}
+
+std::string AutoModel::choices() const {
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "mesh %dx%d for tolerance %g; relaxation length %.3g m; NSS-FastSim above an "
+                "estimated steady error of %g",
+                n_, n_, p_.tolerance, l_, kStartShare * p_.tolerance);
+  return text;
 }
 
 void AutoModel::choose(const StepInput& in) {

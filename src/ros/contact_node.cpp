@@ -117,6 +117,9 @@ bool ContactNode::readParameters() {
         "mesh %s %dx%d, frame '%s'",
         nh_.getNamespace().c_str(), p.model.c_str(), p.G, p.nu, p.mu, p.a0, p.b0, p.fz0,
         p.mesh.c_str(), p.nx, p.ny, frameId_.c_str());
+    const std::string chosen = stepper_->modelChoices();
+    if (!chosen.empty())
+      ROS_INFO("contact_node %s: %s", nh_.getNamespace().c_str(), chosen.c_str());
     return true;
   } catch (const std::exception& e) {
     ROS_FATAL("contact_node: invalid parameter %s", e.what());

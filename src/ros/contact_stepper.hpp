@@ -77,6 +77,7 @@ class ContactStepper {
 
   const StepperCounters& counters() const { return counters_; }
   std::string modelName() const { return model_->name(); }
+  std::string modelChoices() const { return model_->choices(); }
   bool hasLoad() const { return hasLoad_; }
   double load() const { return load_; }
 

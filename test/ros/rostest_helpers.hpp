@@ -50,7 +50,9 @@ class ContactClient {
     forceSub_ = nh.subscribe(ns + "/creep_force", 10000, &ContactClient::onForce, this,
                              ros::TransportHints().tcpNoDelay());
     reset_ = nh.serviceClient<wheel_rail_contact::Reset>(ns + "/reset");
-    step_ = nh.serviceClient<wheel_rail_contact::Step>(ns + "/step");
+    // Persistent: one connection for the whole run, not a new TCP handshake per call (which
+    // failed now and then on a loaded 2-core machine after the node had done the step).
+    step_ = nh.serviceClient<wheel_rail_contact::Step>(ns + "/step", true);
   }
 
   bool connect(double timeout = 20.0) {
