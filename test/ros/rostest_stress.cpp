@@ -57,7 +57,7 @@ struct Options {
   int seed = 20261122;
   double settle = 10.0;     // patch lengths 2 a0 rolled after a perturbed tick before "clean" is
                             // compared again (the history has left the patch)
-  double tolerance = 1e-6;  // of mu fz0 (forces) and mu fz0 a0 (moment)
+  double tolerance = 1e-5;  // of mu fz0 (forces) and mu fz0 a0 (moment); measured 5.5e-7
   double rssToleranceKb = 2048.0;  // late - early VmRSS per node
   int64_t ticks() const { return static_cast<int64_t>(duration * rate + 0.5); }
   int64_t tickNs() const { return static_cast<int64_t>(1e9 / rate + 0.5); }
