@@ -15,8 +15,9 @@ namespace wheel_rail_contact {
 
 class ChiTable {
  public:
-  /// Reads a table. Throws std::runtime_error naming the file and line on any malformed,
-  /// non-finite or unstable (chi3 <= 0) entry, or if a kind is missing.
+  /// Reads a table. Throws std::runtime_error naming the file and line on any malformed (fewer
+  /// than 5 fields), non-finite, unstable (chi3 <= 0) or out-of-order (a/b not increasing within
+  /// its kind) entry, on a missing header (an empty file), or if a kind is missing.
   static ChiTable load(const std::string& path);
   /// The table shipped with the package (config/chi_table.csv).
   static std::string defaultPath();

@@ -29,7 +29,7 @@ void loadConfigYaml(const std::string& file, ContactParameters* p) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(file);
-  } catch (const YAML::Exception& e) {
+  } catch (const std::exception& e) {  // YAML::Exception, or std::ios_base::failure (a directory)
     throw std::invalid_argument("config: cannot read '" + file + "': " + e.what());
   }
   if (root.IsNull()) return;  // an empty file: all defaults

@@ -44,6 +44,7 @@ ChiTable ChiTable::load(const std::string& path) {
   std::string line;
   long n = 0;
   bool header = false;
+  std::string lastAB[3];  // per kind, as written
   while (std::getline(in, line)) {
     ++n;
     if (line.empty() || line[0] == '#') continue;
@@ -54,8 +55,12 @@ ChiTable ChiTable::load(const std::string& path) {
       continue;
     }
     std::stringstream ss(line);
-    std::string f[5];
-    for (auto& s : f) std::getline(ss, s, ',');
+    std::vector<std::string> f;
+    for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
+    if (f.size() < 5)  // more columns (fit errors) are allowed and ignored
+      fail(path, n,
+           "expected 5 or more fields (a_over_b,kind,chi1,chi2,chi3), got " +
+               std::to_string(f.size()));
     double v[5] = {0, 0, 0, 0, 0};
     for (int k : {0, 2, 3, 4}) {
       char* end = nullptr;
@@ -68,13 +73,19 @@ ChiTable ChiTable::load(const std::string& path) {
     if (!(v[0] > 0.0)) fail(path, n, "a_over_b must be > 0");
     const ChiParameters chi{v[2], v[3], v[4]};
     if (!chi.valid()) fail(path, n, "chi3 must be > 0 (stable filter)");
+    // Interpolation needs a/b increasing; a row out of order is more likely a slip than intended.
+    if (!t.rows_[kind].empty() && !(std::log(v[0]) > t.rows_[kind].back().logAB))
+      fail(path, n,
+           "a_over_b must increase within kind " + f[1] + ", got " + f[0] + " after " +
+               lastAB[kind]);
     t.rows_[kind].push_back({std::log(v[0]), chi});
+    lastAB[kind] = f[0];
   }
+  if (in.bad()) fail(path, n, "read error (a directory?)");
+  if (!header) fail(path, n, "empty: no header a_over_b,kind,chi1,chi2,chi3");
   for (int k = 0; k < 3; ++k) {
     if (t.rows_[k].empty())
       fail(path, n, "no rows for kind " + std::string(k == 0 ? "11" : k == 1 ? "22" : "23"));
-    std::sort(t.rows_[k].begin(), t.rows_[k].end(),
-              [](const Row& a, const Row& b) { return a.logAB < b.logAB; });
   }
   return t;
 }

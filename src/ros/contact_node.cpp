@@ -66,15 +66,17 @@ double numberParameter(const ros::NodeHandle& pnh, const std::string& name, doub
 
 int countParameter(const ros::NodeHandle& pnh, const std::string& name, int value) {
   const double d = numberParameter(pnh, name, value);
+  char v[64];
+  std::snprintf(v, sizeof v, "%g", d);
   if (!(d >= 1.0 && d <= 1e6) || d != static_cast<int>(d))
-    throw std::invalid_argument(name + ": must be an integer >= 1");
+    throw std::invalid_argument(name + ": must be an integer in [1, 1000000], got " + v);
   return static_cast<int>(d);
 }
 
 }  // namespace
 
 ContactNode::ContactNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
-    : nh_(nh), pnh_(pnh), updater_(nh, pnh) {}
+    : nh_(nh), pnh_(pnh) {}
 
 bool ContactNode::readParameters() {
   try {
@@ -109,7 +111,13 @@ bool ContactNode::readParameters() {
     queueSize_ = countParameter(pnh_, "queue_size", queueSize_);
     publishQueueSize_ = countParameter(pnh_, "publish_queue_size", publishQueueSize_);
     diagnosticPeriod_ = numberParameter(pnh_, "diagnostic_period", diagnosticPeriod_);
-    if (!(diagnosticPeriod_ > 0.0)) throw std::invalid_argument("diagnostic_period: must be > 0 s");
+    // ros::(Wall)Duration throws beyond 2^31 s (see start()); a day is plenty.
+    if (!(diagnosticPeriod_ > 0.0 && diagnosticPeriod_ <= 86400.0)) {
+      char v[64];
+      std::snprintf(v, sizeof v, "%g", diagnosticPeriod_);
+      throw std::invalid_argument(std::string("diagnostic_period: must be in (0, 86400] s, got ") +
+                                  v);
+    }
 
     stepper_ = std::make_unique<ContactStepper>(makeContactModel(p), o);
     ROS_INFO(
@@ -136,13 +144,16 @@ void ContactNode::start() {
   loadSub_ = nh_.subscribe("normal_load", queueSize_, &ContactNode::loadCallback, this, hints);
   creepageSub_ = nh_.subscribe("creepage", queueSize_, &ContactNode::creepageCallback, this, hints);
 
-  updater_.setHardwareID("wheel_rail_contact" + nh_.getNamespace());
-  updater_.add("contact " + nh_.getNamespace(), this, &ContactNode::diagnose);
+  // Made only now: its constructor reads ~diagnostic_period itself and throws (uncaught: abort)
+  // on a value ros::Duration cannot hold, so readParameters() must have checked it first.
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_);
+  updater_->setHardwareID("wheel_rail_contact" + nh_.getNamespace());
+  updater_->add("contact " + nh_.getNamespace(), this, &ContactNode::diagnose);
   lastDiagTime_ = ros::WallTime::now();
   // A wall timer: diagnostics keep coming while sim time is paused.
   diagnosticTimer_ =
       nh_.createWallTimer(ros::WallDuration(diagnosticPeriod_),
-                          [this](const ros::WallTimerEvent&) { updater_.force_update(); });
+                          [this](const ros::WallTimerEvent&) { updater_->force_update(); });
 }
 
 void ContactNode::reset() {

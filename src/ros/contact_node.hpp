@@ -50,7 +50,7 @@ class ContactNode {
   ros::Subscriber creepageSub_, loadSub_;
   ros::Publisher forcePub_, statePub_;
   ros::ServiceServer resetSrv_, stepSrv_;
-  diagnostic_updater::Updater updater_;
+  std::unique_ptr<diagnostic_updater::Updater> updater_;  // made in start()
   ros::WallTimer diagnosticTimer_;
   StepperCounters lastDiag_;
   ros::WallTime lastDiagTime_;

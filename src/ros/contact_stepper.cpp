@@ -40,12 +40,19 @@ uint8_t contactStateStatus(StepStatus s) {
 }
 
 void validate(const StepperOptions& o) {
+  auto got = [](double v) {
+    std::ostringstream s;
+    s << ", got " << v;
+    return s.str();
+  };
   if (!(o.max_dt > 0.0) || !std::isfinite(o.max_dt))
-    throw std::invalid_argument("max_dt: must be > 0 s");
+    throw std::invalid_argument("max_dt: must be a finite number > 0 s" + got(o.max_dt));
   if (!(o.time_jump_reset >= 0.0) || !std::isfinite(o.time_jump_reset))
-    throw std::invalid_argument("time_jump_reset: must be >= 0 s (0 = off)");
+    throw std::invalid_argument("time_jump_reset: must be a finite number >= 0 s (0 = off)" +
+                                got(o.time_jump_reset));
   if (!(o.max_load_age >= 0.0) || !std::isfinite(o.max_load_age))
-    throw std::invalid_argument("max_load_age: must be >= 0 s (0 = off)");
+    throw std::invalid_argument("max_load_age: must be a finite number >= 0 s (0 = off)" +
+                                got(o.max_load_age));
 }
 
 ContactStepper::ContactStepper(std::unique_ptr<ContactModel> model, const StepperOptions& options)

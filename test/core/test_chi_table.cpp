@@ -57,3 +57,38 @@ TEST(ChiTable, MalformedTablesNameFileAndLine) {
             std::string::npos);
   EXPECT_THROW(ChiTable::load("/nonexistent/chi.csv"), std::runtime_error);
 }
+
+TEST(ChiTable, EveryMalformedTableGetsAMessageNamingTheProblem) {
+  const std::string ok = "0.5,22,0.2,0.9,0.3\n0.5,23,0.1,0.8,0.1\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"", ":0: empty: no header"},
+      {"# only a comment\n", ":1: empty: no header"},
+      {"a_over_b;kind;chi1;chi2;chi3\n", ":1: expected header"},
+      {std::string(kHeader), "no rows for kind 11"},
+      {std::string(kHeader) + "1,11,0.1,1\n", ":3: expected 5 or more fields"},
+      {std::string(kHeader) + "1\n",
+       ":3: expected 5 or more fields (a_over_b,kind,chi1,chi2,chi3), got 1"},
+      {std::string(kHeader) + "1,11,nan,1,1\n", ":3: field 3 is not a finite number"},
+      {std::string(kHeader) + "1,11,0.1,1,inf\n", ":3: field 5 is not a finite number"},
+      {std::string(kHeader) + "NaN,11,0.1,1,1\n", ":3: field 1 is not a finite number"},
+      {std::string(kHeader) + "1,11,0.1,1,1\r\n", ":3: field 5 is not a finite number"},
+      {std::string(kHeader) + "0,11,0.1,1,1\n", ":3: a_over_b must be > 0"},
+      {std::string(kHeader) + "2,11,0.1,1,1\n1,11,0.1,1,1\n" + ok,
+       ":4: a_over_b must increase within kind 11, got 1 after 2"},
+      {std::string(kHeader) + "1,11,0.1,1,1\n1,11,0.2,1,1\n" + ok,
+       ":4: a_over_b must increase within kind 11, got 1 after 1"},
+  };
+  for (const auto& c : cases)
+    EXPECT_NE(loadError(c.first).find(c.second), std::string::npos)
+        << c.second << " <- " << loadError(c.first);
+  // Kinds may interleave; only the order within a kind matters (as in the shipped table).
+  EXPECT_EQ(loadError(std::string(kHeader) + "1,11,0.1,1,1\n" + ok + "2,11,0.1,1,1\n"), "");
+  EXPECT_NE(loadError("a_over_b,kind,chi1,chi2,chi3\n").find("bad_chi.csv"), std::string::npos);
+  try {
+    ChiTable::load(::testing::TempDir());
+    ADD_FAILURE() << "a directory loaded as a chi table";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("read error (a directory?)"), std::string::npos)
+        << e.what();
+  }
+}

@@ -127,3 +127,26 @@ TEST(ConfigYaml, CliReadsItAndOptionsOverrideIt) {
   EXPECT_EQ(cli({"run", "--scenario", scenario, "--config", bad}, &viaConfig, &err), 1);
   EXPECT_NE(err.find("fram_id: unknown parameter"), std::string::npos) << err;
 }
+
+TEST(ConfigYaml, CliRefusesAMissingOrMalformedConfigNamingIt) {
+  const std::string scenario = writeTemp("s2.csv", "t,V,xi,eta,phi,fz\n0,1,0.001,0,0,400\n");
+  const std::pair<std::string, std::string> cases[] = {
+      {"/nonexistent/contact.yaml", "contact_cli: config: cannot read '/nonexistent/contact.yaml'"},
+      {writeTemp("m1.yaml", "G: [1\n"), "contact_cli: config: cannot read"},
+      {writeTemp("m2.yaml", "G: 1e6\n  nu: 0.3\n"), "contact_cli: config: cannot read"},
+      {writeTemp("m3.yaml", "- G\n- nu\n"), "is not a YAML map of name: value"},
+      {writeTemp("m4.yaml", "just text\n"), "is not a YAML map of name: value"},
+      {writeTemp("m5.yaml", "G: {a: 1}\n"), "contact_cli: G: expected a single value"},
+      {writeTemp("m6.yaml", "nx: .nan\n"), "contact_cli: nx: expected an integer, got '.nan'"},
+      {writeTemp("m7.yaml", "mu: .inf\n"), "contact_cli: mu: expected a finite number, got '.inf'"},
+      {writeTemp("m8.yaml", "model: nss\nchi_table: /nonexistent/chi.csv\n"),
+       "contact_cli: chi_table: chi table /nonexistent/chi.csv: cannot open"},
+      {::testing::TempDir(), "contact_cli: config: cannot read"},
+  };
+  for (const auto& c : cases) {
+    std::string out, err;
+    EXPECT_EQ(cli({"run", "--scenario", scenario, "--config", c.first}, &out, &err), 1) << c.first;
+    EXPECT_NE(err.find(c.second), std::string::npos) << c.first << ": " << err;
+    EXPECT_EQ(out, "") << c.first;  // nothing half-written
+  }
+}
