@@ -1,7 +1,8 @@
 /// The non-steady FastSim models behind ContactModel: "shen-li" (time term with the static
 /// flexibilities, F == 1) and "nss" (Alonso & Gimenez dynamic flexibility with the weighted chi of
 /// Guiral et al. 2013, eq. 15), on a fixed mesh (sized for fz_max) or an adaptive one (follows
-/// a(t), b(t), history remapped by eq. 19). Units as in contact_model.hpp.
+/// a(t), b(t), history remapped by eq. 19). V < 0 marches the mirror image, the history mirrored at
+/// each reversal (rolling_direction.hpp). Units as in contact_model.hpp.
 #pragma once
 
 #include "wheel_rail_contact/chi_table.hpp"
@@ -21,11 +22,14 @@ class NssModel : public ContactModel {
   std::string name() const override { return p_.model; }
 
   const PatchMesh& mesh() const { return mesh_; }
+  /// The traction on mesh(), in the march's frame: mirrored (x -> -x, tx negated) while V < 0.
   const TractionField& traction() const { return field_; }
 
  private:
+  StepInput faceTravel(const StepInput& in);
   void followPatch(const HertzEllipse& h);
   void keepDisplacement(double a);
+  void keepRatePerTravel(double speed);
   void chooseFilters(const Creepages& c, double a, double b, double V, double dt);
   StepOutput hold(StepStatus status, const char* why) const;
 
@@ -41,7 +45,9 @@ class NssModel : public ContactModel {
   FilterZ zx_, zy_;
   double wx_[2], wy_[2];  // eq. 15 weights, kept while both vanish
   StepOutput last_;
-  double lastA_ = 0.0;  // a of the step that left the history [m]
+  double lastA_ = 0.0;      // a of the step that left the history [m]
+  double lastSpeed_ = 0.0;  // |V| of the step that left the filter state [m/s]
+  bool mirrored_ = false;   // state and field are in the mirror frame (last travel had V < 0)
 };
 
 }  // namespace wheel_rail_contact

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "wheel_rail_contact/rolling_direction.hpp"
+
 namespace wheel_rail_contact {
 
 NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
@@ -32,6 +34,8 @@ void NssModel::reset() {
   wx_[1] = wy_[1] = 0.0;
   last_ = StepOutput();
   lastA_ = 0.0;
+  lastSpeed_ = 0.0;
+  mirrored_ = false;
   if (adaptive_) mesh_.scale(ref_.a0, ref_.b0);
 }
 
@@ -63,6 +67,19 @@ void NssModel::keepDisplacement(double a) {
   lastA_ = a;
 }
 
+void NssModel::keepRatePerTravel(double speed) {
+  // F(k) acts in the rolled distance (i k <-> (a/V) d/dt); the filter state is a traction rate
+  // d/dt at the speed of the step that left it. Carry the rate per unit travel, s / V, into a new
+  // speed: else a wheel crawling to a stop keeps moving its traction at the old rate with no
+  // travel (V = 1e-9 m/s drove the force to saturation).
+  if (lastSpeed_ > 0.0 && speed != lastSpeed_) {
+    const double r = speed / lastSpeed_;
+    state_.sx *= r;
+    state_.sy *= r;
+  }
+  lastSpeed_ = speed;
+}
+
 void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, double dt) {
   if (!dynamic_) {
     zx_ = zy_ = FilterZ{};
@@ -83,13 +100,27 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
 }
 
-StepOutput NssModel::step(const StepInput& in) {
+StepInput NssModel::faceTravel(const StepInput& in) {
+  const bool backwards = in.V < 0.0;
+  if (backwards != mirrored_) {
+    // At a reversal the traction standing in the material stays where it is: carry it into the
+    // other direction's frame rather than clear it (a braked wheel that reverses keeps its grip).
+    mirrorAlongX(mesh_, &state_);
+    mirrorAlongX(mesh_, &field_);
+    mirrored_ = backwards;
+  }
+  return backwards ? mirroredInput(in) : in;
+}
+
+StepOutput NssModel::step(const StepInput& given) {
   StepOutput out;
-  if (screenStep(in, &out)) {
+  if (screenStep(given, &out)) {
     if (out.status == StepStatus::kNoLoad) reset();  // loss of contact clears the history
     return out;
   }
-  if (in.V == 0.0) return hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");
+  if (given.V == 0.0)
+    return hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");
+  const StepInput in = faceTravel(given);  // V < 0: the mirror image rolls forwards
   const HertzEllipse h = ref_.at(in.fz);
   followPatch(h);
   keepDisplacement(h.a);
@@ -97,6 +128,7 @@ StepOutput NssModel::step(const StepInput& in) {
   CreepForces f;
   if (in.dt > 0.0) {
     const Creepages c{in.xi, in.eta, in.phi};
+    keepRatePerTravel(in.V);
     chooseFilters(c, h.a, h.b, in.V, in.dt);
     f = transientFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, in.V, in.dt, zx_,
                          zy_, &state_, &field_);
@@ -104,6 +136,7 @@ StepOutput NssModel::step(const StepInput& in) {
     f = integrateTraction(mesh_, field_);  // no time has passed: the history stands
   }
   out = stepOutput(f, in.fz, h.a, h.b);
+  if (mirrored_) mirrorForces(&out);
   if (!adaptive_ && (h.a > mesh_.a() * (1 + 1e-12)))
     out.message = "fz exceeds fz_max: the patch is clipped to the fixed mesh";
   last_ = out;
