@@ -12,7 +12,7 @@ namespace wheel_rail_contact {
 
 struct StepInput {
   double dt = 0.0;   ///< time since the previous step [s] (ignored by the steady model)
-  double V = 0.0;    ///< rolling speed [m/s]
+  double V = 0.0;    ///< signed rolling speed [m/s]; V < 0 rolls backwards (material enters at -a)
   double xi = 0.0;   ///< longitudinal creepage [-]
   double eta = 0.0;  ///< lateral creepage [-]
   double phi = 0.0;  ///< spin [1/m]
@@ -62,7 +62,8 @@ std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p);
 std::string checkStepInput(const StepInput& in);
 
 /// The step rules every model shares (doc/conventions.md), applied before any physics: non-finite
-/// input, dt < 0 or V < 0 give kRejected; fz <= 0 gives kNoLoad (the caller clears its history).
+/// input or dt < 0 give kRejected; fz <= 0 gives kNoLoad (the caller clears its history). V < 0
+/// passes: each model rolls backwards by mirror symmetry (rolling_direction.hpp) or refuses it.
 /// Fills `out` with zero forces and the status and returns true when the step ends there.
 bool screenStep(const StepInput& in, StepOutput* out);
 

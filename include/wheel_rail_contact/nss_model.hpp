@@ -2,7 +2,8 @@
 /// flexibilities, F == 1) and "nss" (Alonso & Gimenez dynamic flexibility with the weighted chi of
 /// Guiral et al. 2013, eq. 15), on a fixed mesh (sized for fz_max) or an adaptive one (follows
 /// a(t), b(t), history remapped by eq. 19) or an "auto" one (held while the patch stays within a
-/// narrow band under it, remapped only when the patch leaves the band). Units as in
+/// narrow band under it, remapped only when the patch leaves the band). V < 0 marches the mirror
+/// image, the history mirrored at each reversal (rolling_direction.hpp). Units as in
 /// contact_model.hpp.
 #pragma once
 
@@ -32,18 +33,21 @@ class NssModel : public ContactModel {
   StepOutput steadyAlongside(const StepInput& in);
 
   const PatchMesh& mesh() const { return mesh_; }
+  /// The traction on mesh(), in the march's frame: mirrored (x -> -x, tx negated) while V < 0.
   const TractionField& traction() const { return field_; }
 
  private:
-  /// Screens `in`, sizes the mesh (carrying the history along when `carry`) and the bound for its
-  /// load; false when the step ends there with `out` filled.
-  bool prepare(const StepInput& in, bool carry, HertzEllipse* h, StepOutput* out);
+  StepInput faceTravel(const StepInput& in);
+  /// Screens `given`, turns it into the forward-rolling `in`, sizes the mesh (carrying the history
+  /// along when `carry`) and the bound for its load; false when the step ends there (`out` filled).
+  bool prepare(const StepInput& given, bool carry, StepInput* in, HertzEllipse* h, StepOutput* out);
   /// The mesh semi-axes the patch h asks for; false when the current mesh may stay.
   bool meshFor(const HertzEllipse& h, double* a, double* b) const;
   void followPatch(const HertzEllipse& h);
   void updateWeights(const Creepages& c, double a, double b);
   StepOutput finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h);
   void keepDisplacement(double a);
+  void keepRatePerTravel(double speed);
   void chooseFilters(const Creepages& c, double a, double b, double V, double dt);
   StepOutput hold(StepStatus status, const char* why) const;
 
@@ -60,7 +64,9 @@ class NssModel : public ContactModel {
   FilterZ zx_, zy_;
   double wx_[2], wy_[2];  // eq. 15 weights, kept while both vanish
   StepOutput last_;
-  double lastA_ = 0.0;  // a of the step that left the history [m]
+  double lastA_ = 0.0;      // a of the step that left the history [m]
+  double lastSpeed_ = 0.0;  // |V| of the step that left the filter state [m/s]
+  bool mirrored_ = false;   // state and field are in the mirror frame (last travel had V < 0)
 };
 
 }  // namespace wheel_rail_contact

@@ -1,5 +1,5 @@
 /// Steady FastSim as a ContactModel: no memory, the patch follows the Hertz scaling of the load.
-/// Units as in contact_model.hpp.
+/// V < 0 marches the mirror image (rolling_direction.hpp). Units as in contact_model.hpp.
 #pragma once
 
 #include "wheel_rail_contact/contact_model.hpp"
@@ -14,6 +14,8 @@ class SteadyModel : public ContactModel {
   StepOutput step(const StepInput& in) override;
   void reset() override { last_ = StepOutput(); }
   std::string name() const override { return "steady"; }
+  /// The last march's traction on mesh(), in the march's frame: mirrored (x -> -x, tx negated)
+  /// after a step with V < 0.
   const TractionField& traction() const { return field_; }
   const PatchMesh& mesh() const { return mesh_; }
 

@@ -44,8 +44,11 @@ void SteadinessMonitor::reset() {
 }
 
 double SteadinessMonitor::update(const StepInput& in) {
-  const double dq = in.V * in.dt;
-  const double fx = c_.c11 * in.xi, fy = c_.c22 * in.eta + c_.c23 * in.phi * sqrtAb_;
+  const double dq = std::abs(in.V) * in.dt;
+  // Linear-theory force in the contact frame: creepages are per signed V, so a reversal at
+  // constant creepage turns xi's and eta's forces over (rolling_direction.hpp) and must count.
+  const double dir = in.V < 0.0 ? -1.0 : 1.0;
+  const double fx = dir * c_.c11 * in.xi, fy = dir * c_.c22 * in.eta + c_.c23 * in.phi * sqrtAb_;
   if (primed_) {
     const double fade = std::exp(-dq / memory_);
     slope_ = std::max(std::hypot(fx - fx_, fy - fy_) / dq, slope_ * fade);
@@ -132,13 +135,14 @@ std::string AutoModel::choices() const {
 }
 
 void AutoModel::choose(const StepInput& in) {
-  const bool moving = checkStepInput(in).empty() && in.V > 0.0 && in.dt > 0.0;
+  const bool moving = checkStepInput(in).empty() && in.V != 0.0 && in.dt > 0.0;
   if (!moving) return;
   if (!(in.fz > 0.0)) {
     monitor_.reset();  // contact lost: the next contact starts a new record
     return;
   }
-  const double e = monitor_.update(in), dq = in.V * in.dt, transit = 2.0 * nss_.mesh().a();
+  const double e = monitor_.update(in), dq = std::abs(in.V) * in.dt,
+               transit = 2.0 * nss_.mesh().a();
   if (e > kStartShare * p_.tolerance) {
     mode_ = Mode::kNss;
     calm_ = 0.0;

@@ -40,8 +40,6 @@ std::string checkStepInput(const StepInput& in) {
 bool screenStep(const StepInput& in, StepOutput* out) {
   *out = StepOutput();
   out->message = checkStepInput(in);
-  if (out->message.empty() && in.V < 0.0)
-    out->message = "rolling backwards (V < 0) is not modelled";
   if (!out->message.empty()) {
     out->status = StepStatus::kRejected;
     return true;

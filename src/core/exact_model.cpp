@@ -66,6 +66,11 @@ StepOutput ExactModel::step(const StepInput& in) {
     }
     return out;
   }
+  if (in.V < 0.0) {
+    out.status = StepStatus::kRejected;
+    out.message = "rolling backwards (V < 0) is not modelled by the exact model";
+    return out;
+  }
   if (in.fz > fzMax_ * (1.0 + 1e-12)) {
     out.status = StepStatus::kRejected;
     out.message = "fz above fz_max: the fixed grid does not cover the patch";

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "wheel_rail_contact/rolling_direction.hpp"
+
 namespace wheel_rail_contact {
 
 namespace {
@@ -41,6 +43,8 @@ void NssModel::reset() {
   wx_[1] = wy_[1] = 0.0;
   last_ = StepOutput();
   lastA_ = 0.0;
+  lastSpeed_ = 0.0;
+  mirrored_ = false;
   if (adaptive_) mesh_.scale(ref_.a0 * (1.0 + band_), ref_.b0 * (1.0 + band_));
 }
 
@@ -81,6 +85,19 @@ void NssModel::keepDisplacement(double a) {
   lastA_ = a;
 }
 
+void NssModel::keepRatePerTravel(double speed) {
+  // F(k) acts in the rolled distance (i k <-> (a/V) d/dt); the filter state is a traction rate
+  // d/dt at the speed of the step that left it. Carry the rate per unit travel, s / V, into a new
+  // speed: else a wheel crawling to a stop keeps moving its traction at the old rate with no
+  // travel (V = 1e-9 m/s drove the force to saturation).
+  if (lastSpeed_ > 0.0 && speed != lastSpeed_) {
+    const double r = speed / lastSpeed_;
+    state_.sx *= r;
+    state_.sy *= r;
+  }
+  lastSpeed_ = speed;
+}
+
 void NssModel::updateWeights(const Creepages& c, double a, double b) {
   const double spin = std::abs(c.phi) * std::sqrt(a * b);
   if (std::abs(c.xi) + spin > 0.0) {
@@ -105,16 +122,30 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
 }
 
-bool NssModel::prepare(const StepInput& in, bool carry, HertzEllipse* h, StepOutput* out) {
-  if (screenStep(in, out)) {
+StepInput NssModel::faceTravel(const StepInput& in) {
+  const bool backwards = in.V < 0.0;
+  if (backwards != mirrored_) {
+    // At a reversal the traction standing in the material stays where it is: carry it into the
+    // other direction's frame rather than clear it (a braked wheel that reverses keeps its grip).
+    mirrorAlongX(mesh_, &state_);
+    mirrorAlongX(mesh_, &field_);
+    mirrored_ = backwards;
+  }
+  return backwards ? mirroredInput(in) : in;
+}
+
+bool NssModel::prepare(const StepInput& given, bool carry, StepInput* in, HertzEllipse* h,
+                       StepOutput* out) {
+  if (screenStep(given, out)) {
     if (out->status == StepStatus::kNoLoad) reset();  // loss of contact clears the history
     return false;
   }
-  if (in.V == 0.0) {
+  if (given.V == 0.0) {
     *out = hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");
     return false;
   }
-  *h = ref_.at(in.fz);
+  *in = faceTravel(given);  // V < 0: the mirror image rolls forwards
+  *h = ref_.at(in->fz);
   double a = 0.0, b = 0.0;
   if (carry) {
     followPatch(*h);
@@ -123,24 +154,27 @@ bool NssModel::prepare(const StepInput& in, bool carry, HertzEllipse* h, StepOut
     if (meshFor(*h, &a, &b)) mesh_.scale(a, b);
     lastA_ = h->a;
   }
-  parabolicBound(mesh_, h->a, h->b, in.fz, p_.mu, &field_.bound);
+  parabolicBound(mesh_, h->a, h->b, in->fz, p_.mu, &field_.bound);
   return true;
 }
 
 StepOutput NssModel::finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h) {
   StepOutput out = stepOutput(f, in.fz, h.a, h.b);
+  if (mirrored_) mirrorForces(&out);
   if (!adaptive_ && (h.a > mesh_.a() * (1 + 1e-12)))
     out.message = "fz exceeds fz_max: the patch is clipped to the fixed mesh";
   last_ = out;
   return out;
 }
 
-StepOutput NssModel::settle(const StepInput& in) {
+StepOutput NssModel::settle(const StepInput& given) {
   StepOutput out;
+  StepInput in;
   HertzEllipse h;
-  if (!prepare(in, false, &h, &out)) return out;
+  if (!prepare(given, false, &in, &h, &out)) return out;
   const Creepages c{in.xi, in.eta, in.phi};
   updateWeights(c, h.a, h.b);
+  lastSpeed_ = in.V;
   const CreepForces f =
       steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, &field_);
   // Under constant input the time-term march's fixed point is this traction with the filter at
@@ -152,21 +186,26 @@ StepOutput NssModel::settle(const StepInput& in) {
   return finish(f, in, h);
 }
 
-StepOutput NssModel::steadyAlongside(const StepInput& in) {
+StepOutput NssModel::steadyAlongside(const StepInput& given) {
+  const StepInput in = mirrored_ ? mirroredInput(given) : given;
   const HertzEllipse h = ref_.at(in.fz);
   scratch_.bound = field_.bound;
   const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_),
                                       {in.xi, in.eta, in.phi}, &scratch_);
-  return stepOutput(f, in.fz, h.a, h.b);
+  StepOutput out = stepOutput(f, in.fz, h.a, h.b);
+  if (mirrored_) mirrorForces(&out);
+  return out;
 }
 
-StepOutput NssModel::step(const StepInput& in) {
+StepOutput NssModel::step(const StepInput& given) {
   StepOutput out;
+  StepInput in;
   HertzEllipse h;
-  if (!prepare(in, true, &h, &out)) return out;
+  if (!prepare(given, true, &in, &h, &out)) return out;
   CreepForces f;
   if (in.dt > 0.0) {
     const Creepages c{in.xi, in.eta, in.phi};
+    keepRatePerTravel(in.V);
     chooseFilters(c, h.a, h.b, in.V, in.dt);
     f = transientFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, in.V, in.dt, zx_,
                          zy_, &state_, &field_);

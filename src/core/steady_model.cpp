@@ -1,5 +1,7 @@
 #include "wheel_rail_contact/steady_model.hpp"
 
+#include "wheel_rail_contact/rolling_direction.hpp"
+
 namespace wheel_rail_contact {
 
 SteadyModel::SteadyModel(const ContactParameters& p)
@@ -22,12 +24,16 @@ StepOutput SteadyModel::step(const StepInput& in) {
     out.message = "V = 0: no travel, forces held";
     return out;
   }
-  const HertzEllipse h = ref_.at(in.fz);
+  // Rolling backwards: forward rolling of the mirror image (rolling_direction.hpp).
+  const bool backwards = in.V < 0.0;
+  const StepInput fwd = backwards ? mirroredInput(in) : in;
+  const HertzEllipse h = ref_.at(fwd.fz);
   mesh_.scale(h.a, h.b);
-  parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_.bound);
+  parabolicBound(mesh_, h.a, h.b, fwd.fz, p_.mu, &field_.bound);
   const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, c_),
-                                      {in.xi, in.eta, in.phi}, &field_);
-  out = stepOutput(f, in.fz, h.a, h.b);
+                                      {fwd.xi, fwd.eta, fwd.phi}, &field_);
+  out = stepOutput(f, fwd.fz, h.a, h.b);
+  if (backwards) mirrorForces(&out);
   last_ = out;
   return out;
 }

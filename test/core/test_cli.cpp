@@ -107,9 +107,10 @@ TEST(ContactCli, BadScenarioExitsNonZeroNamingLineAndField) {
 }
 
 TEST(ContactCli, RefusedRowsAreWrittenWithStatusNotNaN) {
+  // The exact model refuses rolling backwards (the FastSim models mirror it).
   const std::string f =
       writeTemp("neg.csv", "t,V,xi,eta,phi,fz\n0,-20,1e-3,0,0,8e4\n1,20,1e-3,0,0,0\n");
-  const Result r = cli({"run", "--scenario", f});
+  const Result r = cli({"run", "--scenario", f, "--model", "exact", "--nx", "8", "--ny", "8"});
   EXPECT_EQ(r.code, 0);
   const auto rows = parseCsv(r.out);
   ASSERT_EQ(rows.size(), 3u);
@@ -118,6 +119,16 @@ TEST(ContactCli, RefusedRowsAreWrittenWithStatusNotNaN) {
   EXPECT_EQ(std::stod(rows[1][1]), 0.0);
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
   EXPECT_NE(r.err.find("V < 0"), std::string::npos);
+}
+
+TEST(ContactCli, BackwardsRowsRollBackwards) {
+  const std::string f = writeTemp("back.csv", "t,V,xi,eta,phi,fz\n0,-20,1e-3,0,0,8e4\n");
+  const Result r = cli({"run", "--scenario", f});
+  EXPECT_EQ(r.code, 0);
+  const auto rows = parseCsv(r.out);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1][8], "ok");
+  EXPECT_GT(std::stod(rows[1][1]), 0.0);  // V xi < 0: the force on the wheel is positive
 }
 
 TEST(ContactCli, ExecutableRunsTheShippedDemoScenario) {

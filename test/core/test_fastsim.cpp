@@ -112,7 +112,11 @@ TEST(SteadyModel, StatusRules) {
   EXPECT_EQ(held.status, StepStatus::kStandstill);
   EXPECT_EQ(held.fx, o.fx);
   EXPECT_EQ(m.step({1e-3, 20.0, NAN, 0, 0, 8e4}).status, StepStatus::kRejected);
-  EXPECT_EQ(m.step({1e-3, -2.0, 1e-3, 0, 0, 8e4}).status, StepStatus::kRejected);
+  EXPECT_EQ(m.step({1e-3, 20.0, 1e-3, 0, 0, 8e4}).status, StepStatus::kOk);
+  EXPECT_EQ(m.step({-1e-3, 20.0, 1e-3, 0, 0, 8e4}).status, StepStatus::kRejected);
+  const StepOutput back = m.step({1e-3, -2.0, 1e-3, 0, 0, 8e4});  // rolling backwards: mirrored
+  EXPECT_EQ(back.status, StepStatus::kOk);
+  EXPECT_GT(back.fx, 0.0);
   o = m.step({1e-3, 20.0, 1e-3, 0, 0, -5.0});
   EXPECT_EQ(o.status, StepStatus::kNoLoad);
   EXPECT_EQ(o.fx, 0.0);

@@ -101,7 +101,7 @@ TEST(NssModel, RejectedInputLeavesTheStateUntouched) {
       bad.dt = -1.0;
       EXPECT_EQ(faulty.step(bad).status, StepStatus::kRejected);
       bad.dt = scene(k).dt;
-      bad.V = -3.0;
+      bad.V = INFINITY;
       EXPECT_EQ(faulty.step(bad).status, StepStatus::kRejected);
     }
     ASSERT_EQ(clean.step(scene(k)).fx, faulty.step(scene(k)).fx) << k;
