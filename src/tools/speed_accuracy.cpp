@@ -7,8 +7,9 @@
 // Error per scene: RMS |F - F_ref| over the last period / peak |F_ref| there (sceneError). Cost:
 // median over --repeats (and at least 0.2 s of) passes of the timing workload (combined2 then
 // load_xi0.050_l15, each from a fresh state; one untimed pass first), thread CPU time / steps [ns].
-// The paper scenes' exact histories are the slow part (15 min at 40/30 on a busy 2-core machine): cached
-// in <out>/speed_accuracy_reference.csv, reused when its key line matches, rebuilt on --refresh.
+// The paper scenes' exact histories are the slow part (15 min at 40/30 on a busy 2-core machine):
+// cached in <out>/speed_accuracy_reference.csv, reused when its key line matches, rebuilt on
+// --refresh.
 // Writes <out>/speed_accuracy.csv (one row per model and mesh) and speed_accuracy_scenes.csv.
 //   speed_accuracy [--out doc/data] [--models
 //   steady,shen-li,nss:fixed,nss:adaptive,exact,auto:auto]
