@@ -11,12 +11,14 @@
 // cached in <out>/speed_accuracy_reference.csv, reused when its key line matches, rebuilt on
 // --refresh.
 // Writes <out>/speed_accuracy.csv (one row per model and mesh) and speed_accuracy_scenes.csv.
-//   speed_accuracy [--out doc/data] [--models steady,shen-li,nss:fixed,nss:adaptive,exact,auto]
+//   speed_accuracy [--out doc/data] [--models LIST]
 //                  [--meshes 5,10,20,30,40] [--exact-meshes 10,20] [--grid 40] [--load-grid 30]
 //                  [--periods 3] [--repeats 7] [--set NAME=VALUE]... [--refresh]
-// A model is NAME[:MESH] (mesh fixed when left out; the default list ends with auto:auto); one this
-// build lacks is skipped, with a note.
-// --set passes any ContactParameters field (setParameter) to every model run, e.g. a tolerance.
+// LIST: NAME[:MESH],... (mesh fixed when left out), by default
+// steady,shen-li,nss:fixed,nss:adaptive,exact,auto:auto; a model this build lacks is skipped, with
+// a note, so auto joins the chart once it exists.
+// --set passes any ContactParameters field (setParameter) to every model run, e.g. a tolerance;
+// the exact reference keeps the scene's own parameters.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
