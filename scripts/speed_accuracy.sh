@@ -2,8 +2,9 @@
 # Speed against accuracy (issue 6): every model and mesh through the frequency-response sweep, the
 # paper's combined cases and the varying-load cases, error against the fine-grid exact solver and
 # median cost per step; writes doc/data/speed_accuracy.csv and doc/speed_accuracy.png.
-# The exact reference histories are cached in doc/data/speed_accuracy_reference.csv (about 9 min
-# to rebuild on an idle machine; --refresh forces it). Needs a Release build of speed_accuracy.
+# The exact reference histories are cached in doc/data/speed_accuracy_reference.csv (15 min
+# here on a busy machine; --refresh forces it, and is needed after a change to the exact solver or
+# the paper scenes). Needs a Release build of speed_accuracy.
 # usage: scripts/speed_accuracy.sh [speed_accuracy options, e.g. --models nss:fixed,auto:auto]
 set -eo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -79,6 +79,7 @@ double loadStep(const Options& o) {
 std::vector<Scene> harmonicScenes(const Options& o) {
   std::vector<Scene> out;
   for (CreepageKind kind : kKinds) {
+    // The sweep's patch is circular and nu = 0.28, as harmonicScene's material.
     const NonSteadyCoefficients exact(kind, 1.0, 0.28, o.grid, o.grid);
     for (double l : kLambdas) {
       const HarmonicScene h = harmonicScene(kind, l, combinedStep(o));
@@ -111,6 +112,7 @@ std::string cacheKey(const Options& o) {
 }
 
 // Fills every scene's reference from the cache; false if the key or any scene's length differs.
+// The key cannot see a change to the exact solver itself: --refresh after one.
 bool readCache(const Options& o, std::vector<Scene>* scenes) {
   std::ifstream in(cachePath(o));
   std::string line;
