@@ -20,7 +20,7 @@ struct HarmonicScene {
   double amplitude = 0.0;    ///< creepage amplitude [-] (xi, eta) or [1/m] (phi)
 };
 
-/// Kind `kind` at lambda/a, rows every V dt = `step` [m]. The amplitude keeps the force near 1e-3
+/// Kind `kind` at lambda/a, rows every V dt = `step` [m]. The amplitude keeps the force below 1e-3
 /// mu Fz (full adhesion to within 0.03 % in force, so linear theory holds). The run lasts whole
 /// periods, at least 8 a of rolling before the scored last period, so that the memory of the
 /// start (about 2 a of rolling) has died out.
