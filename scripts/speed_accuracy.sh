@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Speed against accuracy (issue 6): every model and mesh through the frequency-response sweep, the
+# paper's combined cases and the varying-load cases, error against the fine-grid exact solver and
+# median cost per step; writes doc/data/speed_accuracy.csv and doc/speed_accuracy.png.
+# The exact reference histories are cached in doc/data/speed_accuracy_reference.csv (15 min
+# here on a busy machine; --refresh forces it, and is needed after a change to the exact solver or
+# the paper scenes). Needs a Release build of speed_accuracy.
+# usage: scripts/speed_accuracy.sh [speed_accuracy options, e.g. --models nss:fixed,auto:auto]
+set -eo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$here"
+bin="$here/build/devel/lib/wheel_rail_contact/speed_accuracy"
+if [ ! -x "$bin" ]; then
+  echo "speed_accuracy not built: make -C build speed_accuracy" >&2
+  exit 1
+fi
+echo "# $(date -u +%FT%TZ) $(nproc) cores; load average: $(cut -d' ' -f1-3 /proc/loadavg)" >&2
+"$bin" --out doc/data "$@"
+/usr/bin/python3 scripts/plot_speed_accuracy.py doc/data/speed_accuracy.csv doc/speed_accuracy.png

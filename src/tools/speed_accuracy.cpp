@@ -1,0 +1,352 @@
+// speed_accuracy: cost per step against accuracy for every model and mesh (issue 6). Scenes:
+//   freq_<kind>_l<lambda/a>  one small harmonic creepage, kinds 11, 22, 23, lambda/a 1 ... 100,
+//                            reference = linear response of the exact solver in the frequency
+//                            domain (--grid, harmonic_scenes.hpp)
+//   combined<1-3>            the paper's eqs. 16-18, reference = exact solver at --grid
+//   load_xi<xi>_l<lambda/a>  varying load (section 4.2), reference = exact solver at --load-grid
+// Error per scene: RMS |F - F_ref| over the last period / peak |F_ref| there (sceneError). Cost:
+// median over --repeats (and at least 0.2 s of) passes of the timing workload (combined2 then
+// load_xi0.050_l15, each from a fresh state; one untimed pass first), thread CPU time / steps [ns].
+// The paper scenes' exact histories are the slow part (15 min at 40/30 on a busy 2-core machine):
+// cached in <out>/speed_accuracy_reference.csv, reused when its key line matches, rebuilt on
+// --refresh.
+// Writes <out>/speed_accuracy.csv (one row per model and mesh) and speed_accuracy_scenes.csv.
+//   speed_accuracy [--out doc/data] [--models LIST]
+//                  [--meshes 5,10,20,30,40] [--exact-meshes 10,20] [--grid 40] [--load-grid 30]
+//                  [--periods 3] [--repeats 7] [--set NAME=VALUE]... [--refresh]
+// LIST: NAME[:MESH],... (mesh fixed when left out), by default
+// steady,shen-li,nss:fixed,nss:adaptive,exact,auto:auto; a model this build lacks is skipped, with
+// a note, so auto joins the chart once it exists.
+// --set passes any ContactParameters field (setParameter) to every model run, e.g. a tolerance;
+// the exact reference keeps the scene's own parameters.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "wheel_rail_contact/harmonic_scenes.hpp"
+#include "wheel_rail_contact/nonsteady_coefficients.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+struct Options {
+  std::string out = "doc/data";
+  // auto:auto is skipped, with a note, until a build provides it; then it joins the chart.
+  std::vector<std::string> models = {"steady",       "shen-li", "nss:fixed",
+                                     "nss:adaptive", "exact",   "auto:auto"};
+  std::vector<int> meshes = {5, 10, 20, 30, 40}, exactMeshes = {10, 20};
+  int grid = 40, loadGrid = 30, periods = 3, repeats = 7;
+  std::vector<std::pair<std::string, std::string>> overrides;  // --set NAME=VALUE
+  bool refresh = false;
+};
+
+struct Scene {
+  std::string family;  // freq | combined | load
+  PaperScene scene;
+  std::vector<StepOutput> reference;
+};
+
+const double kLambdas[] = {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0};  // lambda/a of the sweep
+const CreepageKind kKinds[] = {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi};
+
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, sep);)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+// Row spacing V dt of the paper scenes [m]: the exact reference's element length (its scheme
+// needs dq = dx), as accuracy_report uses.
+double combinedStep(const Options& o) {
+  return 2.2 * 0.02 / o.grid;
+}
+double loadStep(const Options& o) {
+  return 2.2 * 0.02 * std::cbrt(1.25) / o.loadGrid;
+}
+
+std::vector<Scene> harmonicScenes(const Options& o) {
+  std::vector<Scene> out;
+  for (CreepageKind kind : kKinds) {
+    // The sweep's patch is circular and nu = 0.28, as harmonicScene's material.
+    const NonSteadyCoefficients exact(kind, 1.0, 0.28, o.grid, o.grid);
+    for (double l : kLambdas) {
+      const HarmonicScene h = harmonicScene(kind, l, combinedStep(o));
+      out.push_back({"freq", h.scene, harmonicResponse(h, exact.at(l))});
+    }
+    std::cerr << "frequency reference C" << coefficientName(kind) << " done\n";
+  }
+  return out;
+}
+
+std::vector<Scene> paperScenes(const Options& o) {
+  std::vector<Scene> out;
+  for (int c = 1; c <= 3; ++c)
+    out.push_back({"combined", combinedCreepageScene(c, o.periods, combinedStep(o)), {}});
+  for (double xi : {0.002, 0.01, 0.05, 0.1})
+    for (double l : {5.0, 15.0, 40.0})
+      out.push_back({"load", varyingLoadScene(xi, l, o.periods, loadStep(o)), {}});
+  return out;
+}
+
+// ---- the cached exact histories of the paper scenes --------------------------------------------
+
+std::string cachePath(const Options& o) {
+  return o.out + "/speed_accuracy_reference.csv";
+}
+
+std::string cacheKey(const Options& o) {
+  return "# exact reference: grid " + std::to_string(o.grid) + ", load grid " +
+         std::to_string(o.loadGrid) + ", periods " + std::to_string(o.periods);
+}
+
+// Fills every scene's reference from the cache; false if the key or any scene's length differs.
+// The key cannot see a change to the exact solver itself: --refresh after one.
+bool readCache(const Options& o, std::vector<Scene>* scenes) {
+  std::ifstream in(cachePath(o));
+  std::string line;
+  if (!std::getline(in, line) || line != cacheKey(o) || !std::getline(in, line)) return false;
+  std::map<std::string, std::vector<StepOutput>> hist;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = split(line, ',');
+    if (f.size() != 4) return false;
+    StepOutput r;
+    r.fx = std::stod(f[2]);
+    r.fy = std::stod(f[3]);
+    hist[f[0]].push_back(r);
+  }
+  for (Scene& s : *scenes) {
+    std::vector<StepOutput>& h = hist[s.scene.name];
+    if (h.size() != s.scene.rows.size()) return false;
+    s.reference = h;
+  }
+  return true;
+}
+
+void writeCache(const Options& o, const std::vector<Scene>& scenes) {
+  std::ofstream out(cachePath(o));
+  out << cacheKey(o) << "\nscene,row,fx,fy\n";
+  for (const Scene& s : scenes)
+    for (size_t k = 0; k < s.reference.size(); ++k) {
+      char line[160];
+      std::snprintf(line, sizeof line, "%s,%zu,%.9g,%.9g\n", s.scene.name.c_str(), k,
+                    s.reference[k].fx, s.reference[k].fy);
+      out << line;
+    }
+}
+
+void computeReferences(const Options& o, std::vector<Scene>* scenes) {
+  for (Scene& s : *scenes) {
+    ContactParameters p = s.scene.params;
+    p.model = "exact";
+    p.nx = p.ny = s.family == "load" ? o.loadGrid : o.grid;
+    s.reference = runScene(*makeContactModel(p), s.scene.rows);
+    std::cerr << "exact reference " << s.scene.name << " done\n";
+  }
+}
+
+// ---- one model on one mesh ----------------------------------------------------------------------
+
+struct Variant {
+  std::string model, mesh;
+  int n = 0;
+};
+
+struct Result {
+  Variant v;
+  double nsPerStep = 0.0;
+  std::vector<double> errors;  // per scene, in scene order
+};
+
+ContactParameters paramsFor(const Options& o, const Variant& v, const PaperScene& s) {
+  ContactParameters p = s.params;
+  p.model = v.model;
+  p.mesh = v.mesh;
+  p.nx = p.ny = v.n;
+  for (const auto& kv : o.overrides) setParameter(&p, kv.first, kv.second);
+  return p;
+}
+
+// CPU time of this thread [ns]: unlike wall time, it leaves out the time other processes on a
+// shared machine hold the core, which is most of the noise of a wall-clock measurement here.
+double threadCpuNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e9 * ts.tv_sec + ts.tv_nsec;
+}
+
+// One pass over the rows from a fresh state; the forces go to a sink so that nothing is elided and
+// nothing is stored (runScene's output vector would add its own cost to every step).
+double timedPass(ContactModel& model, const std::vector<ScenarioRow>& rows) {
+  static volatile double sink = 0.0;
+  model.reset();
+  const double t0 = threadCpuNs();
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const ScenarioRow& r = rows[k];
+    sink =
+        sink + model.step({k == 0 ? 0.0 : r.t - rows[k - 1].t, r.V, r.xi, r.eta, r.phi, r.fz}).fx;
+  }
+  return threadCpuNs() - t0;
+}
+
+// Median CPU ns per step of the timing workload over at least `repeats` passes and 0.2 s, after
+// one untimed pass (caches, first-step allocations).
+double timePerStep(const Options& o, const Variant& v, const std::vector<const Scene*>& work) {
+  std::vector<std::unique_ptr<ContactModel>> models;
+  size_t steps = 0;
+  for (const Scene* s : work) {
+    models.push_back(makeContactModel(paramsFor(o, v, s->scene)));
+    steps += s->scene.rows.size();
+  }
+  std::vector<double> samples;
+  double total = 0.0;
+  for (int r = 0; r <= o.repeats || (total < 2e8 && r <= 200); ++r) {
+    double ns = 0.0;
+    for (size_t k = 0; k < work.size(); ++k) ns += timedPass(*models[k], work[k]->scene.rows);
+    if (r == 0) continue;
+    samples.push_back(ns / steps);
+    total += ns;
+  }
+  std::nth_element(samples.begin(), samples.begin() + samples.size() / 2, samples.end());
+  return samples[samples.size() / 2];
+}
+
+Result evaluate(const Options& o, const Variant& v, const std::vector<Scene>& scenes,
+                const std::vector<const Scene*>& work) {
+  Result res{v, 0.0, {}};
+  for (const Scene& s : scenes) {
+    auto model = makeContactModel(paramsFor(o, v, s.scene));
+    res.errors.push_back(
+        sceneError(s.scene, runScene(*model, s.scene.rows), s.reference).rmsOverPeak);
+  }
+  res.nsPerStep = timePerStep(o, v, work);
+  return res;
+}
+
+std::vector<Variant> variants(const Options& o) {
+  std::vector<Variant> out;
+  for (const std::string& spec : o.models) {
+    const std::vector<std::string> f = split(spec, ':');
+    const std::string mesh = f.size() > 1 ? f[1] : "fixed";
+    for (int n : f[0] == "exact" ? o.exactMeshes : o.meshes) out.push_back({f[0], mesh, n});
+  }
+  return out;
+}
+
+// ---- output -------------------------------------------------------------------------------------
+
+double worstOf(const Result& r, const std::vector<Scene>& scenes, const std::string& family) {
+  double w = 0.0;
+  for (size_t k = 0; k < scenes.size(); ++k)
+    if (family.empty() || scenes[k].family == family) w = std::max(w, r.errors[k]);
+  return w;
+}
+
+void writeResults(const Options& o, const std::vector<Result>& results,
+                  const std::vector<Scene>& scenes) {
+  std::ofstream table(o.out + "/speed_accuracy.csv"), per(o.out + "/speed_accuracy_scenes.csv");
+  table << "model,mesh,nx,ny,ns_per_step,worst_error,mean_error,worst_freq,worst_combined,"
+           "worst_load\n";
+  per << "model,mesh,nx,ny,scene,family,error\n";
+  for (const Result& r : results) {
+    double sum = 0.0;
+    for (double e : r.errors) sum += e;
+    char line[256];
+    std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.4g,%.5f,%.5f,%.5f,%.5f,%.5f\n",
+                  r.v.model.c_str(), r.v.mesh.c_str(), r.v.n, r.v.n, r.nsPerStep,
+                  worstOf(r, scenes, ""), sum / r.errors.size(), worstOf(r, scenes, "freq"),
+                  worstOf(r, scenes, "combined"), worstOf(r, scenes, "load"));
+    table << line;
+    std::cerr << line;
+    for (size_t k = 0; k < scenes.size(); ++k) {
+      std::snprintf(line, sizeof line, "%s,%s,%d,%d,%s,%s,%.5f\n", r.v.model.c_str(),
+                    r.v.mesh.c_str(), r.v.n, r.v.n, scenes[k].scene.name.c_str(),
+                    scenes[k].family.c_str(), r.errors[k]);
+      per << line;
+    }
+  }
+}
+
+void parseOption(Options* o, const std::string& name, const std::string& v) {
+  auto ints = [](const std::string& text) {
+    std::vector<int> out;
+    for (const std::string& s : split(text, ',')) out.push_back(std::stoi(s));
+    return out;
+  };
+  if (name == "--out")
+    o->out = v;
+  else if (name == "--models")
+    o->models = split(v, ',');
+  else if (name == "--meshes")
+    o->meshes = ints(v);
+  else if (name == "--exact-meshes")
+    o->exactMeshes = ints(v);
+  else if (name == "--grid")
+    o->grid = std::stoi(v);
+  else if (name == "--load-grid")
+    o->loadGrid = std::stoi(v);
+  else if (name == "--periods")
+    o->periods = std::stoi(v);
+  else if (name == "--repeats")
+    o->repeats = std::max(1, std::stoi(v));
+  else if (name == "--set" && v.find('=') != std::string::npos)
+    o->overrides.push_back({v.substr(0, v.find('=')), v.substr(v.find('=') + 1)});
+  else
+    throw std::invalid_argument("unknown option " + name + " " + v);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  try {
+    for (int k = 1; k < argc; ++k) {
+      const std::string name = argv[k];
+      if (name == "--refresh")
+        o.refresh = true;
+      else if (k + 1 < argc)
+        parseOption(&o, name, argv[++k]);
+      else
+        throw std::invalid_argument("option " + name + " needs a value");
+    }
+    ContactParameters probe;  // an unknown --set name fails here, not as a skip of every model
+    for (const auto& kv : o.overrides) setParameter(&probe, kv.first, kv.second);
+  } catch (const std::exception& e) {
+    std::cerr << "speed_accuracy: " << e.what() << "\n";
+    return 2;
+  }
+  std::vector<Scene> paper = paperScenes(o);
+  if (o.refresh || !readCache(o, &paper)) {
+    std::cerr << "computing the exact reference (grid " << o.grid << ", load grid " << o.loadGrid
+              << ") into " << cachePath(o) << "\n";
+    computeReferences(o, &paper);
+    writeCache(o, paper);
+  }
+  std::vector<Scene> scenes = harmonicScenes(o);
+  scenes.insert(scenes.end(), paper.begin(), paper.end());
+  std::vector<const Scene*> work;
+  for (const Scene& s : scenes)
+    if (s.scene.name == "combined2" || s.scene.name == "load_xi0.050_l15") work.push_back(&s);
+  std::vector<Result> results;
+  for (const Variant& v : variants(o)) {
+    try {
+      results.push_back(evaluate(o, v, scenes, work));
+    } catch (const std::invalid_argument& e) {  // a model or option this build does not provide
+      std::cerr << "skipping " << v.model << ":" << v.mesh << " " << v.n << "x" << v.n << ": "
+                << e.what() << "\n";
+    }
+  }
+  writeResults(o, results, scenes);
+  return 0;
+}
