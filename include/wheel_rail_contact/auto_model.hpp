@@ -34,7 +34,7 @@ class SteadinessMonitor {
 
 class AutoModel : public ContactModel {
  public:
-  /// p.model must be "auto"; p.nx, p.ny are replaced by meshForTolerance(p, half the tolerance).
+  /// p.model must be "auto"; p.nx, p.ny are replaced by meshForTolerance(p.tolerance).
   AutoModel(const ContactParameters& p, const ChiTable& chi);
   StepOutput step(const StepInput& in) override;
   void reset() override;
@@ -62,10 +62,9 @@ class AutoModel : public ContactModel {
   double handed_ = 0.0;  // distance rolled since the hand-back began [m]
 };
 
-/// The smallest n in 5..40 whose n x n steady FastSim forces stay within share * mu fz of a
-/// 60 x 60 mesh over adhesion, partial slip, full slip, spin and combined creepage at fz0; 40 if
-/// none does.
-int meshForTolerance(const ContactParameters& p, double share);
+/// The smallest n whose n x n NSS-FastSim stays within `tolerance` (RMS error over the peak force)
+/// on the speed-against-accuracy chart's scenes; 20, its most accurate, when none does.
+int meshForTolerance(double tolerance);
 
 /// The relaxation length l [m] at fz0 of NSS-FastSim with `chi`: the l of a first-order lag with
 /// the same steady-state error |1 - C^(lambda)/C| at lambda/a = 50, the largest over the kinds.

@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "wheel_rail_contact/auto_model.hpp"
 #include "wheel_rail_contact/harmonic_scenes.hpp"
 #include "wheel_rail_contact/nonsteady_coefficients.hpp"
 
@@ -45,6 +46,8 @@ struct Options {
   std::vector<std::string> models = {"steady",       "shen-li", "nss:fixed",
                                      "nss:adaptive", "exact",   "auto:auto"};
   std::vector<int> meshes = {5, 10, 20, 30, 40}, exactMeshes = {10, 20};
+  // auto picks its own mesh: it runs once per tolerance instead of once per mesh.
+  std::vector<double> tolerances = {0.1, 0.05, 0.035};
   int grid = 40, loadGrid = 30, periods = 3, repeats = 7;
   std::vector<std::pair<std::string, std::string>> overrides;  // --set NAME=VALUE
   bool refresh = false;
@@ -161,6 +164,7 @@ void computeReferences(const Options& o, std::vector<Scene>* scenes) {
 struct Variant {
   std::string model, mesh;
   int n = 0;
+  double tolerance = 0.0;  // auto only (0: the parameter's default)
 };
 
 struct Result {
@@ -173,8 +177,9 @@ ContactParameters paramsFor(const Options& o, const Variant& v, const PaperScene
   ContactParameters p = s.params;
   p.model = v.model;
   p.mesh = v.mesh;
-  p.nx = p.ny = v.n;
+  if (v.n > 0) p.nx = p.ny = v.n;  // auto chooses its own (n = 0)
   for (const auto& kv : o.overrides) setParameter(&p, kv.first, kv.second);
+  if (v.tolerance > 0.0) p.tolerance = v.tolerance;
   return p;
 }
 
@@ -227,6 +232,8 @@ Result evaluate(const Options& o, const Variant& v, const std::vector<Scene>& sc
   Result res{v, 0.0, {}};
   for (const Scene& s : scenes) {
     auto model = makeContactModel(paramsFor(o, v, s.scene));
+    if (const auto* a = dynamic_cast<const AutoModel*>(model.get()))
+      res.v.n = std::max(res.v.n, a->meshSize());  // the finest it chose over the scenes
     res.errors.push_back(
         sceneError(s.scene, runScene(*model, s.scene.rows), s.reference).rmsOverPeak);
   }
@@ -239,6 +246,10 @@ std::vector<Variant> variants(const Options& o) {
   for (const std::string& spec : o.models) {
     const std::vector<std::string> f = split(spec, ':');
     const std::string mesh = f.size() > 1 ? f[1] : "fixed";
+    if (f[0] == "auto") {
+      for (double t : o.tolerances) out.push_back({f[0], mesh, 0, t});
+      continue;
+    }
     for (int n : f[0] == "exact" ? o.exactMeshes : o.meshes) out.push_back({f[0], mesh, n});
   }
   return out;
@@ -256,22 +267,22 @@ double worstOf(const Result& r, const std::vector<Scene>& scenes, const std::str
 void writeResults(const Options& o, const std::vector<Result>& results,
                   const std::vector<Scene>& scenes) {
   std::ofstream table(o.out + "/speed_accuracy.csv"), per(o.out + "/speed_accuracy_scenes.csv");
-  table << "model,mesh,nx,ny,ns_per_step,worst_error,mean_error,worst_freq,worst_combined,"
-           "worst_load\n";
-  per << "model,mesh,nx,ny,scene,family,error\n";
+  table << "model,mesh,nx,ny,tolerance,ns_per_step,worst_error,mean_error,worst_freq,"
+           "worst_combined,worst_load\n";
+  per << "model,mesh,nx,ny,tolerance,scene,family,error\n";
   for (const Result& r : results) {
     double sum = 0.0;
     for (double e : r.errors) sum += e;
     char line[256];
-    std::snprintf(line, sizeof line, "%s,%s,%d,%d,%.4g,%.5f,%.5f,%.5f,%.5f,%.5f\n",
-                  r.v.model.c_str(), r.v.mesh.c_str(), r.v.n, r.v.n, r.nsPerStep,
+    std::snprintf(line, sizeof line, "%s,%s,%d,%d,%g,%.4g,%.5f,%.5f,%.5f,%.5f,%.5f\n",
+                  r.v.model.c_str(), r.v.mesh.c_str(), r.v.n, r.v.n, r.v.tolerance, r.nsPerStep,
                   worstOf(r, scenes, ""), sum / r.errors.size(), worstOf(r, scenes, "freq"),
                   worstOf(r, scenes, "combined"), worstOf(r, scenes, "load"));
     table << line;
     std::cerr << line;
     for (size_t k = 0; k < scenes.size(); ++k) {
-      std::snprintf(line, sizeof line, "%s,%s,%d,%d,%s,%s,%.5f\n", r.v.model.c_str(),
-                    r.v.mesh.c_str(), r.v.n, r.v.n, scenes[k].scene.name.c_str(),
+      std::snprintf(line, sizeof line, "%s,%s,%d,%d,%g,%s,%s,%.5f\n", r.v.model.c_str(),
+                    r.v.mesh.c_str(), r.v.n, r.v.n, r.v.tolerance, scenes[k].scene.name.c_str(),
                     scenes[k].family.c_str(), r.errors[k]);
       per << line;
     }
@@ -292,7 +303,10 @@ void parseOption(Options* o, const std::string& name, const std::string& v) {
     o->meshes = ints(v);
   else if (name == "--exact-meshes")
     o->exactMeshes = ints(v);
-  else if (name == "--grid")
+  else if (name == "--tolerances") {
+    o->tolerances.clear();
+    for (const std::string& t : split(v, ',')) o->tolerances.push_back(std::stod(t));
+  } else if (name == "--grid")
     o->grid = std::stoi(v);
   else if (name == "--load-grid")
     o->loadGrid = std::stoi(v);
