@@ -25,7 +25,7 @@ class NssModel : public ContactModel {
 
  private:
   void followPatch(const HertzEllipse& h);
-  void keepDisplacement(double a);
+  double historyScale(double a) const;
   void chooseFilters(const Creepages& c, double a, double b, double V, double dt);
   StepOutput hold(StepStatus status, const char* why) const;
 
@@ -41,7 +41,7 @@ class NssModel : public ContactModel {
   FilterZ zx_, zy_;
   double wx_[2], wy_[2];  // eq. 15 weights, kept while both vanish
   StepOutput last_;
-  double lastA_ = 0.0;  // a of the step that left the history [m]
+  double lastA_ = 0.0;  // a of the step that left the history (0: none yet) [m]
 };
 
 }  // namespace wheel_rail_contact

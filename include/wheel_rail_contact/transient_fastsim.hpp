@@ -23,9 +23,11 @@ struct TransientState {
 /// One step of length dt > 0 at speed V > 0. Marches each strip from the leading edge solving the
 /// discretised slip equation with s = 0 for the adhesion guess, saturates at field->bound, then
 /// updates `state` from the saturated traction. field->bound must be filled (parabolicBound).
+/// The stored history is read times `historyScale` (1: as stored), so a caller can rescale it to a
+/// new patch size without a pass over the state; the state written is unscaled.
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
-                             TransientState* state, TractionField* field);
+                             double historyScale, TransientState* state, TractionField* field);
 
 /// Paper eq. 19: carry the history from the patch (from.a(), from.b()) to the patch
 /// (to.a(), to.b()) of the same normalised layout by bilinear interpolation at fixed physical

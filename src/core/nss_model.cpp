@@ -50,17 +50,11 @@ void NssModel::followPatch(const HertzEllipse& h) {
   mesh_.scale(h.a, h.b);
 }
 
-void NssModel::keepDisplacement(double a) {
+double NssModel::historyScale(double a) const {
   // What persists in the material is the elastic displacement u = L tau (paper eq. 3), and every
-  // flexibility L scales with a (a/b is fixed): carry u, not tau, into the new patch size.
-  if (lastA_ > 0.0 && a != lastA_) {
-    const double r = lastA_ / a;
-    state_.tx *= r;
-    state_.ty *= r;
-    state_.sx *= r;
-    state_.sy *= r;
-  }
-  lastA_ = a;
+  // flexibility L scales with a (a/b is fixed): carry u, not tau, into the new patch size, i.e.
+  // read the history times a_old / a (folded into the march's constants).
+  return lastA_ > 0.0 ? lastA_ / a : 1.0;
 }
 
 void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, double dt) {
@@ -92,14 +86,14 @@ StepOutput NssModel::step(const StepInput& in) {
   if (in.V == 0.0) return hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");
   const HertzEllipse h = ref_.at(in.fz);
   followPatch(h);
-  keepDisplacement(h.a);
   parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_.bound);
   CreepForces f;
   if (in.dt > 0.0) {
     const Creepages c{in.xi, in.eta, in.phi};
     chooseFilters(c, h.a, h.b, in.V, in.dt);
     f = transientFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, in.V, in.dt, zx_,
-                         zy_, &state_, &field_);
+                         zy_, historyScale(h.a), &state_, &field_);
+    lastA_ = h.a;
   } else {
     f = integrateTraction(mesh_, field_);  // no time has passed: the history stands
   }
