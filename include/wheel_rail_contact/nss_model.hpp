@@ -24,7 +24,8 @@ class NssModel : public ContactModel {
   const TractionField& traction() const { return field_; }
 
  private:
-  void followPatch(const HertzEllipse& h);
+  bool patchMoves(const HertzEllipse& h);
+  void settlePatch();
   double historyScale(double a) const;
   void chooseFilters(const Creepages& c, double a, double b, double V, double dt);
   StepOutput hold(StepStatus status, const char* why) const;
@@ -37,6 +38,7 @@ class NssModel : public ContactModel {
   ChiParameters chi_[3];  // kinds 11, 22, 23 at this a/b (a/b does not change with load)
   PatchMesh mesh_, spare_;
   TransientState state_, remapped_;
+  AlongStripMap carry_;  // the history's path from the previous patch to this one (adaptive)
   TractionField field_;
   FilterZ zx_, zy_;
   double wx_[2], wy_[2];  // eq. 15 weights, kept while both vanish

@@ -17,6 +17,7 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
   spare_ = mesh_;
   state_.resize(mesh_.size());
   remapped_.resize(mesh_.size());
+  carry_ = AlongStripMap(p.nx);
   field_.resize(mesh_.size());
   reset();
 }
@@ -42,12 +43,16 @@ StepOutput NssModel::hold(StepStatus status, const char* why) const {
   return out;
 }
 
-void NssModel::followPatch(const HertzEllipse& h) {
-  if (!adaptive_ || (h.a == mesh_.a() && h.b == mesh_.b())) return;
+bool NssModel::patchMoves(const HertzEllipse& h) {
+  if (!adaptive_ || (h.a == mesh_.a() && h.b == mesh_.b())) return false;
   spare_.scale(h.a, h.b);
-  remapState(mesh_, state_, spare_, &remapped_);
+  carry_.set(h.a / mesh_.a());
+  return true;
+}
+
+void NssModel::settlePatch() {
   std::swap(state_, remapped_);
-  mesh_.scale(h.a, h.b);
+  mesh_.scale(spare_.a(), spare_.b());  // the same layout: only the size moves
 }
 
 double NssModel::historyScale(double a) const {
@@ -85,18 +90,26 @@ StepOutput NssModel::step(const StepInput& in) {
   }
   if (in.V == 0.0) return hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");
   const HertzEllipse h = ref_.at(in.fz);
-  followPatch(h);
-  parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_.bound);
+  // Adaptive mesh and a new patch size: the step runs on spare_ and carries the history over from
+  // mesh_ along the strips as it marches (AlongStripMap); then spare_'s size becomes mesh_'s.
+  const bool moves = patchMoves(h);
+  const PatchMesh& mesh = moves ? spare_ : mesh_;
+  parabolicBound(mesh, h.a, h.b, in.fz, p_.mu, &field_.bound);
   CreepForces f;
   if (in.dt > 0.0) {
     const Creepages c{in.xi, in.eta, in.phi};
     chooseFilters(c, h.a, h.b, in.V, in.dt);
-    f = transientFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, in.V, in.dt, zx_,
-                         zy_, historyScale(h.a), &state_, &field_);
+    const Flexibilities L = kalkerFlexibilities(h.a, h.b, p_.G, kalker_);
+    const double r = historyScale(h.a);
+    f = moves ? transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, carry_, state_, &remapped_,
+                                 &field_)
+              : transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, &state_, &field_);
     lastA_ = h.a;
   } else {
-    f = integrateTraction(mesh_, field_);  // no time has passed: the history stands
+    if (moves) remapAlongStrips(carry_, state_, mesh_.ny(), &remapped_);
+    f = integrateTraction(mesh, field_);  // no time has passed: the history stands
   }
+  if (moves) settlePatch();
   out = stepOutput(f, in.fz, h.a, h.b);
   if (!adaptive_ && (h.a > mesh_.a() * (1 + 1e-12)))
     out.message = "fz exceeds fz_max: the patch is clipped to the fixed mesh";

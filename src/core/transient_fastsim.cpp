@@ -66,11 +66,37 @@ struct StripStep {
       : x(X, r, h, driveX), y(Y, r, h, gy + 0.5 * h * gphi), pushPerXn(h * gphi * a * y.decay) {}
 };
 
-}  // namespace
+// A node's history as the march reads it.
+struct History {
+  double tx, ty, sx, sy;
+};
 
-CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
-                             double V, double dt, const FilterZ& zx, const FilterZ& zy,
-                             double historyScale, TransientState* st, TractionField* f) {
+// The history in place: node k of the state the march also writes.
+struct InPlace {
+  const TransientState& s;
+  void strip(int) {}
+  History at(int k, int) const { return {s.tx(k), s.ty(k), s.sx(k), s.sy(k)}; }
+};
+
+// The history of the previous patch, carried along the strips (AlongStripMap) node by node as the
+// march reads it: no pass of its own, and the old state is read where the march needs it.
+struct AlongStrips {
+  const AlongStripMap& map;
+  const TransientState& s;
+  int first = 0;  // the strip's first node (old and new patch share the layout)
+  void strip(int j) { first = j * map.nodes(); }
+  History at(int, int i) const {
+    const int k = first + map.index(i);
+    const Eigen::Array2d c = map.weights(i);
+    return {AlongStripMap::read(&s.tx(k), c), AlongStripMap::read(&s.ty(k), c),
+            AlongStripMap::read(&s.sx(k), c), AlongStripMap::read(&s.sy(k), c)};
+  }
+};
+
+template <class Source>
+CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c, double V,
+                  double dt, const FilterZ& zx, const FilterZ& zy, double historyScale,
+                  Source history, TransientState* st, TractionField* f) {
   const double r = historyScale;
   const TimeTerm X(zx, V, dt, r), Y(zy, V, dt, r);
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
@@ -83,24 +109,76 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
     const double dx = mesh.stripStep(j), driveX = gx - gphi * mesh.stripY(j);
     double tx = 0.0, ty = 0.0;
     StripSums strip;
+    history.strip(j);
+    const int first = mesh.index(0, j), end = first + mesh.nx();
     // The upstream traction enters last: it is the only operand on the march's serial chain.
     auto node = [&](int k, const StripStep& m) {
-      const double ox = oldX[k], oy = oldY[k], qx = sX[k], qy = sY[k];
-      tx = m.x.history(ox, qx) + m.x.decay * tx;
-      ty = (m.y.history(oy, qy) - m.pushPerXn * xn[k]) + m.y.decay * ty;
+      const History o = history.at(k, k - first);
+      tx = m.x.history(o.tx, o.sx) + m.x.decay * tx;
+      ty = (m.y.history(o.ty, o.sy) - m.pushPerXn * xn[k]) + m.y.decay * ty;
       strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
-      sX[k] = X.nextState(tx, ox, qx);
-      sY[k] = Y.nextState(ty, oy, qy);
+      sX[k] = X.nextState(tx, o.tx, o.sx);
+      sY[k] = Y.nextState(ty, o.ty, o.sy);
       oldX[k] = tx;
       oldY[k] = ty;
     };
-    const int first = mesh.index(0, j), end = first + mesh.nx();
     node(first, StripStep(X, Y, r, 0.5 * dx, driveX, gy, gphi, a));  // half step from the edge
     const StripStep full(X, Y, r, dx, driveX, gy, gphi, a);
     for (int k = first + 1; k < end; ++k) node(k, full);
     sums.addStrip(mesh, j, strip);
   }
   return sums.forces();
+}
+
+}  // namespace
+
+CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
+                             double V, double dt, const FilterZ& zx, const FilterZ& zy,
+                             double historyScale, TransientState* st, TractionField* f) {
+  return march(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{*st}, st, f);
+}
+
+CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
+                             double V, double dt, const FilterZ& zx, const FilterZ& zy,
+                             double historyScale, const AlongStripMap& map,
+                             const TransientState& previous, TransientState* st, TractionField* f) {
+  return march(mesh, L, c, V, dt, zx, zy, historyScale, AlongStrips{map, previous}, st, f);
+}
+
+AlongStripMap::AlongStripMap(int nx) : index_(nx, 0), weights_(2, nx) {}
+
+void AlongStripMap::set(double ratio) {
+  // New node i sits at t_i = 1 - (2i + 1)/nx of its strip (t = x / a_j); at fixed x its old t is
+  // ratio t_i, i.e. old node index r = r0 + i dr.
+  const int nx = nodes();
+  const double r0 = ((1.0 - ratio * (1.0 - 1.0 / nx)) * nx - 1.0) * 0.5, dr = ratio;
+  for (int i = 0; i < nx; ++i) {
+    // f is r's offset from node i0 (r clamped into the strip). Inside, the weights are (1 - f, f);
+    // the strip's ends lie half an element beyond its first and last node and carry zero
+    // traction, so towards them the weight falls to zero over that half element (c0 = 1 + 2f for
+    // f < 0, c1 = 3 - 2f for f > 1); beyond the ends both are zero.
+    const double r = std::min(std::max(r0 + i * dr, -1.0), double(nx));
+    index_[i] = std::min(static_cast<int>(std::max(r, 0.0)), nx - 2);
+    const double f = r - index_[i];
+    weights_.col(i) =
+        Eigen::Array2d(1.0 - f, f).min(Eigen::Array2d(1.0 + 2.0 * f, 3.0 - 2.0 * f)).max(0.0);
+  }
+}
+
+void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int strips,
+                      TransientState* out) {
+  AlongStrips source{map, in};
+  for (int j = 0; j < strips; ++j) {
+    source.strip(j);
+    for (int i = 0; i < map.nodes(); ++i) {
+      const History h = source.at(0, i);
+      const int k = j * map.nodes() + i;
+      out->tx(k) = h.tx;
+      out->ty(k) = h.ty;
+      out->sx(k) = h.sx;
+      out->sy(k) = h.sy;
+    }
+  }
 }
 
 namespace {
