@@ -1,7 +1,7 @@
 /// The non-steady FastSim models behind ContactModel: "shen-li" (time term with the static
 /// flexibilities, F == 1) and "nss" (Alonso & Gimenez dynamic flexibility with the weighted chi of
 /// Guiral et al. 2013, eq. 15), on a fixed mesh (sized for fz_max) or an adaptive one (follows
-/// a(t), b(t), history remapped by eq. 19). Units as in contact_model.hpp.
+/// a(t), b(t), history carried along the strips: AlongStripMap). Units as in contact_model.hpp.
 #pragma once
 
 #include "wheel_rail_contact/chi_table.hpp"
@@ -26,6 +26,7 @@ class NssModel : public ContactModel {
  private:
   bool patchMoves(const HertzEllipse& h);
   void settlePatch();
+  CreepForces advance(const StepInput& in, const HertzEllipse& h, bool moves);
   double historyScale(double a) const;
   void chooseFilters(const Creepages& c, double a, double b, double V, double dt);
   StepOutput hold(StepStatus status, const char* why) const;
@@ -37,7 +38,7 @@ class NssModel : public ContactModel {
   bool dynamic_ = false;  // nss (else shen-li)
   ChiParameters chi_[3];  // kinds 11, 22, 23 at this a/b (a/b does not change with load)
   PatchMesh mesh_, spare_;
-  TransientState state_, remapped_;
+  TransientState state_, remapped_;  // the history; the next one while the patch moves
   AlongStripMap carry_;  // the history's path from the previous patch to this one (adaptive)
   TractionField field_;
   FilterZ zx_, zy_;

@@ -82,6 +82,25 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
 }
 
+CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool moves) {
+  // When the adaptive patch moves, the step runs on spare_ and carries the history over from mesh_
+  // along the strips as it marches (AlongStripMap) into remapped_; settlePatch() then swaps.
+  const PatchMesh& mesh = moves ? spare_ : mesh_;
+  parabolicBound(mesh, h.a, h.b, in.fz, p_.mu, &field_.bound);
+  if (!(in.dt > 0.0)) {
+    if (moves) remapAlongStrips(carry_, state_, mesh_.ny(), &remapped_);
+    return integrateTraction(mesh, field_);  // no time has passed: the history stands
+  }
+  const Creepages c{in.xi, in.eta, in.phi};
+  chooseFilters(c, h.a, h.b, in.V, in.dt);
+  const Flexibilities L = kalkerFlexibilities(h.a, h.b, p_.G, kalker_);
+  const double r = historyScale(h.a);
+  lastA_ = h.a;
+  return moves ? transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, carry_, state_, &remapped_,
+                                  &field_)
+               : transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, &state_, &field_);
+}
+
 StepOutput NssModel::step(const StepInput& in) {
   StepOutput out;
   if (screenStep(in, &out)) {
@@ -90,25 +109,8 @@ StepOutput NssModel::step(const StepInput& in) {
   }
   if (in.V == 0.0) return hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");
   const HertzEllipse h = ref_.at(in.fz);
-  // Adaptive mesh and a new patch size: the step runs on spare_ and carries the history over from
-  // mesh_ along the strips as it marches (AlongStripMap); then spare_'s size becomes mesh_'s.
   const bool moves = patchMoves(h);
-  const PatchMesh& mesh = moves ? spare_ : mesh_;
-  parabolicBound(mesh, h.a, h.b, in.fz, p_.mu, &field_.bound);
-  CreepForces f;
-  if (in.dt > 0.0) {
-    const Creepages c{in.xi, in.eta, in.phi};
-    chooseFilters(c, h.a, h.b, in.V, in.dt);
-    const Flexibilities L = kalkerFlexibilities(h.a, h.b, p_.G, kalker_);
-    const double r = historyScale(h.a);
-    f = moves ? transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, carry_, state_, &remapped_,
-                                 &field_)
-              : transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, &state_, &field_);
-    lastA_ = h.a;
-  } else {
-    if (moves) remapAlongStrips(carry_, state_, mesh_.ny(), &remapped_);
-    f = integrateTraction(mesh, field_);  // no time has passed: the history stands
-  }
+  const CreepForces f = advance(in, h, moves);
   if (moves) settlePatch();
   out = stepOutput(f, in.fz, h.a, h.b);
   if (!adaptive_ && (h.a > mesh_.a() * (1 + 1e-12)))
