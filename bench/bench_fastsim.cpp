@@ -1,41 +1,20 @@
 // Cost of one step of each FastSim model and mesh (ns per step). Run:
-//   build/devel/lib/wheel_rail_contact/bench_fastsim --benchmark_repetitions=5 \
-//     --benchmark_report_aggregates_only=true
+//   build/devel/lib/wheel_rail_contact/bench_fastsim --benchmark_repetitions=9 \
+//     --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true
+// (random interleaving spreads the machine's load over every model alike). Instruction counts,
+// which do not depend on the load: scripts/step_cost.sh.
 #include <benchmark/benchmark.h>
 
-#include <cmath>
-#include <memory>
-
-#include "wheel_rail_contact/nss_model.hpp"
-#include "wheel_rail_contact/steady_model.hpp"
+#include "step_inputs.hpp"
 
 using namespace wheel_rail_contact;
 
 namespace {
 
-// Partial slip, combined creepages, and (when varyLoad) a load that changes every step.
-StepInput input(int k, bool varyLoad) {
-  const double q = 20.0 * 5e-5 * k;
-  return {5e-5,
-          20.0,
-          1.5e-3 * std::cos(2 * M_PI * q / 0.09),
-          0.8e-3 * std::sin(2 * M_PI * q / 0.05),
-          1.0,
-          8e4 * (varyLoad ? 1.0 + 0.25 * std::sin(2 * M_PI * q / 0.12) : 1.0)};
-}
-
 void run(benchmark::State& state, const char* model, const char* mesh, bool varyLoad) {
-  ContactParameters p;
-  p.model = model;
-  p.mesh = mesh;
-  p.nx = p.ny = static_cast<int>(state.range(0));
-  std::unique_ptr<ContactModel> m;
-  if (p.model == "steady")
-    m = std::make_unique<SteadyModel>(p);
-  else
-    m = std::make_unique<NssModel>(p, ChiTable::uniform({0.4, 1.1, 0.6}));
+  const auto m = bench::makeModel(model, mesh, static_cast<int>(state.range(0)));
   StepInput in[256];
-  for (int k = 0; k < 256; ++k) in[k] = input(k, varyLoad);
+  for (int k = 0; k < 256; ++k) in[k] = bench::input(k, varyLoad);
   int k = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(m->step(in[k++ & 255]));

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/kalker_coefficients.hpp"
@@ -54,18 +55,48 @@ struct TractionField {
 void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
                     Eigen::ArrayXd* bound);
 
-/// Running sums of one strip, so the march integrates the forces as it goes.
+/// Raw views of a TractionField for the marches' inner loops: held in registers, they are not
+/// reloaded after every store of `slip` (a bool store may alias anything).
+struct FieldPointers {
+  double* tx;
+  double* ty;
+  const double* bound;
+  bool* slip;
+  explicit FieldPointers(TractionField* f)
+      : tx(f->tx.data()), ty(f->ty.data()), bound(f->bound.data()), slip(f->slip.data()) {}
+};
+
+/// Running sums of one strip, so the march integrates the forces as it goes. Keep it a local that
+/// is only ever copied (ForceSums::addStrip takes it by value): then the compiler holds the sums in
+/// registers instead of in memory that every field store might alias.
 struct StripSums {
   double tx = 0.0, ty = 0.0, xnTy = 0.0;  ///< sums of tx, ty and (x/a) ty over the strip [Pa]
   int stuck = 0, loaded = 0;              ///< nodes in adhesion, nodes with pressure
   /// Saturates (tx, ty) at the bound g (Coulomb, direction kept), stores node k of `f` and adds it.
-  void node(int k, double xn, double g, double* tx, double* ty, TractionField* f);
+  /// Inline: it is the inner loop of every FastSim march.
+  void node(int k, double xn, double g, double* tx, double* ty, const FieldPointers& f) {
+    const double t2 = *tx * *tx + *ty * *ty;
+    const bool slips = t2 > g * g;
+    if (slips) {
+      const double s = g / std::sqrt(t2);
+      *tx *= s;
+      *ty *= s;
+    }
+    f.tx[k] = *tx;
+    f.ty[k] = *ty;
+    f.slip[k] = slips;
+    this->tx += *tx;
+    this->ty += *ty;
+    xnTy += xn * *ty;
+    loaded += g > 0.0;
+    stuck += g > 0.0 && !slips;
+  }
 };
 
 /// Strip sums into forces and moment (midpoint rule).
 class ForceSums {
  public:
-  void addStrip(const PatchMesh& mesh, int j, const StripSums& s);
+  void addStrip(const PatchMesh& mesh, int j, StripSums s);
   CreepForces forces() const;
 
  private:

@@ -38,16 +38,18 @@ class NssModel : public ContactModel {
 
  private:
   StepInput faceTravel(const StepInput& in);
-  /// Screens `given`, turns it into the forward-rolling `in`, sizes the mesh (carrying the history
-  /// along when `carry`) and the bound for its load; false when the step ends there (`out` filled).
-  bool prepare(const StepInput& given, bool carry, StepInput* in, HertzEllipse* h, StepOutput* out);
+  /// Screens `given` and turns it into the forward-rolling `in` at patch `h`; false when the step
+  /// ends there (`out` filled).
+  bool screen(const StepInput& given, StepInput* in, HertzEllipse* h, StepOutput* out);
   /// The mesh semi-axes the patch h asks for; false when the current mesh may stay.
   bool meshFor(const HertzEllipse& h, double* a, double* b) const;
-  void followPatch(const HertzEllipse& h);
+  bool patchMoves(const HertzEllipse& h);
+  void settlePatch();
+  CreepForces advance(const StepInput& in, const HertzEllipse& h, bool moves);
+  double historyScale(double a) const;
+  void keepRatePerTravel(double speed);
   void updateWeights(const Creepages& c, double a, double b);
   StepOutput finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h);
-  void keepDisplacement(double a);
-  void keepRatePerTravel(double speed);
   void chooseFilters(const Creepages& c, double a, double b, double V, double dt);
   StepOutput hold(StepStatus status, const char* why) const;
 
@@ -59,14 +61,15 @@ class NssModel : public ContactModel {
   bool dynamic_ = false;  // nss (else shen-li)
   ChiParameters chi_[3];  // kinds 11, 22, 23 at this a/b (a/b does not change with load)
   PatchMesh mesh_, spare_;
-  TransientState state_, remapped_;
+  TransientState state_, remapped_;  // the history; the next one while the patch moves
+  AlongStripMap carry_;  // the history's path from the previous patch to this one (adaptive)
   TractionField field_, scratch_;
   FilterZ zx_, zy_;
   double wx_[2], wy_[2];  // eq. 15 weights, kept while both vanish
   StepOutput last_;
-  double lastA_ = 0.0;      // a of the step that left the history [m]
-  double lastSpeed_ = 0.0;  // |V| of the step that left the filter state [m/s]
-  bool mirrored_ = false;   // state and field are in the mirror frame (last travel had V < 0)
+  double lastA_ = 0.0;      // a of the step that left the history (0: none yet) [m]
+  double lastSpeed_ = 0.0;  // |V| of the step that left the filter state (0: none yet) [m/s]
+  bool mirrored_ = false;   // the history is in the mirror frame (rolling backwards)
 };
 
 }  // namespace wheel_rail_contact

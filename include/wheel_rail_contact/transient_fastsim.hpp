@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "wheel_rail_contact/fastsim.hpp"
 #include "wheel_rail_contact/nss_filter.hpp"
@@ -23,14 +24,58 @@ struct TransientState {
 /// One step of length dt > 0 at speed V > 0. Marches each strip from the leading edge solving the
 /// discretised slip equation with s = 0 for the adhesion guess, saturates at field->bound, then
 /// updates `state` from the saturated traction. field->bound must be filled (parabolicBound).
+/// The stored history is read times `historyScale` (1: as stored), so a caller can rescale it to a
+/// new patch size without a pass over the state; the state written is unscaled.
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
-                             TransientState* state, TractionField* field);
+                             double historyScale, TransientState* state, TractionField* field);
+
+/// How the adaptive mesh carries its history when the patch changes size (a choice beyond the
+/// paper's eq. 19, see README): every strip keeps its own history (strip j of the new patch reads
+/// strip j of the old one, i.e. the strips stay at the same y/b), and along the strip the history
+/// is carried at fixed physical x by linear interpolation, falling to zero at the old strip's ends
+/// (half an element beyond its first and last node) and zero outside them. Every strip's length
+/// scales by the same a_new / a_old, so the weights depend on the node index only: one table per
+/// step, for any number of strips.
+class AlongStripMap {
+ public:
+  /// For strips of nx nodes (nx >= 2); allocates here, set() does not.
+  explicit AlongStripMap(int nx = 2);
+  /// The patch's a changes by `ratio` = a_new / a_old.
+  void set(double ratio);
+  int nodes() const { return static_cast<int>(index_.size()); }
+  /// New node i reads old nodes index(i) and index(i) + 1 of its strip with weights(i).
+  int index(int i) const { return index_[i]; }
+  Eigen::Array2d weights(int i) const { return weights_.col(i); }
+  /// The weighted pair at `nodes` (old node index(i) of a strip) of a per-node field.
+  static double read(const double* nodes, const Eigen::Array2d& w) {
+    const Eigen::Array2d s = w * Eigen::Map<const Eigen::Array2d>(nodes);
+    return s(0) + s(1);
+  }
+
+ private:
+  std::vector<int> index_;
+  Eigen::Array2Xd weights_;
+};
+
+/// The same step when the load changed the patch size on the adaptive mesh: each node reads
+/// `previous` (the history left on the old patch) carried by `map` as the march reaches it, so the
+/// carrying costs no pass of its own; the new history goes to *state (sized for mesh; not
+/// `previous`). Equals remapAlongStrips followed by the step above.
+CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
+                             double V, double dt, const FilterZ& zx, const FilterZ& zy,
+                             double historyScale, const AlongStripMap& map,
+                             const TransientState& previous, TransientState* state,
+                             TractionField* field);
+
+/// The history of `strips` strips carried by `map` into *out (sized alike).
+void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int strips,
+                      TransientState* out);
 
 /// Paper eq. 19: carry the history from the patch (from.a(), from.b()) to the patch
 /// (to.a(), to.b()) of the same normalised layout by bilinear interpolation at fixed physical
 /// coordinates (linear along each strip, then across strips); traction falls to zero at the old
-/// patch's edge and is zero outside it.
+/// patch's edge and is zero outside it. (NssModel uses AlongStripMap instead; see README.)
 void remapState(const PatchMesh& from, const TransientState& in, const PatchMesh& to,
                 TransientState* out);
 

@@ -8,7 +8,7 @@ namespace wheel_rail_contact {
 
 namespace {
 // Mesh "auto": the mesh stands 2 % proud of the patch and is kept until the patch outgrows it or
-// shrinks 4 % inside it. A load varying by +-25 % (a by +-8 %) then remaps a few times a period
+// shrinks 4 % inside it. A load varying by +-25 % (a by +-8 %) then moves it a few times a period
 // instead of every step: cheaper, and less interpolation smearing of the history.
 constexpr double kMeshBand = 0.02;
 }  // namespace
@@ -27,6 +27,7 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
   spare_ = mesh_;
   state_.resize(mesh_.size());
   remapped_.resize(mesh_.size());
+  carry_ = AlongStripMap(p.nx);
   field_.resize(mesh_.size());
   scratch_.resize(mesh_.size());
   reset();
@@ -63,26 +64,24 @@ bool NssModel::meshFor(const HertzEllipse& h, double* a, double* b) const {
   return *a != mesh_.a() || *b != mesh_.b();
 }
 
-void NssModel::followPatch(const HertzEllipse& h) {
+bool NssModel::patchMoves(const HertzEllipse& h) {
   double a = 0.0, b = 0.0;
-  if (!meshFor(h, &a, &b)) return;
+  if (!meshFor(h, &a, &b)) return false;
   spare_.scale(a, b);
-  remapState(mesh_, state_, spare_, &remapped_);
-  std::swap(state_, remapped_);
-  mesh_.scale(a, b);
+  carry_.set(a / mesh_.a());
+  return true;
 }
 
-void NssModel::keepDisplacement(double a) {
+void NssModel::settlePatch() {
+  std::swap(state_, remapped_);
+  mesh_.scale(spare_.a(), spare_.b());  // the same layout: only the size moves
+}
+
+double NssModel::historyScale(double a) const {
   // What persists in the material is the elastic displacement u = L tau (paper eq. 3), and every
-  // flexibility L scales with a (a/b is fixed): carry u, not tau, into the new patch size.
-  if (lastA_ > 0.0 && a != lastA_) {
-    const double r = lastA_ / a;
-    state_.tx *= r;
-    state_.ty *= r;
-    state_.sx *= r;
-    state_.sy *= r;
-  }
-  lastA_ = a;
+  // flexibility L scales with a (a/b is fixed): carry u, not tau, into the new patch size, i.e.
+  // read the history times a_old / a (folded into the march's constants).
+  return lastA_ > 0.0 ? lastA_ / a : 1.0;
 }
 
 void NssModel::keepRatePerTravel(double speed) {
@@ -122,6 +121,26 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
 }
 
+CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool moves) {
+  // When the adaptive patch moves, the step runs on spare_ and carries the history over from mesh_
+  // along the strips as it marches (AlongStripMap) into remapped_; settlePatch() then swaps.
+  const PatchMesh& mesh = moves ? spare_ : mesh_;
+  parabolicBound(mesh, h.a, h.b, in.fz, p_.mu, &field_.bound);
+  if (!(in.dt > 0.0)) {
+    if (moves) remapAlongStrips(carry_, state_, mesh_.ny(), &remapped_);
+    return integrateTraction(mesh, field_);  // no time has passed: the history stands
+  }
+  const Creepages c{in.xi, in.eta, in.phi};
+  keepRatePerTravel(in.V);
+  chooseFilters(c, h.a, h.b, in.V, in.dt);
+  const Flexibilities L = kalkerFlexibilities(h.a, h.b, p_.G, kalker_);
+  const double r = historyScale(h.a);
+  lastA_ = h.a;
+  return moves ? transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, carry_, state_, &remapped_,
+                                  &field_)
+               : transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, &state_, &field_);
+}
+
 StepInput NssModel::faceTravel(const StepInput& in) {
   const bool backwards = in.V < 0.0;
   if (backwards != mirrored_) {
@@ -134,8 +153,7 @@ StepInput NssModel::faceTravel(const StepInput& in) {
   return backwards ? mirroredInput(in) : in;
 }
 
-bool NssModel::prepare(const StepInput& given, bool carry, StepInput* in, HertzEllipse* h,
-                       StepOutput* out) {
+bool NssModel::screen(const StepInput& given, StepInput* in, HertzEllipse* h, StepOutput* out) {
   if (screenStep(given, out)) {
     if (out->status == StepStatus::kNoLoad) reset();  // loss of contact clears the history
     return false;
@@ -146,15 +164,6 @@ bool NssModel::prepare(const StepInput& given, bool carry, StepInput* in, HertzE
   }
   *in = faceTravel(given);  // V < 0: the mirror image rolls forwards
   *h = ref_.at(in->fz);
-  double a = 0.0, b = 0.0;
-  if (carry) {
-    followPatch(*h);
-    keepDisplacement(h->a);
-  } else {  // the caller overwrites the history
-    if (meshFor(*h, &a, &b)) mesh_.scale(a, b);
-    lastA_ = h->a;
-  }
-  parabolicBound(mesh_, h->a, h->b, in->fz, p_.mu, &field_.bound);
   return true;
 }
 
@@ -171,10 +180,14 @@ StepOutput NssModel::settle(const StepInput& given) {
   StepOutput out;
   StepInput in;
   HertzEllipse h;
-  if (!prepare(given, false, &in, &h, &out)) return out;
+  if (!screen(given, &in, &h, &out)) return out;
+  double a = 0.0, b = 0.0;
+  if (meshFor(h, &a, &b)) mesh_.scale(a, b);  // no carry: the history is overwritten below
+  parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_.bound);
   const Creepages c{in.xi, in.eta, in.phi};
   updateWeights(c, h.a, h.b);
   lastSpeed_ = in.V;
+  lastA_ = h.a;
   const CreepForces f =
       steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, &field_);
   // Under constant input the time-term march's fixed point is this traction with the filter at
@@ -201,17 +214,10 @@ StepOutput NssModel::step(const StepInput& given) {
   StepOutput out;
   StepInput in;
   HertzEllipse h;
-  if (!prepare(given, true, &in, &h, &out)) return out;
-  CreepForces f;
-  if (in.dt > 0.0) {
-    const Creepages c{in.xi, in.eta, in.phi};
-    keepRatePerTravel(in.V);
-    chooseFilters(c, h.a, h.b, in.V, in.dt);
-    f = transientFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, in.V, in.dt, zx_,
-                         zy_, &state_, &field_);
-  } else {
-    f = integrateTraction(mesh_, field_);  // no time has passed: the history stands
-  }
+  if (!screen(given, &in, &h, &out)) return out;
+  const bool moves = patchMoves(h);
+  const CreepForces f = advance(in, h, moves);
+  if (moves) settlePatch();
   return finish(f, in, h);
 }
 

@@ -1,5 +1,6 @@
 #include "wheel_rail_contact/transient_fastsim.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace wheel_rail_contact {
@@ -20,54 +21,164 @@ void TransientState::clear() {
 
 namespace {
 
-// One direction's time term for this step. At a node the adhesion guess solves
-// tau (1 + h beta) = tau_up + h beta tau_old - h (s_old / V + D), beta = b0 / (V dt); the filter
-// state then advances from the final (saturated) traction.
-struct Direction {
-  FilterZ z;
-  double beta, invV, invDt;
+// One direction's time term for this step (method-notes section 4, Tustin filter in transposed
+// direct form II). The stored history (tau_old, s_old) is read times r, the history scale (the
+// caller's rescaling to the current patch, see NssModel), so no pass over it is needed. At a node
+// the adhesion guess solves
+//   tau (1 + h beta) = tau_up + h (beta r tau_old - r s_old / V - drive),  beta = b0 / (V dt),
+// and the filter state advances from the final (saturated) traction, g = (tau - r tau_old) / dt:
+//   s = b1 g - a1 (b0 g + r s_old) = rate tau - rate r tau_old - a1 r s_old.
+struct TimeTerm {
+  double beta, lagPerLength, rate, rateOld, poleOld;
+  TimeTerm(const FilterZ& z, double V, double dt, double r)
+      // A negative b0 (not produced by a fitted table) would make 1 + h beta vanish: clamp at
+      // zero, i.e. drop the time term rather than divide by zero.
+      : beta(std::max(0.0, z.b0) / (V * dt)),
+        lagPerLength(r / V),
+        rate((z.b1 - z.a1 * z.b0) / dt),
+        rateOld(rate * r),
+        poleOld(z.a1 * r) {}
   double nextState(double tau, double old, double s) const {
-    const double g = (tau - old) * invDt;
-    return z.b1 * g - z.a1 * (z.b0 * g + s);
+    return rate * tau - rateOld * old - poleOld * s;
   }
 };
+
+// One direction's adhesion guess for a step of length h along a strip, every factor that does not
+// change along the strip folded in:  tau = history + decay tau_up, with
+// history = memory tau_old - lag s_old - push (push: the rigid slip over L, times h).
+struct Guess {
+  double decay, memory, lag, push;
+  Guess(const TimeTerm& T, double r, double h, double drive)
+      : decay(1.0 / (1.0 + h * T.beta)),
+        memory(h * T.beta * r * decay),
+        lag(h * T.lagPerLength * decay),
+        push(h * drive * decay) {}
+  double history(double old, double s) const { return memory * old - lag * s - push; }
+};
+
+// Both directions' guesses on one strip for a step h. Spin drives y linearly in x; over a step it
+// is taken at the step's midpoint x + h/2 (exact for a linear term): push_y = p0 + pushPerXn x/a.
+struct StripStep {
+  Guess x, y;
+  double pushPerXn;
+  StripStep(const TimeTerm& X, const TimeTerm& Y, double r, double h, double driveX, double gy,
+            double gphi, double a)
+      : x(X, r, h, driveX), y(Y, r, h, gy + 0.5 * h * gphi), pushPerXn(h * gphi * a * y.decay) {}
+};
+
+// A node's history as the march reads it.
+struct History {
+  double tx, ty, sx, sy;
+};
+
+// The history in place: node k of the state the march also writes.
+struct InPlace {
+  const TransientState& s;
+  void strip(int) {}
+  History at(int k, int) const { return {s.tx(k), s.ty(k), s.sx(k), s.sy(k)}; }
+};
+
+// The history of the previous patch, carried along the strips (AlongStripMap) node by node as the
+// march reads it: no pass of its own, and the old state is read where the march needs it.
+struct AlongStrips {
+  const AlongStripMap& map;
+  const TransientState& s;
+  int first = 0;  // the strip's first node (old and new patch share the layout)
+  void strip(int j) { first = j * map.nodes(); }
+  History at(int, int i) const {
+    const int k = first + map.index(i);
+    const Eigen::Array2d c = map.weights(i);
+    return {AlongStripMap::read(&s.tx(k), c), AlongStripMap::read(&s.ty(k), c),
+            AlongStripMap::read(&s.sx(k), c), AlongStripMap::read(&s.sy(k), c)};
+  }
+};
+
+template <class Source>
+CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c, double V,
+                  double dt, const FilterZ& zx, const FilterZ& zy, double historyScale,
+                  Source history, TransientState* st, TractionField* f) {
+  const double r = historyScale;
+  const TimeTerm X(zx, V, dt, r), Y(zy, V, dt, r);
+  const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
+  double *const oldX = st->tx.data(), *const oldY = st->ty.data();
+  double *const sX = st->sx.data(), *const sY = st->sy.data();
+  const double* const xn = mesh.xNorms().data();
+  const FieldPointers out(f);
+  ForceSums sums;
+  for (int j = 0; j < mesh.ny(); ++j) {
+    const double dx = mesh.stripStep(j), driveX = gx - gphi * mesh.stripY(j);
+    double tx = 0.0, ty = 0.0;
+    StripSums strip;
+    history.strip(j);
+    const int first = mesh.index(0, j), end = first + mesh.nx();
+    // The upstream traction enters last: it is the only operand on the march's serial chain.
+    auto node = [&](int k, const StripStep& m) {
+      const History o = history.at(k, k - first);
+      tx = m.x.history(o.tx, o.sx) + m.x.decay * tx;
+      ty = (m.y.history(o.ty, o.sy) - m.pushPerXn * xn[k]) + m.y.decay * ty;
+      strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
+      sX[k] = X.nextState(tx, o.tx, o.sx);
+      sY[k] = Y.nextState(ty, o.ty, o.sy);
+      oldX[k] = tx;
+      oldY[k] = ty;
+    };
+    node(first, StripStep(X, Y, r, 0.5 * dx, driveX, gy, gphi, a));  // half step from the edge
+    const StripStep full(X, Y, r, dx, driveX, gy, gphi, a);
+    for (int k = first + 1; k < end; ++k) node(k, full);
+    sums.addStrip(mesh, j, strip);
+  }
+  return sums.forces();
+}
 
 }  // namespace
 
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
-                             TransientState* st, TractionField* f) {
-  // A negative b0 (not produced by a fitted table) would make 1 + h beta vanish: clamp at zero,
-  // i.e. drop the time term rather than divide by zero.
-  const Direction X{zx, std::max(0.0, zx.b0) / (V * dt), 1.0 / V, 1.0 / dt};
-  const Direction Y{zy, std::max(0.0, zy.b0) / (V * dt), 1.0 / V, 1.0 / dt};
-  const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3;
-  ForceSums sums;
-  for (int j = 0; j < mesh.ny(); ++j) {
-    const double dx = mesh.stripStep(j), aj = mesh.stripHalfLength(j);
-    const double sx = gx - gphi * mesh.stripY(j);
-    double tx = 0.0, ty = 0.0;
-    StripSums strip;
-    // 1 / (1 + h beta) for the half step at the leading edge and the full steps after it.
-    const double ix[2] = {1.0 / (1.0 + 0.5 * dx * X.beta), 1.0 / (1.0 + dx * X.beta)};
-    const double iy[2] = {1.0 / (1.0 + 0.5 * dx * Y.beta), 1.0 / (1.0 + dx * Y.beta)};
-    for (int i = 0; i < mesh.nx(); ++i) {
-      const int k = mesh.index(i, j);
-      const int full = i > 0;
-      const UpstreamStep step(i, dx, aj);
-      const double h = step.h, xMid = step.xMid;
-      const double ox = st->tx(k), oy = st->ty(k), qx = st->sx(k), qy = st->sy(k);
-      tx = (tx + h * (X.beta * ox - qx * X.invV - sx)) * ix[full];
-      ty = (ty + h * (Y.beta * oy - qy * Y.invV - gy - gphi * xMid)) * iy[full];
-      strip.node(k, mesh.xNorms()(k), f->bound(k), &tx, &ty, f);
-      st->sx(k) = X.nextState(tx, ox, qx);
-      st->sy(k) = Y.nextState(ty, oy, qy);
-      st->tx(k) = tx;
-      st->ty(k) = ty;
-    }
-    sums.addStrip(mesh, j, strip);
+                             double historyScale, TransientState* st, TractionField* f) {
+  return march(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{*st}, st, f);
+}
+
+CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
+                             double V, double dt, const FilterZ& zx, const FilterZ& zy,
+                             double historyScale, const AlongStripMap& map,
+                             const TransientState& previous, TransientState* st, TractionField* f) {
+  return march(mesh, L, c, V, dt, zx, zy, historyScale, AlongStrips{map, previous}, st, f);
+}
+
+AlongStripMap::AlongStripMap(int nx) : index_(nx, 0), weights_(2, nx) {}
+
+void AlongStripMap::set(double ratio) {
+  // New node i sits at t_i = 1 - (2i + 1)/nx of its strip (t = x / a_j); at fixed x its old t is
+  // ratio t_i, i.e. old node index r = r0 + i dr.
+  const int nx = nodes();
+  const double r0 = ((1.0 - ratio * (1.0 - 1.0 / nx)) * nx - 1.0) * 0.5, dr = ratio;
+  for (int i = 0; i < nx; ++i) {
+    // f is r's offset from node i0 (r clamped into the strip). Inside, the weights are (1 - f, f);
+    // the strip's ends lie half an element beyond its first and last node and carry zero
+    // traction, so towards them the weight falls to zero over that half element (c0 = 1 + 2f for
+    // f < 0, c1 = 3 - 2f for f > 1); beyond the ends both are zero.
+    const double r = std::min(std::max(r0 + i * dr, -1.0), double(nx));
+    index_[i] = std::min(static_cast<int>(std::max(r, 0.0)), nx - 2);
+    const double f = r - index_[i];
+    weights_.col(i) =
+        Eigen::Array2d(1.0 - f, f).min(Eigen::Array2d(1.0 + 2.0 * f, 3.0 - 2.0 * f)).max(0.0);
   }
-  return sums.forces();
+}
+
+void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int strips,
+                      TransientState* out) {
+  AlongStrips source{map, in};
+  for (int j = 0; j < strips; ++j) {
+    source.strip(j);
+    for (int i = 0; i < map.nodes(); ++i) {
+      const History h = source.at(0, i);
+      const int k = j * map.nodes() + i;
+      out->tx(k) = h.tx;
+      out->ty(k) = h.ty;
+      out->sx(k) = h.sx;
+      out->sy(k) = h.sy;
+    }
+  }
 }
 
 namespace {

@@ -59,3 +59,82 @@ TEST(RemapState, GrowingPatchGivesZeroOutsideTheOldOne) {
   EXPECT_NEAR(out.tx(grown.index(5, 5)), 5.0, 1e-12);
   EXPECT_LE(out.tx.maxCoeff(), 5.0 + 1e-12);
 }
+
+TEST(AlongStripMap, SameSizeIsTheIdentity) {
+  const PatchMesh m(12, 10, 6e-3, 4e-3);
+  const TransientState in = linearField(m);
+  AlongStripMap map(m.nx());
+  map.set(1.0);
+  TransientState out;
+  out.resize(m.size());
+  remapAlongStrips(map, in, m.ny(), &out);
+  EXPECT_LT((out.tx - in.tx).abs().maxCoeff(), 1e-15);
+  EXPECT_LT((out.ty - in.ty).abs().maxCoeff(), 1e-15);
+  EXPECT_LT((out.sx - in.sx).abs().maxCoeff(), 1e-15);
+}
+
+TEST(AlongStripMap, CarriesAlongStripsAtFixedXAndKeepsEachStrip) {
+  const PatchMesh big(40, 40, 6e-3, 4e-3);
+  PatchMesh small = big;
+  small.scale(0.9 * 6e-3, 0.9 * 4e-3);
+  AlongStripMap map(big.nx());
+  map.set(0.9);
+  TransientState out;
+  out.resize(small.size());
+  remapAlongStrips(map, linearField(big), big.ny(), &out);
+  for (int j = 0; j < 40; ++j)
+    for (int i = 4; i < 36; ++i) {
+      // Along the strip: the linear field at the new node's own x.
+      EXPECT_NEAR(out.tx(small.index(i, j)), small.nodeX(i, j), 1e-15) << i << "," << j;
+      // Across strips: strip j keeps strip j's history (its old y).
+      EXPECT_NEAR(out.ty(small.index(i, j)), 2.0 * big.stripY(j), 1e-15) << i << "," << j;
+    }
+}
+
+TEST(AlongStripMap, GrowingPatchGivesZeroBeyondTheOldStripEnds) {
+  const PatchMesh m(10, 10, 6e-3, 4e-3);
+  TransientState in;
+  in.resize(m.size());
+  in.tx.setConstant(5.0);
+  AlongStripMap map(m.nx());
+  map.set(2.0);
+  TransientState out;
+  out.resize(m.size());
+  remapAlongStrips(map, in, m.ny(), &out);
+  for (int j = 0; j < m.ny(); ++j) {
+    EXPECT_EQ(out.tx(m.index(0, j)), 0.0);  // the leading node of the grown strip lies outside
+    EXPECT_EQ(out.tx(m.index(9, j)), 0.0);  // and so does the trailing one
+    EXPECT_NEAR(out.tx(m.index(5, j)), 5.0, 1e-12);
+  }
+  EXPECT_LE(out.tx.maxCoeff(), 5.0 + 1e-12);
+  EXPECT_GE(out.tx.minCoeff(), 0.0);
+}
+
+TEST(AlongStripMap, FusedStepEqualsCarryThenStepBitForBit) {
+  PatchMesh old(14, 12, 6e-3, 4e-3), now = old;
+  now.scale(1.03 * 6e-3, 1.03 * 4e-3);
+  TransientState previous = linearField(old);
+  previous.tx *= 1e6;
+  previous.sy.setConstant(-3e5);
+  AlongStripMap map(old.nx());
+  map.set(now.a() / old.a());
+  const Flexibilities L = kalkerFlexibilities(now.a(), now.b(), 8.2e10, {4.1, 3.6, 1.4});
+  const Creepages c{1e-3, -5e-4, 0.7};
+  const FilterZ zx = discretise({0.4, 1.1, 0.6}, now.a(), 20.0, 5e-5);
+  const FilterZ zy = discretise({0.5, 1.0, 0.7}, now.a(), 20.0, 5e-5);
+  TractionField fused, separate;
+  fused.resize(now.size());
+  parabolicBound(now, now.a(), now.b(), 8e4, 0.3, &fused.bound);
+  separate = fused;
+  TransientState a, b;
+  a.resize(now.size());
+  b.resize(now.size());
+  const CreepForces fa =
+      transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, map, previous, &a, &fused);
+  remapAlongStrips(map, previous, old.ny(), &b);
+  const CreepForces fb = transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, &b, &separate);
+  EXPECT_EQ(fa.fx, fb.fx);
+  EXPECT_EQ(fa.fy, fb.fy);
+  EXPECT_EQ(fa.mz, fb.mz);
+  EXPECT_TRUE((a.tx == b.tx).all() && (a.sy == b.sy).all());
+}

@@ -1,0 +1,38 @@
+// The step inputs shared by bench_fastsim (wall clock) and step_cost (instruction counts), so both
+// measure the same scene.
+#pragma once
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "wheel_rail_contact/nss_model.hpp"
+#include "wheel_rail_contact/steady_model.hpp"
+
+namespace wheel_rail_contact {
+namespace bench {
+
+// Partial slip, combined creepages, and (when varyLoad) a load that changes every step.
+inline StepInput input(int k, bool varyLoad) {
+  const double q = 20.0 * 5e-5 * k;
+  return {5e-5,
+          20.0,
+          1.5e-3 * std::cos(2 * M_PI * q / 0.09),
+          0.8e-3 * std::sin(2 * M_PI * q / 0.05),
+          1.0,
+          8e4 * (varyLoad ? 1.0 + 0.25 * std::sin(2 * M_PI * q / 0.12) : 1.0)};
+}
+
+// model: steady, shen-li or nss; mesh: fixed or adaptive; n x n nodes.
+inline std::unique_ptr<ContactModel> makeModel(const std::string& model, const std::string& mesh,
+                                               int n) {
+  ContactParameters p;
+  p.model = model;
+  p.mesh = mesh;
+  p.nx = p.ny = n;
+  if (p.model == "steady") return std::make_unique<SteadyModel>(p);
+  return std::make_unique<NssModel>(p, ChiTable::uniform({0.4, 1.1, 0.6}));
+}
+
+}  // namespace bench
+}  // namespace wheel_rail_contact
