@@ -30,6 +30,7 @@ class SteadinessMonitor {
   bool primed_ = false;
   double fx_ = 0.0, fy_ = 0.0, fz_ = 0.0;  // previous linear force (per G a b) and load
   double slope_ = 0.0, size_ = 0.0, load_ = 0.0, estimate_ = 0.0;
+  double lastDq_ = 0.0, fade_ = 1.0;  // envelope decay over the last step's travel
 };
 
 class AutoModel : public ContactModel {

@@ -1,9 +1,9 @@
 /// The non-steady FastSim models behind ContactModel: "shen-li" (time term with the static
 /// flexibilities, F == 1) and "nss" (Alonso & Gimenez dynamic flexibility with the weighted chi of
 /// Guiral et al. 2013, eq. 15), on a fixed mesh (sized for fz_max) or an adaptive one (follows
-/// a(t), b(t), history remapped by eq. 19) or an "auto" one (held while the patch stays within a
-/// narrow band under it, remapped only when the patch leaves the band). V < 0 marches the mirror
-/// image, the history mirrored at each reversal (rolling_direction.hpp). Units as in
+/// a(t), b(t), history carried along the strips). Mesh "auto" is the adaptive one: a fixed mesh
+/// fitted to the patch while the load is constant, moved only when it changes. V < 0 marches the
+/// mirror image, the history mirrored at each reversal (rolling_direction.hpp). Units as in
 /// contact_model.hpp.
 #pragma once
 
@@ -57,7 +57,6 @@ class NssModel : public ContactModel {
   ReferencePatch ref_;
   CreepCoefficients kalker_;
   bool adaptive_ = false;
-  double band_ = 0.0;     // mesh "auto": relative margin of the mesh over the patch (else 0)
   bool dynamic_ = false;  // nss (else shen-li)
   ChiParameters chi_[3];  // kinds 11, 22, 23 at this a/b (a/b does not change with load)
   PatchMesh mesh_, spare_;

@@ -52,7 +52,7 @@ std::vector<ParameterDoc> parameterDocs() {
       {"ny", "-", std::to_string(d.ny), "FastSim strips, [1, 400]"},
       {"model", "", d.model, "steady | shen-li | nss | exact | auto (steady or nss, as needed)"},
       {"mesh", "", d.mesh,
-       "fixed (grid for fz_max) | adaptive (grid follows the patch) | auto (remap when needed)"},
+       "fixed (grid for fz_max) | adaptive (grid follows the patch) | auto (= adaptive)"},
       {"tolerance", "-", str(d.tolerance),
        "model auto: force error allowed, fraction of the peak force, (0, 1)"},
       {"fz_max", "N", str(d.fz_max), "largest load the fixed mesh covers; 0 = 1.5 fz0"},

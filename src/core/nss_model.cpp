@@ -6,24 +6,16 @@
 
 namespace wheel_rail_contact {
 
-namespace {
-// Mesh "auto": the mesh stands 2 % proud of the patch and is kept until the patch outgrows it or
-// shrinks 4 % inside it. A load varying by +-25 % (a by +-8 %) then moves it a few times a period
-// instead of every step: cheaper, and less interpolation smearing of the history.
-constexpr double kMeshBand = 0.02;
-}  // namespace
-
 NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
     : p_(p),
       ref_{p.a0, p.b0, p.fz0},
       kalker_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
-      adaptive_(p.mesh != "fixed"),
-      band_(p.mesh == "auto" ? kMeshBand : 0.0),
+      adaptive_(p.mesh != "fixed"),  // "auto": fitted to the patch, moved only when fz changes
       dynamic_(p.model == "nss") {
   for (int k = 0; k < 3; ++k)
     chi_[k] = dynamic_ ? chi.at(static_cast<CreepageKind>(k), p.a0 / p.b0) : ChiParameters{};
   const HertzEllipse largest = ref_.at(adaptive_ ? p.fz0 : effectiveFzMax(p));
-  mesh_ = PatchMesh(p.nx, p.ny, largest.a * (1.0 + band_), largest.b * (1.0 + band_));
+  mesh_ = PatchMesh(p.nx, p.ny, largest.a, largest.b);
   spare_ = mesh_;
   state_.resize(mesh_.size());
   remapped_.resize(mesh_.size());
@@ -46,7 +38,7 @@ void NssModel::reset() {
   lastA_ = 0.0;
   lastSpeed_ = 0.0;
   mirrored_ = false;
-  if (adaptive_) mesh_.scale(ref_.a0 * (1.0 + band_), ref_.b0 * (1.0 + band_));
+  if (adaptive_) mesh_.scale(ref_.a0, ref_.b0);
 }
 
 StepOutput NssModel::hold(StepStatus status, const char* why) const {
@@ -57,11 +49,10 @@ StepOutput NssModel::hold(StepStatus status, const char* why) const {
 }
 
 bool NssModel::meshFor(const HertzEllipse& h, double* a, double* b) const {
-  if (!adaptive_) return false;
-  if (band_ > 0.0 && h.a <= mesh_.a() && h.a * (1.0 + 2.0 * band_) >= mesh_.a()) return false;
-  *a = h.a * (1.0 + band_);
-  *b = h.b * (1.0 + band_);
-  return *a != mesh_.a() || *b != mesh_.b();
+  if (!adaptive_ || (h.a == mesh_.a() && h.b == mesh_.b())) return false;
+  *a = h.a;
+  *b = h.b;
+  return true;
 }
 
 bool NssModel::patchMoves(const HertzEllipse& h) {

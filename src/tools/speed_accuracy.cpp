@@ -47,7 +47,7 @@ struct Options {
                                      "nss:adaptive", "exact",   "auto:auto"};
   std::vector<int> meshes = {5, 10, 20, 30, 40}, exactMeshes = {10, 20};
   // auto picks its own mesh: it runs once per tolerance instead of once per mesh.
-  std::vector<double> tolerances = {0.1, 0.05, 0.035};
+  std::vector<double> tolerances = {0.1, 0.05};
   int grid = 40, loadGrid = 30, periods = 3, repeats = 7;
   std::vector<std::pair<std::string, std::string>> overrides;  // --set NAME=VALUE
   bool refresh = false;
