@@ -89,16 +89,21 @@ StepOutput ExactModel::step(const StepInput& in) {
     const double dx = solver_.grid().dx;
     const double travel = 0.5 * (prev_.V + in.V) * in.dt;
     const double total = carry_ + travel;
-    const long n = static_cast<long>(std::floor(total / dx));
+    const double elements = std::floor(total / dx);
     const long cap = 10L * solver_.grid().mx;
+    // Compared in double first: a long travel (e.g. 1e12 m) would overflow the cast to long (UB).
+    // Clamped, sub-step k stands for element k + skip of the travel.
+    const long n = elements > 2.0 * cap ? 2 * cap : static_cast<long>(elements);
+    const double skip = elements - static_cast<double>(n);
     long first = 1;
     if (n > cap) {
       first = n - cap + 1;
       solver_.clearHistory();
     }
     for (long k = first; k <= n; ++k)  // the last one takes the row's own input
-      subStep(k == n ? in : lerp(prev_, in, (k * dx - carry_) / travel));
-    carry_ = total - n * dx;
+      subStep(k == n ? in : lerp(prev_, in, ((k + skip) * dx - carry_) / travel));
+    // After a clamped (restarted) travel the remainder's rounding exceeds dx: start on a node.
+    carry_ = elements > 2.0 * cap ? 0.0 : total - n * dx;
     if (n > 0) {
       const HalfspaceSolution& s = solver_.solution();
       last_.fx = s.fx;

@@ -101,7 +101,7 @@ StepOutput NssModel::step(const StepInput& in) {
     f = transientFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, in.V, in.dt, zx_,
                          zy_, &state_, &field_);
   } else {
-    f = integrateTraction(mesh_, field_);  // no time has passed: the history stands
+    f = holdTraction(mesh_, &state_, &field_);  // no time has passed: the history stands
   }
   out = stepOutput(f, in.fz, h.a, h.b);
   if (!adaptive_ && (h.a > mesh_.a() * (1 + 1e-12)))
