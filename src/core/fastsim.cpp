@@ -58,9 +58,12 @@ void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double
 
 void StripSums::node(int k, double xn, double g, double* tx, double* ty, TractionField* f) {
   const double t2 = *tx * *tx + *ty * *ty;
-  const bool slips = t2 > g * g;
+  // Below about 1e-150 Pa the squares underflow to 0 and a traction above a zero bound stayed
+  // (found by fuzzing): measure |t| by hypot there.
+  const double t = t2 > 1e-300 ? std::sqrt(t2) : std::hypot(*tx, *ty);
+  const bool slips = t > g;
   if (slips) {
-    const double s = g / std::sqrt(t2);
+    const double s = g / t;
     *tx *= s;
     *ty *= s;
   }

@@ -95,7 +95,9 @@ StepOutput NssModel::step(const StepInput& in) {
   keepDisplacement(h.a);
   parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_.bound);
   CreepForces f;
-  if (in.dt > 0.0) {
+  // Travel below 1e-9 a is no travel (a subnormal V made 1 / (V dt) infinite: NaN, found by
+  // fuzzing): the step then holds the history as dt = 0 does.
+  if (in.dt > 0.0 && in.V * in.dt > 1e-9 * h.a) {
     const Creepages c{in.xi, in.eta, in.phi};
     chooseFilters(c, h.a, h.b, in.V, in.dt);
     f = transientFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, in.V, in.dt, zx_,

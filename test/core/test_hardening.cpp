@@ -6,6 +6,7 @@
 
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/exact_model.hpp"
+#include "wheel_rail_contact/fastsim.hpp"
 #include "wheel_rail_contact/nss_model.hpp"
 
 using namespace wheel_rail_contact;
@@ -86,4 +87,40 @@ TEST(Hardening, ExactModelLongTravelRestartsFromRest) {
   const StepOutput o = m.step({1e12, 1e12, 2e-3, 0.0, 0.0, 8e4});
   EXPECT_EQ(m.subSteps(), 10 * 6);
   EXPECT_TRUE(std::isfinite(o.fx) && o.fx < 0.0);
+}
+
+// A subnormal V (travel V dt far below the patch) made the time term 1 / (V dt) infinite: NaN.
+TEST(Hardening, NegligibleTravelHoldsTheHistory) {
+  for (const char* mesh : {"fixed", "adaptive"}) {
+    auto m = makeContactModel(params("shen-li", mesh, 8));
+    const StepOutput a = m->step({1e-3, 20.0, 0.05, 0.0, 0.0, 2e4});
+    const StepOutput b = m->step({0.08, 8e-317, 0.05, 0.0, 0.0, 2e4});
+    ASSERT_EQ(b.status, StepStatus::kOk);
+    EXPECT_EQ(a.fx, b.fx) << mesh;
+  }
+}
+
+// A light load on an even grid: the patch held no element centre and step() threw (the model
+// contract is never to throw for input); now the central elements carry it.
+TEST(Hardening, ExactModelPatchSmallerThanAnElement) {
+  ContactParameters p = params("exact", "fixed", 4);
+  auto m = makeContactModel(p);
+  m->step({1e-3, 20.0, 2e-3, 0.0, 0.0, 8e4});
+  StepOutput o;
+  ASSERT_NO_THROW(o = m->step({1e-3, 20.0, 2e-3, 0.0, 0.0, 78.125}));
+  EXPECT_EQ(o.status, StepStatus::kOk);
+  EXPECT_LE(std::hypot(o.fx, o.fy), p.mu * 8e4);
+  EXPECT_TRUE(std::isfinite(o.fx));
+}
+
+// A traction of 1e-200 Pa squared underflows to 0: it was kept at a node whose bound is 0.
+TEST(Hardening, SubnormalTractionSaturatesAtAZeroBound) {
+  TractionField f;
+  f.resize(1);
+  StripSums strip;
+  double tx = 1e-200, ty = -1e-200;
+  strip.node(0, 0.0, 0.0, &tx, &ty, &f);
+  EXPECT_EQ(f.tx(0), 0.0);
+  EXPECT_EQ(f.ty(0), 0.0);
+  EXPECT_TRUE(f.slip(0));
 }

@@ -34,10 +34,14 @@ class Encoder:
         self.pick(3)  # raw bits: ConsumeIntegral<uint64_t> takes the most significant byte first
         self.choices.extend(struct.pack(">d", x))
 
-    def maybe(self, x):
+    def param(self, x):  # Decoder::param, raw bits (case 2); x within 2^+-30 of the default
         self.flag(x is not None)
-        if x is not None:
-            self.value(x)
+        if isinstance(x, tuple):  # ("special", k): kSpecial[k] * default (0, -1, NaN, Inf)
+            self.pick(1)
+            self.pick(x[1])
+        elif x is not None:
+            self.pick(2)
+            self.choices.extend(struct.pack(">d", x))
 
     def data(self):
         return bytes(reversed(self.choices))
@@ -58,10 +62,10 @@ def encode(model="steady", mesh="fixed", nx=20, ny=20, params=None, steps=(), ch
     if ny < 1:
         e.pick(1 - ny)
     for name in ["G", "nu", "mu", "a0", "b0", "fz0"]:
-        e.maybe(params.get(name))
+        e.param(params.get(name))
     e.flag("fz_max" in params)
     if "fz_max" in params:
-        e.value(params["fz_max"])
+        e.param(params["fz_max"])
     e.pick(15 if chi_missing else 0)
     e.pick(len(steps))
     for s in steps:
@@ -127,13 +131,13 @@ def step_seeds():
     seeds["mesh_ny0_invalid"] = encode("nss", "fixed", 20, 0, steps=[{}])
     seeds["mesh_60x60_nss"] = encode("nss", "adaptive", 60, 60, steps=[{}, dict(fz=1.2e5)])
     seeds["mesh_2x1_shenli"] = encode("shen-li", "fixed", 2, 1, steps=[{}, {}, dict(phi=3.0)])
-    seeds["mu_zero"] = encode("nss", "fixed", 10, 10, dict(mu=0.0), steps=[{}, {}])
+    seeds["mu_zero"] = encode("nss", "fixed", 10, 10, dict(mu=("special", 0)), steps=[{}, {}])
     seeds["a_over_b_10"] = encode("nss", "adaptive", 10, 10, dict(a0=0.04, b0=0.004),
                                   steps=[{}, dict(fz=4e4)])
     seeds["a_over_b_0.1"] = encode("shen-li", "fixed", 10, 10, dict(a0=0.0004, b0=0.004),
                                    steps=[{}, dict(fz=4e4)])
     seeds["nu_half"] = encode("steady", "fixed", 10, 10, dict(nu=0.5), steps=[{}])
-    seeds["G_nan_invalid"] = encode("steady", "fixed", 10, 10, dict(G=nan), steps=[{}])
+    seeds["G_nan_invalid"] = encode("steady", "fixed", 10, 10, dict(G=("special", 2)), steps=[{}])
     seeds["fz_max_small"] = encode("nss", "fixed", 10, 10, dict(fz_max=1e3), steps=[{}, {}])
     seeds["exact_fz_above_max"] = encode("exact", "fixed", 4, 4, dict(fz_max=9e4),
                                          steps=[{}, dict(fz=1e5), {}])
