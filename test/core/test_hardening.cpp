@@ -124,3 +124,11 @@ TEST(Hardening, SubnormalTractionSaturatesAtAZeroBound) {
   EXPECT_EQ(f.ty(0), 0.0);
   EXPECT_TRUE(f.slip(0));
 }
+
+// A subnormal creepage made the exact solver's slip solve NaN.
+TEST(Hardening, ExactModelSubnormalCreepage) {
+  auto m = makeContactModel(params("exact", "fixed", 6));
+  m->step({1e-3, 10.0, 2e-3, 0.0, 0.0, 8e4});
+  const StepOutput o = m->step({1e-3, 10.0, 1.9e-314, 0.0, 0.0, 8e4});
+  EXPECT_TRUE(std::isfinite(o.fx) && std::isfinite(o.fy) && std::isfinite(o.mz));
+}
