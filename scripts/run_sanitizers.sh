@@ -10,6 +10,9 @@ cd "$here"
 junit=""
 [ "${1:-}" = "--junit" ] && junit="$2"
 export PATH="/usr/bin:$PATH"
+# Called from run_tests.sh with build/devel sourced: its LD_LIBRARY_PATH would load the Release
+# libraries into the sanitized tests (a false heap-buffer-overflow report); start clean.
+unset LD_LIBRARY_PATH CMAKE_PREFIX_PATH ROS_PACKAGE_PATH PKG_CONFIG_PATH ROS_ROOT ROS_DISTRO
 dir=build-asan
 jobs="${WRC_JOBS:-$(nproc)}"
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"

@@ -43,8 +43,8 @@ TEST(Hardening, HeldTractionAtTheSameLoadIsThePreviousStep) {
   auto m = makeContactModel(params("nss", "adaptive", 12));
   const StepOutput a = m->step({1e-3, 20.0, 2e-3, 1e-3, 1.0, 8e4});
   const StepOutput b = m->step({0.0, 20.0, 2e-3, 1e-3, 1.0, 8e4});
-  EXPECT_EQ(a.fx, b.fx);
-  EXPECT_EQ(a.fy, b.fy);
+  EXPECT_NEAR(a.fx, b.fx, 1e-12 * std::abs(a.fx));
+  EXPECT_NEAR(a.fy, b.fy, 1e-12 * std::abs(a.fy));
   EXPECT_EQ(a.adhesionFraction, b.adhesionFraction);
 }
 
@@ -96,7 +96,8 @@ TEST(Hardening, NegligibleTravelHoldsTheHistory) {
     const StepOutput a = m->step({1e-3, 20.0, 0.05, 0.0, 0.0, 2e4});
     const StepOutput b = m->step({0.08, 8e-317, 0.05, 0.0, 0.0, 2e4});
     ASSERT_EQ(b.status, StepStatus::kOk);
-    EXPECT_EQ(a.fx, b.fx) << mesh;
+    // Held, up to the rounding of re-saturating the slipping nodes.
+    EXPECT_NEAR(a.fx, b.fx, 1e-12 * std::abs(a.fx)) << mesh;
   }
 }
 
