@@ -21,7 +21,7 @@ struct StepInput {
 
 enum class StepStatus {
   kOk = 0,
-  kNoLoad,        ///< fz <= 0: zero force, history cleared
+  kNoLoad,        ///< fz < kMinLoad (1e-6 N): zero force, history cleared
   kStandstill,    ///< V == 0: no travel, state and forces held
   kRejected,      ///< non-finite or out-of-range input: zero force, state untouched
   kNotConverged,  ///< an iterative solver hit its cap: forces are its last iterate, not trusted
@@ -58,12 +58,20 @@ class ContactModel {
 /// Throws std::invalid_argument for a model this build does not provide, saying so.
 std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p);
 
-/// Checks shared by every model: finite fields, dt >= 0. Returns an empty string if fine, else why.
+/// Largest magnitude of any StepInput field in SI units; beyond it input is out of range.
+constexpr double kMaxInputMagnitude = 1e12;
+/// Smallest load that makes contact [N]: below it the patch is so small that squared tractions
+/// underflow (the exact solver then returned NaN, found by fuzzing).
+constexpr double kMinLoad = 1e-6;
+
+/// Checks shared by every model: finite fields, dt >= 0, magnitudes at most kMaxInputMagnitude.
+/// Returns an empty string if fine, else why.
 std::string checkStepInput(const StepInput& in);
 
 /// The step rules every model shares (doc/conventions.md), applied before any physics: non-finite
-/// input or dt < 0 give kRejected; fz <= 0 gives kNoLoad (the caller clears its history). V < 0
-/// passes: each model rolls backwards by mirror symmetry (rolling_direction.hpp) or refuses it.
+/// or out-of-range input or dt < 0 give kRejected; fz < kMinLoad (including fz <= 0) gives kNoLoad
+/// (the caller clears its history). V < 0 passes: each model rolls backwards by mirror symmetry
+/// (rolling_direction.hpp) or refuses it.
 /// Fills `out` with zero forces and the status and returns true when the step ends there.
 bool screenStep(const StepInput& in, StepOutput* out);
 

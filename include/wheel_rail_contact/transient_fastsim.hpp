@@ -72,6 +72,12 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
 void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int strips,
                       TransientState* out);
 
+/// A step of dt = 0: no time has passed, so the traction history stands, except that it is
+/// saturated at field->bound (filled for the current load): a load that fell since must not leave
+/// traction above mu p. Writes the field (saturated nodes marked slipping, the rest keep their
+/// flag) and the saturated traction back to `state`; returns the integrated forces.
+CreepForces holdTraction(const PatchMesh& mesh, TransientState* state, TractionField* field);
+
 /// Paper eq. 19: carry the history from the patch (from.a(), from.b()) to the patch
 /// (to.a(), to.b()) of the same normalised layout by bilinear interpolation at fixed physical
 /// coordinates (linear along each strip, then across strips); traction falls to zero at the old

@@ -117,9 +117,12 @@ CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool m
   // along the strips as it marches (AlongStripMap) into remapped_; settlePatch() then swaps.
   const PatchMesh& mesh = moves ? spare_ : mesh_;
   parabolicBound(mesh, h.a, h.b, in.fz, p_.mu, &field_.bound);
-  if (!(in.dt > 0.0)) {
-    if (moves) remapAlongStrips(carry_, state_, mesh_.ny(), &remapped_);
-    return integrateTraction(mesh, field_);  // no time has passed: the history stands
+  // Travel below 1e-9 a is no travel (a subnormal V made 1 / (V dt) infinite: NaN, found by
+  // fuzzing): the step then holds the history as dt = 0 does, saturated at the current load.
+  if (!(in.dt > 0.0 && in.V * in.dt > 1e-9 * h.a)) {
+    if (!moves) return holdTraction(mesh, &state_, &field_);
+    remapAlongStrips(carry_, state_, mesh_.ny(), &remapped_);
+    return holdTraction(mesh, &remapped_, &field_);
   }
   const Creepages c{in.xi, in.eta, in.phi};
   keepRatePerTravel(in.V);

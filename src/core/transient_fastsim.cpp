@@ -181,6 +181,21 @@ void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int st
   }
 }
 
+CreepForces holdTraction(const PatchMesh& mesh, TransientState* st, TractionField* f) {
+  for (int k = 0; k < mesh.size(); ++k) {
+    const double t = std::hypot(st->tx(k), st->ty(k)), g = f->bound(k);
+    if (t > g) {
+      const double s = g / t;
+      st->tx(k) *= s;
+      st->ty(k) *= s;
+      f->slip(k) = true;
+    }
+    f->tx(k) = st->tx(k);
+    f->ty(k) = st->ty(k);
+  }
+  return integrateTraction(mesh, *f);
+}
+
 namespace {
 
 // Linear interpolation along one old strip at continuous node index r (node i at r = i): the two

@@ -1,0 +1,239 @@
+// libFuzzer target: makeContactModel(ContactParameters) then a sequence of step() / reset() on the
+// models steady, shen-li, nss (fixed and adaptive mesh) and exact (tiny grid), parameters and
+// inputs decoded from the fuzz bytes with a bias to extremes (NaN, Inf, 1e+-300, sign flips,
+// dt <= 0, fz <= 0, meshes 0..61). Findings: a crash or sanitizer report; an exception other than
+// std::invalid_argument from makeContactModel, or any exception from step()/reset(); an output
+// breaking contact_model.hpp's contract (fuzz_checks.hpp); traction above mu p at a node
+// (steady, shen-li, nss) or a total force above mu fz; reset() not giving a fresh model's output.
+#include <fuzzer/FuzzedDataProvider.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <iterator>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include "fuzz_checks.hpp"
+#include "wheel_rail_contact/contact_model.hpp"
+#include "wheel_rail_contact/nss_model.hpp"
+#include "wheel_rail_contact/steady_model.hpp"
+
+using namespace wheel_rail_contact;
+using namespace wheel_rail_contact::fuzz;
+
+namespace {
+
+// Relative slack of the Coulomb checks: the saturation rescale and the force sums round.
+constexpr double kNodeTolerance = 1e-9;
+constexpr double kForceTolerance = 1e-7;
+constexpr int kMaxSteps = 24;        // FastSim models
+constexpr int kMaxExactSteps = 4;    // exact: every step may take 10 nx sub-steps
+constexpr int kMaxFastSimMesh = 61;  // nx, ny decoded in [0, 61]: both invalid ends and beyond 60
+constexpr int kMaxExactMesh = 6;
+
+// Fuzz bytes -> values. Exhausted data decodes to the typical value, so short inputs are sane.
+class Decoder {
+ public:
+  Decoder(const uint8_t* data, size_t size) : fdp_(data, size) {}
+
+  int pick(int n) { return fdp_.ConsumeIntegralInRange<int>(0, n - 1); }
+  bool flag() { return fdp_.ConsumeBool(); }
+
+  /// Mostly `typical` scaled by a power of two, sometimes a special value or raw bits.
+  double value(double typical) {
+    static const int kExponents[] = {0, 1, -1, 2, -2, 4, -4, 10, -10, 30, -30, 100, -100, 1000};
+    static const double kSpecial[] = {0.0,
+                                      -0.0,
+                                      std::numeric_limits<double>::quiet_NaN(),
+                                      std::numeric_limits<double>::infinity(),
+                                      -std::numeric_limits<double>::infinity(),
+                                      DBL_MIN,
+                                      std::numeric_limits<double>::denorm_min(),
+                                      DBL_MAX,
+                                      -DBL_MAX,
+                                      1e-300,
+                                      1e300,
+                                      1.0,
+                                      -1.0};
+    switch (pick(4)) {
+      case 0:
+        return std::ldexp(typical, kExponents[pick(std::size(kExponents))]);
+      case 1:
+        return -std::ldexp(typical, kExponents[pick(std::size(kExponents))]);
+      case 2:
+        return kSpecial[pick(std::size(kSpecial))];
+      default: {
+        uint64_t bits = fdp_.ConsumeIntegral<uint64_t>();
+        double v;
+        std::memcpy(&v, &bits, sizeof v);
+        return v;
+      }
+    }
+  }
+
+  /// A parameter: `typical` unless the fuzzer says otherwise, then within 2^+-30 of it, or one
+  /// that validate() must refuse (negative, NaN, Inf) or 0. Not beyond 2^+-30: validate() accepts
+  /// e.g. mu = 5e-324 or G = 1e-300, for which the exact solver's arithmetic underflows (an open
+  /// finding, README "Fuzzing and sanitizers"); inputs get the full range.
+  double param(double typical) {
+    static const double kSpecial[] = {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
+                                      std::numeric_limits<double>::infinity()};
+    if (!flag()) return typical;
+    switch (pick(3)) {
+      case 0:
+        return std::ldexp(typical, pick(61) - 30);
+      case 1:
+        return kSpecial[pick(std::size(kSpecial))] * typical;
+      default: {
+        uint64_t bits = fdp_.ConsumeIntegral<uint64_t>();
+        double v;
+        std::memcpy(&v, &bits, sizeof v);
+        const double r = std::abs(v / typical);
+        return r >= std::ldexp(1.0, -30) && r <= std::ldexp(1.0, 30) ? v : typical;
+      }
+    }
+  }
+
+ private:
+  FuzzedDataProvider fdp_;
+};
+
+ContactParameters decodeParameters(Decoder& d) {
+  static const char* kModels[] = {"steady", "shen-li", "nss", "exact"};
+  ContactParameters p;
+  p.model = kModels[d.pick(4)];
+  p.mesh = d.flag() ? "adaptive" : "fixed";
+  const int maxMesh = p.model == "exact" ? kMaxExactMesh : kMaxFastSimMesh;
+  p.nx = std::min(maxMesh, 2 + d.pick(maxMesh + 1)) - (d.flag() ? d.pick(3) : 0);
+  p.ny = std::min(maxMesh, 1 + d.pick(maxMesh + 1)) - (d.flag() ? d.pick(2) : 0);
+  p.G = d.param(p.G);
+  p.nu = d.param(p.nu);
+  p.mu = d.param(p.mu);
+  p.a0 = d.param(p.a0);
+  p.b0 = d.param(p.b0);
+  p.fz0 = d.param(p.fz0);
+  p.fz_max = d.flag() ? d.param(1.2e5) : 0.0;
+  if (d.pick(16) == 15) p.chi_table = "/nonexistent/chi_table.csv";
+  return p;
+}
+
+// Each field of the next input changes with the fuzzer's say-so, else repeats: runs of steps.
+StepInput decodeInput(Decoder& d, StepInput in) {
+  if (d.flag()) in.dt = d.value(1e-3);
+  if (d.flag()) in.V = d.value(20.0);
+  if (d.flag()) in.xi = d.value(2e-3);
+  if (d.flag()) in.eta = d.value(1e-3);
+  if (d.flag()) in.phi = d.value(1.0);
+  if (d.flag()) in.fz = d.value(8e4);
+  return in;
+}
+
+std::unique_ptr<ContactModel> make(const ContactParameters& p) {
+  try {
+    return makeContactModel(p);
+  } catch (const std::invalid_argument&) {
+    return nullptr;  // invalid parameters are allowed to throw exactly this
+  } catch (const std::exception& e) {
+    finding(std::string("makeContactModel threw something else: ") + e.what());
+  }
+}
+
+StepOutput safeStep(ContactModel& m, const StepInput& in, const std::string& where) {
+  try {
+    return m.step(in);
+  } catch (const std::exception& e) {
+    finding(where + ": step() threw: " + e.what() + "\n  in: " + describe(in));
+  }
+}
+
+// Every node of a FastSim traction field within its Coulomb bound, every value finite.
+void checkField(const TractionField& f, const std::string& where) {
+  for (Eigen::Index k = 0; k < f.tx.size(); ++k) {
+    if (!std::isfinite(f.tx(k)) || !std::isfinite(f.ty(k)) || !std::isfinite(f.bound(k)) ||
+        f.bound(k) < 0.0)
+      finding(where + ": non-finite traction or bound at node " + std::to_string(k));
+    if (!withinBound(f.tx(k), f.ty(k), f.bound(k), kNodeTolerance)) {
+      char s[200];
+      std::snprintf(s, sizeof s, ": traction above mu p at node %ld: |t| = %.17g > %.17g",
+                    static_cast<long>(k), std::hypot(f.tx(k), f.ty(k)), f.bound(k));
+      finding(where + s);
+    }
+  }
+}
+
+void checkTraction(const ContactModel& m, const std::string& where) {
+  if (const auto* s = dynamic_cast<const SteadyModel*>(&m)) checkField(s->traction(), where);
+  if (const auto* n = dynamic_cast<const NssModel*>(&m)) checkField(n->traction(), where);
+}
+
+// The total force bound mu * fz, fz the largest load the forces may stem from.
+void checkForce(const StepOutput& out, double mu, double fz, const std::string& where) {
+  if (out.status == StepStatus::kRejected || out.status == StepStatus::kNoLoad) return;
+  if (!withinBound(out.fx, out.fy, mu * fz, kForceTolerance))
+    finding(where + ": force above mu fz (fz = " + std::to_string(fz) +
+            ")\n  out: " + describe(out));
+}
+
+// reset() must leave the model as a fresh one: the next two outputs equal a fresh model's.
+void checkReset(ContactModel& m, const ContactParameters& p, const StepInput& in) {
+  m.reset();
+  const auto fresh = makeContactModel(p);
+  // The exact solver keeps its factorisation and normal solution across reset() (caches, not
+  // state), so its iterative solve ends elsewhere within its tolerance (1e-8 of max |tau|): allow
+  // 1e-6 of mu fz. FastSim models must agree bit for bit.
+  const double tol = p.model == "exact" ? 1e-6 * p.mu * std::abs(in.fz) : 0.0;
+  const auto same = [tol](double x, double y, double length) {
+    return x == y || std::abs(x - y) <= tol * length;
+  };
+  for (int k = 0; k < 2; ++k) {
+    const StepOutput a = safeStep(m, in, "after reset"), b = safeStep(*fresh, in, "fresh");
+    checkOutputContract(in, a, "after reset");
+    if (a.status != b.status || !same(a.fx, b.fx, 1.0) || !same(a.fy, b.fy, 1.0) ||
+        !same(a.mz, b.mz, a.a))
+      finding("reset() differs from a fresh model\n  in: " + describe(in) +
+              "\n  reset: " + describe(a) + "\n  fresh: " + describe(b));
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  Decoder d(data, size);
+  const ContactParameters p = decodeParameters(d);
+  const std::unique_ptr<ContactModel> model = make(p);
+  if (!model) return 0;
+  const bool exact = p.model == "exact";
+  // WRC_FUZZ_TRACE=1 prints every step: reproducing a finding shows the sequence that led to it.
+  static const bool trace = std::getenv("WRC_FUZZ_TRACE") != nullptr;
+  if (trace)
+    std::fprintf(stderr, "%s/%s nx=%d ny=%d G=%g nu=%g mu=%g a0=%g b0=%g fz0=%g fz_max=%g\n",
+                 p.model.c_str(), p.mesh.c_str(), p.nx, p.ny, p.G, p.nu, p.mu, p.a0, p.b0, p.fz0,
+                 p.fz_max);
+  const int steps = d.pick((exact ? kMaxExactSteps : kMaxSteps) + 1);
+  StepInput in{1e-3, 20.0, 2e-3, 0.0, 0.0, 8e4};
+  double maxFz = 0.0;  // largest load since the history was last cleared (exact's forces lag)
+  for (int k = 0; k < steps; ++k) {
+    const std::string where = p.model + "/" + p.mesh + " step " + std::to_string(k);
+    if (d.pick(8) == 7) {
+      model->reset();
+      maxFz = 0.0;
+    }
+    in = decodeInput(d, in);
+    const StepOutput out = safeStep(*model, in, where);
+    if (trace)
+      std::fprintf(stderr, "%s\n  in:  %s\n  out: %s\n", where.c_str(), describe(in).c_str(),
+                   describe(out).c_str());
+    checkOutputContract(in, out, where);
+    if (out.status == StepStatus::kNoLoad) maxFz = 0.0;
+    if (out.status != StepStatus::kRejected && in.fz > 0.0) maxFz = std::max(maxFz, in.fz);
+    checkForce(out, p.mu, exact ? maxFz : out.fz, where);
+    if (out.status == StepStatus::kOk) checkTraction(*model, where);
+  }
+  if (steps > 0) checkReset(*model, p, in);
+  return 0;
+}
