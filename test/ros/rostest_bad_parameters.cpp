@@ -92,7 +92,9 @@ TEST(BadParameters, EveryParameterOutOfRange) {
   expectFatal("_nx:=401", "nx: must be in [2, 400], got 401");
   expectFatal("_ny:=0", "ny: must be in [1, 400], got 0");
   expectFatal("_ny:=10000000", "ny: expected an integer, got '10000000'");
-  expectFatal("_mesh:=moving", "mesh: must be fixed or adaptive, got 'moving'");
+  expectFatal("_mesh:=moving", "mesh: must be fixed, adaptive or auto, got 'moving'");
+  expectFatal("_tolerance:=0", "tolerance: must be in (0, 1), got 0");
+  expectFatal("_tolerance:=1.5", "tolerance: must be in (0, 1), got 1.5");
   expectFatal("_fz_max:=-1", "fz_max: must be >= 0");
   expectFatal("_publish_queue_size:=-3", "publish_queue_size: must be an integer in [1, 1000000]");
   expectFatal("_queue_size:=2000000", "queue_size: must be an integer in [1, 1000000]");
@@ -125,7 +127,8 @@ TEST(BadParameters, EveryParameterOfAWrongType) {
   expectFatal("_time_jump_reset:=never", "time_jump_reset: expected a number, got 'never'");
   expectFatal("_max_load_age:=old", "max_load_age: expected a number, got 'old'");
   expectFatal("_diagnostic_period:=fast", "diagnostic_period: expected a number, got 'fast'");
-  expectFatal("_model:=3", "model: must be one of steady, shen-li, nss, exact; got '3'");
+  expectFatal("_model:=3", "model: must be one of steady, shen-li, nss, exact, auto; got '3'");
+  expectFatal("_tolerance:=tight", "tolerance: expected a finite number, got 'tight'");
   // Booleans, lists and maps (YAML in a launch file, rosparam set) for every kind of parameter.
   expectFatal("_G:=true", "G: expected a number or a name, got <value><boolean>1</boolean>");
   expectFatalWith("nx", list(1, 2), "nx: expected a number or a name, got <value><array>");
