@@ -18,6 +18,7 @@ jobs="${WRC_JOBS:-$(nproc)}"
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 # A sanitizer report ends the process with a non-zero code; leaks count too (no ROS in the gtests).
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
+export LSAN_OPTIONS="suppressions=$here/test/sanitizers/lsan.supp"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 results=()  # "name|seconds|verdict|log"
