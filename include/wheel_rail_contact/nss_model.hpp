@@ -41,8 +41,8 @@ class NssModel : public ContactModel {
   /// Screens `given` and turns it into the forward-rolling `in` at patch `h`; false when the step
   /// ends there (`out` filled).
   bool screen(const StepInput& given, StepInput* in, HertzEllipse* h, StepOutput* out);
-  /// The mesh semi-axes the patch h asks for; false when the current mesh may stay.
-  bool meshFor(const HertzEllipse& h, double* a, double* b) const;
+  /// The adaptive mesh must be re-sized to the patch h.
+  bool meshMustFollow(const HertzEllipse& h) const;
   bool patchMoves(const HertzEllipse& h);
   void settlePatch();
   CreepForces advance(const StepInput& in, const HertzEllipse& h, bool moves);

@@ -25,6 +25,11 @@ double envelopeMemory(double l, double tolerance) {
   return kPi * l / (kStartShare * tolerance);
 }
 
+// The distance each hand-over phase (calm, then blend) lasts on a patch of semi-axis a [m].
+double calmDistance(double a) {
+  return kCalmTransits * 2.0 * a;
+}
+
 ContactParameters withMesh(ContactParameters p, int n, const char* model) {
   p.nx = p.ny = n;
   p.model = model;
@@ -134,20 +139,20 @@ void AutoModel::choose(const StepInput& in) {
     return;
   }
   const double e = monitor_.update(in), dq = std::abs(in.V) * in.dt,
-               transit = 2.0 * nss_.mesh().a();
+               calm = calmDistance(nss_.mesh().a());
   if (e > kStartShare * p_.tolerance) {
     mode_ = Mode::kNss;
     calm_ = 0.0;
   } else if (mode_ == Mode::kNss) {
     // Hand back only once the history has flushed through the patch in calm.
     calm_ = e < kReturnShare * p_.tolerance ? calm_ + dq : 0.0;
-    if (calm_ > kCalmTransits * transit) {
+    if (calm_ > calm) {
       mode_ = Mode::kHandBack;
       handed_ = 0.0;
     }
   } else if (mode_ == Mode::kHandBack) {
     handed_ += dq;
-    if (handed_ >= kCalmTransits * transit) mode_ = Mode::kSteady;
+    if (handed_ >= calm) mode_ = Mode::kSteady;
   }
 }
 
@@ -156,7 +161,7 @@ StepOutput AutoModel::handBack(const StepInput& in) {
   if (out.status != StepStatus::kOk) return out;
   // NSS-FastSim's lag error is small here but not zero: fade it out instead of dropping it.
   const StepOutput st = nss_.steadyAlongside(in);
-  const double w = 1.0 - handed_ / (kCalmTransits * 2.0 * nss_.mesh().a());
+  const double w = 1.0 - handed_ / calmDistance(nss_.mesh().a());
   out.fx = w * out.fx + (1.0 - w) * st.fx;
   out.fy = w * out.fy + (1.0 - w) * st.fy;
   out.mz = w * out.mz + (1.0 - w) * st.mz;

@@ -48,18 +48,14 @@ StepOutput NssModel::hold(StepStatus status, const char* why) const {
   return out;
 }
 
-bool NssModel::meshFor(const HertzEllipse& h, double* a, double* b) const {
-  if (!adaptive_ || (h.a == mesh_.a() && h.b == mesh_.b())) return false;
-  *a = h.a;
-  *b = h.b;
-  return true;
+bool NssModel::meshMustFollow(const HertzEllipse& h) const {
+  return adaptive_ && (h.a != mesh_.a() || h.b != mesh_.b());
 }
 
 bool NssModel::patchMoves(const HertzEllipse& h) {
-  double a = 0.0, b = 0.0;
-  if (!meshFor(h, &a, &b)) return false;
-  spare_.scale(a, b);
-  carry_.set(a / mesh_.a());
+  if (!meshMustFollow(h)) return false;
+  spare_.scale(h.a, h.b);
+  carry_.set(h.a / mesh_.a());
   return true;
 }
 
@@ -175,8 +171,7 @@ StepOutput NssModel::settle(const StepInput& given) {
   StepInput in;
   HertzEllipse h;
   if (!screen(given, &in, &h, &out)) return out;
-  double a = 0.0, b = 0.0;
-  if (meshFor(h, &a, &b)) mesh_.scale(a, b);  // no carry: the history is overwritten below
+  if (meshMustFollow(h)) mesh_.scale(h.a, h.b);  // no carry: the history is overwritten below
   parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_.bound);
   const Creepages c{in.xi, in.eta, in.phi};
   updateWeights(c, h.a, h.b);
