@@ -12,11 +12,12 @@ namespace wheel_rail_contact {
 
 /// How fast the inputs change per distance rolled, as the force error steady FastSim would make:
 /// a first-order lag of relaxation length l gives F_steady - F = l dF/dq, so the estimate is
-/// l |dF_lin/dq| / |F_lin| (linear-theory force of the creepages, peak envelopes over `memory`),
-/// and l |dfz/dq| / fz for the load.
+/// l |dF_lin/dq| / |F_lin| (linear-theory force of the creepages, peaks over the last `window`),
+/// and 0.3 l |dfz/dq| / fz for the load (weight from the chart's varying-load scenes).
 class SteadinessMonitor {
  public:
-  /// l: relaxation length [m]; memory: distance over which the envelopes decay by 1/e [m];
+  /// l: relaxation length [m]; window: distance over which the peaks are held (between half of it
+  /// and all of it) [m];
   /// c: Kalker's coefficients weighting xi, eta and spin into a force; sqrtAb: sqrt(a0 b0) [m].
   SteadinessMonitor(double l, double memory, const CreepCoefficients& c, double sqrtAb);
   /// One usable step (dq = |V| dt > 0, fz > 0). Returns the current estimate [-].
@@ -25,12 +26,16 @@ class SteadinessMonitor {
   double estimate() const { return estimate_; }
 
  private:
-  double l_, memory_, sqrtAb_;
+  struct Peaks {
+    double slope = 0.0, size = 0.0, load = 0.0;  // |dF_lin/dq|, |F_lin|, |dfz/dq| / fz
+  };
+  double l_, bucket_, sqrtAb_;
   CreepCoefficients c_;
   bool primed_ = false;
   double fx_ = 0.0, fy_ = 0.0, fz_ = 0.0;  // previous linear force (per G a b) and load
-  double slope_ = 0.0, size_ = 0.0, load_ = 0.0, estimate_ = 0.0;
-  double lastDq_ = 0.0, fade_ = 1.0;  // envelope decay over the last step's travel
+  Peaks held_, current_;                   // the previous half window's and this one's
+  double travelled_ = 0.0;                 // distance rolled in the current half window [m]
+  double estimate_ = 0.0;
 };
 
 class AutoModel : public ContactModel {

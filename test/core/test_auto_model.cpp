@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "wheel_rail_contact/auto_model.hpp"
+#include "wheel_rail_contact/harmonic_scenes.hpp"
+#include "wheel_rail_contact/nonsteady_coefficients.hpp"
 #include "wheel_rail_contact/steady_model.hpp"
 
 using namespace wheel_rail_contact;
@@ -148,4 +150,40 @@ TEST(AutoModel, ResetGivesFreshStartOutputs) {
   m->reset();
   const Rolled second = roll(*m, 0.0, 1e-3, 10 * p.a0, wave);
   for (size_t k = 0; k < first.out.size(); ++k) EXPECT_EQ(first.out[k].fx, second.out[k].fx);
+}
+
+// The rule's shares were read off the chart's sweep (lambda/a = 1 ... 100 on a 40x40 exact grid);
+// here waves between and beyond those, against a coarser exact grid (16x16, whose own error is
+// about 1 %): auto keeps within its tolerance, runs steady FastSim over the scored period of the
+// longest wave (where it is cheaper than NSS-FastSim) and NSS-FastSim on the shorter ones.
+TEST(AutoModel, MeetsItsToleranceOnWavesTheChartDidNotSee) {
+  constexpr int kGrid = 16;
+  for (const CreepageKind kind : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
+    const NonSteadyCoefficients exact(kind, 1.0, 0.28, kGrid, kGrid);
+    for (const double tolerance : {0.1, 0.05})
+      for (const double lambda : {30.0, 70.0, 300.0}) {
+        const HarmonicScene h = harmonicScene(kind, lambda, 2.2 * 0.02 / kGrid);
+        ContactParameters p = h.scene.params;
+        p.model = "auto";
+        p.tolerance = tolerance;
+        AutoModel m(p, ChiTable::load(ChiTable::defaultPath()));
+        std::vector<StepOutput> out;
+        int nssScored = 0, scored = 0;
+        const double from = h.scene.rows.back().t - h.scene.period;
+        for (size_t k = 0; k < h.scene.rows.size(); ++k) {
+          const ScenarioRow& r = h.scene.rows[k];
+          out.push_back(
+              m.step({k ? r.t - h.scene.rows[k - 1].t : 0.0, r.V, r.xi, r.eta, r.phi, r.fz}));
+          if (r.t >= from) ++scored, nssScored += m.nonSteady();
+        }
+        const std::string at = std::string(toString(kind)) + " lambda/a " + std::to_string(lambda) +
+                               " tolerance " + std::to_string(tolerance);
+        const std::vector<StepOutput> ref = harmonicResponse(h, exact.at(lambda));
+        EXPECT_LE(sceneError(h.scene, out, ref).rmsOverPeak, tolerance) << at;
+        if (lambda == 300.0)
+          EXPECT_EQ(nssScored, 0) << at;
+        else
+          EXPECT_EQ(nssScored, scored) << at;
+      }
+  }
 }

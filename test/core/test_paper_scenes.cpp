@@ -2,7 +2,9 @@
 // a coarse CI grid (20x20). Tolerance: at this grid the exact reference itself is about 5 % too
 // stiff in adhesion (its steady C11 is 4.43 against Kalker's 4.23), so the CI bound on nss is 8 %
 // of the peak force; the 5 % figures in the README come from the 40x40 run of accuracy_report.
-// What must hold at any grid: nss beats shen-li and steady FastSim on every scene; so does auto.
+// What must hold at any grid: nss beats shen-li and steady FastSim on every scene; auto keeps the
+// same bound and is never worse than steady FastSim, which it runs where the chart finds it within
+// auto's tolerance (the varying-load scenes at lambda/a0 = 15).
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -33,10 +35,10 @@ void check(const PaperScene& s) {
   EXPECT_LT(nss, 0.08) << s.name;
   EXPECT_LT(nss, shenLi) << s.name;
   EXPECT_LT(nss, steady) << s.name;
-  // auto (tolerance 0.05: it picks its mesh and when to run nss) is as good as nss here.
+  // auto (tolerance 0.05: it picks its mesh and when to run nss).
   const double automatic = error(s, "auto", exact);
   EXPECT_LT(automatic, 0.08) << s.name;
-  EXPECT_LT(automatic, steady) << s.name;
+  EXPECT_LE(automatic, steady) << s.name;
 }
 
 }  // namespace
