@@ -13,7 +13,8 @@ packages=(g++ make cmake catkin libroscpp-dev ros-message-generation
   libstd-msgs-dev ros-std-msgs libgeometry-msgs-dev ros-geometry-msgs
   libeigen3-dev libgtest-dev librostest-dev python3-rostest python3-std-msgs python3-geometry-msgs
   rosbash python3-rostopic python3-rosservice python3-rosnode ros-message-runtime
-  libdiagnostic-updater-dev libyaml-cpp-dev libbenchmark-dev libfftw3-dev
+  libdiagnostic-updater-dev libnodeletlib-dev libnodeletlib-tools
+  libyaml-cpp-dev libbenchmark-dev libfftw3-dev
   python3-matplotlib python3-yaml python3-numpy clang-format
   clang libclang-rt-14-dev)  # clang + its runtime: libFuzzer (scripts/run_fuzz.sh)
 

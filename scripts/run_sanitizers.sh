@@ -96,6 +96,9 @@ if [ "${WRC_SANITIZE_ROSTESTS:-1}" = "1" ]; then
   ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}"
   export ASAN_OPTIONS
   for launch in test/ros/*.test; do
+    # Debian's nodelet manager is not instrumented, so a sanitized plugin cannot load into it; the
+    # nodelet runs contact_node's code, which every other rostest here covers.
+    [[ "$launch" == *nodelet* ]] && continue
     # rostest fails when a test fails; a node's own sanitizer report lands in its ROS log, which is
     # appended to the run's log so that check_log sees it.
     run_one "asan_rostest_$(basename "$launch" .test)" rostest_with_logs "$launch"

@@ -231,7 +231,7 @@ std::vector<StepOutput> recordedPass(ContactModel& model, const std::vector<Scen
 // scored pass alone took `slow` (the exact solver) is timed by that pass.
 double timePerStep(const Options& o, ContactModel& model, const std::vector<ScenarioRow>& rows,
                    double scoredNs) {
-  constexpr double slow = 5e8;
+  constexpr double slow = 1e8;
   if (scoredNs > slow) return scoredNs / rows.size();
   std::vector<double> samples;
   double total = 0.0;

@@ -62,8 +62,12 @@ class ContactClient {
                  stateSub_.getNumPublishers() > 0 && forceSub_.getNumPublishers() > 0;
         },
         timeout);
-    return topics && reset_.waitForExistence(ros::Duration(timeout)) &&
-           step_.waitForExistence(ros::Duration(timeout));
+    const bool services = topics && reset_.waitForExistence(ros::Duration(timeout)) &&
+                          step_.waitForExistence(ros::Duration(timeout));
+    // A subscriber counts a publisher before their TCP link has finished its handshake: what the
+    // node publishes in between is lost (seen with the nodelet manager on a loaded machine).
+    spinFor(0.3);
+    return services;
   }
 
   bool reset() {
