@@ -112,7 +112,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     history.strip(j);
     const int first = mesh.index(0, j), end = first + mesh.nx();
     // The upstream traction enters last: it is the only operand on the march's serial chain.
-    auto node = [&](int k, const StripStep& m) {
+    auto node = [&](int k, const StripStep& m) __attribute__((always_inline)) {
       const History o = history.at(k, k - first);
       tx = m.x.history(o.tx, o.sx) + m.x.decay * tx;
       ty = (m.y.history(o.ty, o.sy) - m.pushPerXn * xn[k]) + m.y.decay * ty;
@@ -122,10 +122,16 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       oldX[k] = tx;
       oldY[k] = ty;
     };
-    node(first, StripStep(X, Y, r, 0.5 * dx, driveX, gy, gphi, a));  // half step from the edge
+    // The first loaded node steps from the patch's leading edge, where the traction is zero.
+    const StripEntry entry = f->entry[j];
+    const int enter = first + entry.first;
+    if (enter < end) node(enter, StripStep(X, Y, r, entry.h, driveX, gy, gphi, a));
     const StripStep full(X, Y, r, dx, driveX, gy, gphi, a);
-    for (int k = first + 1; k < end; ++k) node(k, full);
-    sums.addStrip(mesh, j, strip);
+    for (int k = enter + 1; k < end; ++k) node(k, full);
+    // Upstream of the patch (fixed mesh larger than the patch) the bound is zero: whatever their
+    // upstream traction, these nodes saturate at zero, so they can come last.
+    for (int k = first; k < enter; ++k) node(k, full);
+    sums.addStrip(mesh, j, strip, entry, out.tx, out.ty);
   }
   return sums.forces();
 }
