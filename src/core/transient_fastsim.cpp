@@ -122,15 +122,24 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       oldX[k] = tx;
       oldY[k] = ty;
     };
-    // The first loaded node steps from the patch's leading edge, where the traction is zero.
+    // The loaded nodes are [enter, leave) (the patch is symmetric in x). The first steps from the
+    // patch's leading edge, where the traction is zero.
     const StripEntry entry = f->entry[j];
-    const int enter = first + entry.first;
-    if (enter < end) node(enter, StripStep(X, Y, r, entry.h, driveX, gy, gphi, a));
+    const int enter = first + entry.first, leave = end - entry.first;
+    if (enter < leave) node(enter, StripStep(X, Y, r, entry.h, driveX, gy, gphi, a));
     const StripStep full(X, Y, r, dx, driveX, gy, gphi, a);
-    for (int k = enter + 1; k < end; ++k) node(k, full);
-    // Upstream of the patch (fixed mesh larger than the patch) the bound is zero: whatever their
-    // upstream traction, these nodes saturate at zero, so they can come last.
-    for (int k = first; k < enter; ++k) node(k, full);
+    for (int k = enter + 1; k < leave; ++k) node(k, full);
+    // Outside the patch (a fixed mesh larger than it) the bound is zero: whatever the march would
+    // bring, the traction saturates at zero there; only the filter state moves.
+    auto unloaded = [&](int k) {
+      const History o = history.at(k, k - first);
+      sX[k] = X.nextState(0.0, o.tx, o.sx);
+      sY[k] = Y.nextState(0.0, o.ty, o.sy);
+      oldX[k] = oldY[k] = out.tx[k] = out.ty[k] = 0.0;
+      out.slip[k] = true;
+    };
+    for (int k = first; k < std::min(enter, end); ++k) unloaded(k);
+    for (int k = std::max(leave, enter); k < end; ++k) unloaded(k);
     sums.addStrip(mesh, j, strip, entry, out.tx, out.ty);
   }
   return sums.forces();
