@@ -66,6 +66,24 @@ struct StripStep {
       : x(X, r, h, driveX), y(Y, r, h, gy + 0.5 * h * gphi), pushPerXn(h * gphi * a * y.decay) {}
 };
 
+// The (x, y) pair of one per-node quantity: what does not depend on the upstream traction (the
+// history's part of the guess, the filter state's update) is computed for both directions at once.
+using Pair = Eigen::Array2d;
+
+// A step's per-node coefficients packed as (x, y) pairs; the upstream decay stays scalar, on the
+// march's serial chain.
+struct PackedStep {
+  Pair memory, lag, push;
+  double decayX, decayY, pushPerXn;
+  explicit PackedStep(const StripStep& m)
+      : memory(m.x.memory, m.y.memory),
+        lag(m.x.lag, m.y.lag),
+        push(m.x.push, m.y.push),
+        decayX(m.x.decay),
+        decayY(m.y.decay),
+        pushPerXn(m.pushPerXn) {}
+};
+
 // A node's history as the march reads it.
 struct History {
   double tx, ty, sx, sy;
@@ -99,6 +117,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
                   Source history, TransientState* st, TractionField* f) {
   const double r = historyScale;
   const TimeTerm X(zx, V, dt, r), Y(zy, V, dt, r);
+  const Pair rate(X.rate, Y.rate), rateOld(X.rateOld, Y.rateOld), poleOld(X.poleOld, Y.poleOld);
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
   double *const oldX = st->tx.data(), *const oldY = st->ty.data();
   double *const sX = st->sx.data(), *const sY = st->sy.data();
@@ -112,13 +131,16 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     history.strip(j);
     const int first = mesh.index(0, j), end = first + mesh.nx();
     // The upstream traction enters last: it is the only operand on the march's serial chain.
-    auto node = [&](int k, const StripStep& m) __attribute__((always_inline)) {
+    auto node = [&](int k, const PackedStep& m) __attribute__((always_inline)) {
       const History o = history.at(k, k - first);
-      tx = m.x.history(o.tx, o.sx) + m.x.decay * tx;
-      ty = (m.y.history(o.ty, o.sy) - m.pushPerXn * xn[k]) + m.y.decay * ty;
+      const Pair old(o.tx, o.ty), s(o.sx, o.sy);
+      const Pair guess = m.memory * old - m.lag * s - m.push;  // Guess::history, both directions
+      tx = guess(0) + m.decayX * tx;
+      ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
       strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
-      sX[k] = X.nextState(tx, o.tx, o.sx);
-      sY[k] = Y.nextState(ty, o.ty, o.sy);
+      const Pair next = rate * Pair(tx, ty) - rateOld * old - poleOld * s;  // TimeTerm::nextState
+      sX[k] = next(0);
+      sY[k] = next(1);
       oldX[k] = tx;
       oldY[k] = ty;
     };
@@ -126,15 +148,17 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     // patch's leading edge, where the traction is zero.
     const StripEntry entry = f->entry[j];
     const int enter = first + entry.first, leave = end - entry.first;
-    if (enter < leave) node(enter, StripStep(X, Y, r, entry.h, driveX, gy, gphi, a));
-    const StripStep full(X, Y, r, dx, driveX, gy, gphi, a);
+    if (enter < leave) node(enter, PackedStep(StripStep(X, Y, r, entry.h, driveX, gy, gphi, a)));
+    const PackedStep full(StripStep(X, Y, r, dx, driveX, gy, gphi, a));
     for (int k = enter + 1; k < leave; ++k) node(k, full);
     // Outside the patch (a fixed mesh larger than it) the bound is zero: whatever the march would
     // bring, the traction saturates at zero there; only the filter state moves.
     auto unloaded = [&](int k) {
       const History o = history.at(k, k - first);
-      sX[k] = X.nextState(0.0, o.tx, o.sx);
-      sY[k] = Y.nextState(0.0, o.ty, o.sy);
+      const Pair next =
+          rate * Pair(0.0, 0.0) - rateOld * Pair(o.tx, o.ty) - poleOld * Pair(o.sx, o.sy);
+      sX[k] = next(0);
+      sY[k] = next(1);
       oldX[k] = oldY[k] = out.tx[k] = out.ty[k] = 0.0;
       out.slip[k] = true;
     };
