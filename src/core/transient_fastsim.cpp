@@ -84,16 +84,16 @@ struct PackedStep {
         pushPerXn(m.pushPerXn) {}
 };
 
-// A node's history as the march reads it.
+// A node's history as the march reads it: the traction and the filter state, (x, y) pairs.
 struct History {
-  double tx, ty, sx, sy;
+  Pair t, s;
 };
 
 // The history in place: node k of the state the march also writes.
 struct InPlace {
   const TransientState& s;
   void strip(int) {}
-  History at(int k, int) const { return {s.tx(k), s.ty(k), s.sx(k), s.sy(k)}; }
+  History at(int k, int) const { return {Pair(s.tx(k), s.ty(k)), Pair(s.sx(k), s.sy(k))}; }
 };
 
 // The history of the previous patch, carried along the strips (AlongStripMap) node by node as the
@@ -106,8 +106,10 @@ struct AlongStrips {
   History at(int, int i) const {
     const int k = first + map.index(i);
     const Eigen::Array2d c = map.weights(i);
-    return {AlongStripMap::read(&s.tx(k), c), AlongStripMap::read(&s.ty(k), c),
-            AlongStripMap::read(&s.sx(k), c), AlongStripMap::read(&s.sy(k), c)};
+    // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once.
+    const Pair w0 = Pair::Constant(c(0)), w1 = Pair::Constant(c(1));
+    return {w0 * Pair(s.tx(k), s.ty(k)) + w1 * Pair(s.tx(k + 1), s.ty(k + 1)),
+            w0 * Pair(s.sx(k), s.sy(k)) + w1 * Pair(s.sx(k + 1), s.sy(k + 1))};
   }
 };
 
@@ -133,7 +135,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     // The upstream traction enters last: it is the only operand on the march's serial chain.
     auto node = [&](int k, const PackedStep& m) __attribute__((always_inline)) {
       const History o = history.at(k, k - first);
-      const Pair old(o.tx, o.ty), s(o.sx, o.sy);
+      const Pair &old = o.t, &s = o.s;
       const Pair guess = m.memory * old - m.lag * s - m.push;  // Guess::history, both directions
       tx = guess(0) + m.decayX * tx;
       ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
@@ -155,8 +157,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     // bring, the traction saturates at zero there; only the filter state moves.
     auto unloaded = [&](int k) {
       const History o = history.at(k, k - first);
-      const Pair next =
-          rate * Pair(0.0, 0.0) - rateOld * Pair(o.tx, o.ty) - poleOld * Pair(o.sx, o.sy);
+      const Pair next = rate * Pair(0.0, 0.0) - rateOld * o.t - poleOld * o.s;
       sX[k] = next(0);
       sY[k] = next(1);
       oldX[k] = oldY[k] = out.tx[k] = out.ty[k] = 0.0;
@@ -212,10 +213,10 @@ void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int st
     for (int i = 0; i < map.nodes(); ++i) {
       const History h = source.at(0, i);
       const int k = j * map.nodes() + i;
-      out->tx(k) = h.tx;
-      out->ty(k) = h.ty;
-      out->sx(k) = h.sx;
-      out->sy(k) = h.sy;
+      out->tx(k) = h.t(0);
+      out->ty(k) = h.t(1);
+      out->sx(k) = h.s(0);
+      out->sy(k) = h.s(1);
     }
   }
 }
