@@ -133,7 +133,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     history.strip(j);
     const int first = mesh.index(0, j), end = first + mesh.nx();
     // The upstream traction enters last: it is the only operand on the march's serial chain.
-    auto node = [&](int k, const PackedStep& m) __attribute__((always_inline)) {
+    auto node = [&](int k, const PackedStep& m) {
       const History o = history.at(k, k - first);
       const Pair &old = o.t, &s = o.s;
       const Pair guess = m.memory * old - m.lag * s - m.push;  // Guess::history, both directions
