@@ -47,6 +47,10 @@ class AlongStripMap {
   /// New node i reads old nodes index(i) and index(i) + 1 of its strip with weights(i).
   int index(int i) const { return index_[i]; }
   Eigen::Array2d weights(int i) const { return weights_.col(i); }
+  /// index(i) and weights(i) for every i as raw arrays (weights: pairs, node after node), for
+  /// loops that must not reload them after every store.
+  const int* indices() const { return index_.data(); }
+  const double* weightPairs() const { return weights_.data(); }
   /// The weighted pair at `nodes` (old node index(i) of a strip) of a per-node field.
   static double read(const double* nodes, const Eigen::Array2d& w) {
     const Eigen::Array2d s = w * Eigen::Map<const Eigen::Array2d>(nodes);

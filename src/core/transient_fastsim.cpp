@@ -97,19 +97,30 @@ struct InPlace {
 };
 
 // The history of the previous patch, carried along the strips (AlongStripMap) node by node as the
-// march reads it: no pass of its own, and the old state is read where the march needs it.
+// march reads it: no pass of its own, and the old state is read where the march needs it. Raw
+// pointers, held in registers: through references they were reloaded after every store of the
+// march's slip flags (a bool store may alias anything).
 struct AlongStrips {
-  const AlongStripMap& map;
-  const TransientState& s;
+  const int* index;
+  const double* weights;
+  int nodes;
+  const double *tx, *ty, *sx, *sy;
   int first = 0;  // the strip's first node (old and new patch share the layout)
-  void strip(int j) { first = j * map.nodes(); }
+  AlongStrips(const AlongStripMap& map, const TransientState& s)
+      : index(map.indices()),
+        weights(map.weightPairs()),
+        nodes(map.nodes()),
+        tx(s.tx.data()),
+        ty(s.ty.data()),
+        sx(s.sx.data()),
+        sy(s.sy.data()) {}
+  void strip(int j) { first = j * nodes; }
   History at(int, int i) const {
-    const int k = first + map.index(i);
-    const Eigen::Array2d c = map.weights(i);
+    const int k = first + index[i];
     // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once.
-    const Pair w0 = Pair::Constant(c(0)), w1 = Pair::Constant(c(1));
-    return {w0 * Pair(s.tx(k), s.ty(k)) + w1 * Pair(s.tx(k + 1), s.ty(k + 1)),
-            w0 * Pair(s.sx(k), s.sy(k)) + w1 * Pair(s.sx(k + 1), s.sy(k + 1))};
+    const Pair w0 = Pair::Constant(weights[2 * i]), w1 = Pair::Constant(weights[2 * i + 1]);
+    return {w0 * Pair(tx[k], ty[k]) + w1 * Pair(tx[k + 1], ty[k + 1]),
+            w0 * Pair(sx[k], sy[k]) + w1 * Pair(sx[k + 1], sy[k + 1])};
   }
 };
 
@@ -182,7 +193,7 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
                              double historyScale, const AlongStripMap& map,
                              const TransientState& previous, TransientState* st, TractionField* f) {
-  return march(mesh, L, c, V, dt, zx, zy, historyScale, AlongStrips{map, previous}, st, f);
+  return march(mesh, L, c, V, dt, zx, zy, historyScale, AlongStrips(map, previous), st, f);
 }
 
 AlongStripMap::AlongStripMap(int nx) : index_(nx, 0), weights_(2, nx) {}
@@ -207,7 +218,7 @@ void AlongStripMap::set(double ratio) {
 
 void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int strips,
                       TransientState* out) {
-  AlongStrips source{map, in};
+  AlongStrips source(map, in);
   for (int j = 0; j < strips; ++j) {
     source.strip(j);
     for (int i = 0; i < map.nodes(); ++i) {
