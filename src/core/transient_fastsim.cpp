@@ -108,7 +108,7 @@ struct AlongStrips {
   int first = 0;  // the strip's first node (old and new patch share the layout)
   AlongStrips(const AlongStripMap& map, const TransientState& s)
       : index(map.indices()),
-        weights(map.weightPairs()),
+        weights(map.spreadWeights()),
         nodes(map.nodes()),
         tx(s.tx.data()),
         ty(s.ty.data()),
@@ -118,7 +118,8 @@ struct AlongStrips {
   History at(int, int i) const {
     const int k = first + index[i];
     // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once.
-    const Pair w0 = Pair::Constant(weights[2 * i]), w1 = Pair::Constant(weights[2 * i + 1]);
+    const Pair w0 = Eigen::Map<const Pair, Eigen::Aligned16>(weights + 4 * i),
+               w1 = Eigen::Map<const Pair, Eigen::Aligned16>(weights + 4 * i + 2);
     return {w0 * Pair(tx[k], ty[k]) + w1 * Pair(tx[k + 1], ty[k + 1]),
             w0 * Pair(sx[k], sy[k]) + w1 * Pair(sx[k + 1], sy[k + 1])};
   }
@@ -196,7 +197,7 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
   return march(mesh, L, c, V, dt, zx, zy, historyScale, AlongStrips(map, previous), st, f);
 }
 
-AlongStripMap::AlongStripMap(int nx) : index_(nx, 0), weights_(2, nx) {}
+AlongStripMap::AlongStripMap(int nx) : index_(nx, 0), weights_(4, nx) {}
 
 void AlongStripMap::set(double ratio) {
   // New node i sits at t_i = 1 - (2i + 1)/nx of its strip (t = x / a_j); at fixed x its old t is
@@ -211,8 +212,9 @@ void AlongStripMap::set(double ratio) {
     const double r = std::min(std::max(r0 + i * dr, -1.0), double(nx));
     index_[i] = std::min(static_cast<int>(std::max(r, 0.0)), nx - 2);
     const double f = r - index_[i];
-    weights_.col(i) =
+    const Eigen::Array2d w =
         Eigen::Array2d(1.0 - f, f).min(Eigen::Array2d(1.0 + 2.0 * f, 3.0 - 2.0 * f)).max(0.0);
+    weights_.col(i) = Eigen::Array4d(w(0), w(0), w(1), w(1));
   }
 }
 
