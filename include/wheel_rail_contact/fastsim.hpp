@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <vector>
 
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/kalker_coefficients.hpp"
@@ -39,21 +40,36 @@ struct CreepForces {
 /// A computed step's output (status ok) from the integrated forces, the load and the patch.
 StepOutput stepOutput(const CreepForces& f, double fz, double a, double b);
 
+/// Where the loaded patch begins on one strip of a mesh that may be larger than the patch: the
+/// first node with pressure (nx if none) and the step h [m] from the patch's leading edge on that
+/// strip, a_j = a sqrt(1 - y_j^2/b^2) (or the mesh's edge, if the patch is clipped), to that node.
+/// The patch's edges lie inside the elements of its first and last loaded nodes (node nx-1-first:
+/// the patch is symmetric in x): in the quadrature each stands for 1 + w elements, w = h/dx - 1/2
+/// in (-1/2, 1/2], the part of the element inside the patch plus what lies between it and the
+/// edge. On a mesh fitted to the patch: node 0, h = half an element, w = 0.
+struct StripEntry {
+  int first = 0;
+  double h = 0.0;
+  double w = 0.0;
+};
+
 /// Per-node fields on a PatchMesh (index = mesh.index(i, j)).
 struct TractionField {
   Eigen::ArrayXd tx;                           ///< traction on the wheel along x [Pa]
   Eigen::ArrayXd ty;                           ///< traction along y [Pa]
   Eigen::ArrayXd bound;                        ///< mu * pressure, the Coulomb bound [Pa]
   Eigen::Array<bool, Eigen::Dynamic, 1> slip;  ///< node saturated
+  std::vector<StripEntry> entry;               ///< per strip, written with the bound
   void resize(int n);
 };
 
 /// Parabolic pressure of the simplified theory, p = p_s (1 - x^2/a^2 - y^2/b^2) for an ellipse
 /// (a, b) on `mesh` (which may be larger than the ellipse), scaled so that the mesh's own
 /// quadrature integrates it to exactly fz: saturated FastSim then gives exactly mu*fz. Writes mu*p
-/// to `bound`.
+/// to field->bound and where the patch begins on each strip to field->entry (sized mesh.ny()
+/// here: allocates only on a first call or a new mesh layout).
 void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
-                    Eigen::ArrayXd* bound);
+                    TractionField* field);
 
 /// Raw views of a TractionField for the marches' inner loops: held in registers, they are not
 /// reloaded after every store of `slip` (a bool store may alias anything).
@@ -100,6 +116,11 @@ struct StripSums {
 class ForceSums {
  public:
   void addStrip(const PatchMesh& mesh, int j, StripSums s);
+  /// The same with the strip's end nodes given their extra weight e.w (StripEntry), their
+  /// tractions read from tx and ty (indexed as the mesh): kept out of the march's sums, which then
+  /// stay in registers.
+  void addStrip(const PatchMesh& mesh, int j, StripSums s, const StripEntry& e, const double* tx,
+                const double* ty);
   CreepForces forces() const;
 
  private:
@@ -110,8 +131,9 @@ class ForceSums {
 /// Sum of the traction field into forces and moment (midpoint rule).
 CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& field);
 
-/// Steady FastSim: marches each strip from the leading edge in adhesion, saturates at the bound.
-/// `field.bound` must be filled (parabolicBound); tx, ty and slip are written.
+/// Steady FastSim: marches each strip from the patch's leading edge in adhesion, saturates at the
+/// bound. `field.bound` and `field.entry` must be filled (parabolicBound); tx, ty and slip are
+/// written. Nodes upstream of the patch (zero bound) get zero traction.
 CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                           TractionField* field);
 

@@ -46,7 +46,12 @@ class AlongStripMap {
   int nodes() const { return static_cast<int>(index_.size()); }
   /// New node i reads old nodes index(i) and index(i) + 1 of its strip with weights(i).
   int index(int i) const { return index_[i]; }
-  Eigen::Array2d weights(int i) const { return weights_.col(i); }
+  Eigen::Array2d weights(int i) const { return {weights_(0, i), weights_(2, i)}; }
+  /// index(i) and weights(i) for every i as raw arrays, for loops that must not reload them after
+  /// every store; the weights spread for (x, y) pairs: w0, w0, w1, w1 node after node (16-byte
+  /// aligned pairs).
+  const int* indices() const { return index_.data(); }
+  const double* spreadWeights() const { return weights_.data(); }
   /// The weighted pair at `nodes` (old node index(i) of a strip) of a per-node field.
   static double read(const double* nodes, const Eigen::Array2d& w) {
     const Eigen::Array2d s = w * Eigen::Map<const Eigen::Array2d>(nodes);
@@ -55,7 +60,7 @@ class AlongStripMap {
 
  private:
   std::vector<int> index_;
-  Eigen::Array2Xd weights_;
+  Eigen::Array<double, 4, Eigen::Dynamic> weights_;  // w0, w0, w1, w1 per node
 };
 
 /// The same step when the load changed the patch size on the adaptive mesh: each node reads

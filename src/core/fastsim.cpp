@@ -34,45 +34,66 @@ void TractionField::resize(int n) {
 
 namespace {
 
-// Sum over one strip's nodes of max(0, ry - (c u)^2), u = nx - 1 - 2i (i = 0 .. nx-1), in closed
-// form: the positive shapes are those with |u| < sqrt(ry) / c, and |u| runs over nx-1, nx-3, ...
-// down to 1 (nx even, each value twice) or to 0 (nx odd, 0 once). A node exactly on the edge has
-// shape 0, so whether it is counted does not matter.
-double stripShapeSum(int nx, double ry, double c) {
-  if (!(ry > 0.0)) return 0.0;
-  const double U = std::min(std::sqrt(ry) / c, nx + 1.0);
-  if (nx % 2 == 0) {  // u = 2t - 1, t = 1 .. nx/2
-    const double m = std::min(nx / 2, static_cast<int>(0.5 * (U + 1.0)));
-    return 2.0 * (m * ry - c * c * m * (4.0 * m * m - 1.0) / 3.0);
+// Where the patch begins on a strip of nx nodes whose shape is max(0, ry - (c u)^2) at
+// u = nx - 1 - 2i (element length dx): the nodes with |u| < U = sqrt(ry) / c are loaded, the
+// patch's edge is at u = U, the mesh's at u = nx (one u is half an element).
+StripEntry stripEntry(int nx, double ry, double c, double dx) {
+  StripEntry e{nx, 0.0, 0.0};
+  if (!(ry > 0.0)) return e;
+  const double U = std::sqrt(ry) / c, below = 0.5 * (nx - 1.0 - U);
+  e.first = below < 0.0 ? 0 : static_cast<int>(below) + 1;  // floor(below) + 1
+  if (2 * e.first >= nx + (nx % 2)) {                       // no node inside the patch
+    e.first = nx;
+    return e;
   }
-  // u = 2t, t = 0 .. (nx-1)/2
-  const double m = std::min((nx - 1) / 2, static_cast<int>(0.5 * U));
-  return ry + 2.0 * (m * ry - c * c * 4.0 * m * (m + 1.0) * (2.0 * m + 1.0) / 6.0);
+  const double hu = std::min(std::max(std::min(U, double(nx)) - (nx - 1.0 - 2.0 * e.first), 0.0),
+                             e.first == 0 ? 1.0 : 2.0);
+  e.h = 0.5 * hu * dx;
+  e.w = 0.5 * hu - 0.5;
+  return e;
+}
+
+// The quadrature of that shape over the strip's loaded nodes, u = L, L - 2, ..., -L
+// (L = nx - 1 - 2 first), the two end nodes weighted 1 + w: (L + 1) ry - c^2 L (L + 1) (L + 2) / 3
+// + 2 w (ry - c^2 L^2).
+double stripShapeSum(int nx, double ry, double c, const StripEntry& e) {
+  if (e.first >= nx) return 0.0;
+  const double L = nx - 1.0 - 2.0 * e.first, c2 = c * c;
+  return (L + 1.0) * ry - c2 * L * (L + 1.0) * (L + 2.0) / 3.0 + 2.0 * e.w * (ry - c2 * L * L);
 }
 
 }  // namespace
 
 void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
-                    Eigen::ArrayXd* bound) {
+                    TractionField* field) {
+  Eigen::ArrayXd* const bound = &field->bound;
+  std::vector<StripEntry>& entry = field->entry;
+  entry.resize(mesh.ny());
   if (a == mesh.a() && b == mesh.b()) {  // the patch fills the mesh: precomputed shape
     *bound = mesh.pressureShape() * (mu * fz / (mesh.shapeIntegral() * a * b));
+    for (int j = 0; j < mesh.ny(); ++j) entry[j] = {0, 0.5 * mesh.stripStep(j), 0.0};
     return;
   }
   // The ellipse differs from the mesh's (fixed mesh sized for another load): node (x/a, y/b) on
-  // the mesh is (ka x/a_mesh, kb y/b_mesh). The quadrature sum first (closed form per strip), then
-  // one vectorisable pass, 1 - kb^2 (y/b_mesh)^2 - ka^2 (x/a_mesh)^2 from the mesh's own shape.
-  const int nx = mesh.nx();
+  // the mesh is (ka x/a_mesh, kb y/b_mesh), its shape 1 - (kb y/b_mesh)^2 - (ka x/a_mesh)^2. Per
+  // strip in closed form where the patch begins and the quadrature sum (the end nodes weighted as
+  // the march's sums weight them); then the bound, scale (ry - (ka x/a_mesh)^2) clipped at zero.
+  const int nx = mesh.nx(), ny = mesh.ny();
   const double ka = mesh.a() / a, kb = mesh.b() / b;
   double sum = 0.0;
-  for (int j = 0; j < mesh.ny(); ++j) {
-    const double yn = mesh.yNorm(j) * kb;
-    sum += stripShapeSum(nx, 1.0 - yn * yn, ka * mesh.halfNorm(j) / nx) * mesh.nodeArea(j);
+  for (int j = 0; j < ny; ++j) {
+    const double yn = mesh.yNorm(j) * kb, ry = 1.0 - yn * yn, c = ka * mesh.halfNorm(j) / nx;
+    entry[j] = stripEntry(nx, ry, c, mesh.stripStep(j));
+    sum += stripShapeSum(nx, ry, c, entry[j]) * mesh.nodeArea(j);
   }
-  const double scale = (sum > 0.0) ? mu * fz / sum : 0.0;
-  *bound =
-      (1.0 - kb * kb * (1.0 - mesh.pressureShape()) + (kb * kb - ka * ka) * mesh.xNorms().square())
-          .max(0.0) *
-      scale;
+  const double scale = (sum > 0.0) ? mu * fz / sum : 0.0, perXn2 = scale * ka * ka;
+  const double* const xn = mesh.xNorms().data();
+  double* const out = bound->data();
+  for (int j = 0; j < ny; ++j) {
+    const int k0 = mesh.index(0, j);
+    const double yn = mesh.yNorm(j) * kb, top = scale * (1.0 - yn * yn);
+    for (int k = k0; k < k0 + nx; ++k) out[k] = std::max(top - perXn2 * xn[k] * xn[k], 0.0);
+  }
 }
 
 void ForceSums::addStrip(const PatchMesh& mesh, int j, StripSums s) {
@@ -82,6 +103,17 @@ void ForceSums::addStrip(const PatchMesh& mesh, int j, StripSums s) {
   f_.mz += (mesh.a() * s.xnTy - mesh.stripY(j) * s.tx) * dA;
   stuck_ += s.stuck * dA;
   loaded_ += s.loaded * dA;
+}
+
+void ForceSums::addStrip(const PatchMesh& mesh, int j, StripSums s, const StripEntry& e,
+                         const double* tx, const double* ty) {
+  if (e.w != 0.0 && e.first < mesh.nx()) {
+    const int kf = mesh.index(e.first, j), kl = mesh.index(mesh.nx() - 1 - e.first, j);
+    s.tx += e.w * (tx[kf] + tx[kl]);
+    s.ty += e.w * (ty[kf] + ty[kl]);
+    s.xnTy += e.w * (mesh.xNorms()(kf) * ty[kf] + mesh.xNorms()(kl) * ty[kl]);
+  }
+  addStrip(mesh, j, s);
 }
 
 CreepForces ForceSums::forces() const {
@@ -102,7 +134,10 @@ CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& f) {
       strip.loaded += f.bound(k) > 0.0;
       strip.stuck += f.bound(k) > 0.0 && !f.slip(k);
     }
-    sums.addStrip(mesh, j, strip);
+    if (j < static_cast<int>(f.entry.size()))
+      sums.addStrip(mesh, j, strip, f.entry[j], f.tx.data(), f.ty.data());
+    else
+      sums.addStrip(mesh, j, strip);
   }
   return sums.forces();
 }
@@ -111,20 +146,32 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
                           TractionField* f) {
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3;
   const FieldPointers out(f);
+  const double* const xn = mesh.xNorms().data();
+  const int nx = mesh.nx();
   ForceSums sums;
   for (int j = 0; j < mesh.ny(); ++j) {
     const double dx = mesh.stripStep(j), aj = mesh.stripHalfLength(j);
     const double sx = gx - gphi * mesh.stripY(j);
+    const StripEntry entry = f->entry[j];
+    const int k0 = mesh.index(0, j);
     double tx = 0.0, ty = 0.0;
     StripSums strip;
-    for (int i = 0; i < mesh.nx(); ++i) {
-      const int k = mesh.index(i, j);
-      const UpstreamStep step(i, dx, aj);
-      tx -= step.h * sx;
-      ty -= step.h * (gy + gphi * step.xMid);
-      strip.node(k, mesh.xNorms()(k), out.bound[k], &tx, &ty, out);
+    // A step of length h onto node i; xMid is its midpoint (exact for spin, linear in x).
+    auto node = [&](int i, double h) {
+      const int k = k0 + i;
+      const double xMid = aj - (i + 0.5) * dx + 0.5 * h;
+      tx -= h * sx;
+      ty -= h * (gy + gphi * xMid);
+      strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
+    };
+    int i = 0;
+    for (; i < entry.first; ++i) node(i, dx);  // upstream of the patch: saturates at zero
+    if (i < nx) {
+      tx = ty = 0.0;  // the patch's leading edge
+      node(i++, entry.h);
     }
-    sums.addStrip(mesh, j, strip);
+    for (; i < nx; ++i) node(i, dx);
+    sums.addStrip(mesh, j, strip, entry, out.tx, out.ty);
   }
   return sums.forces();
 }

@@ -112,7 +112,7 @@ CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool m
   // When the adaptive patch moves, the step runs on spare_ and carries the history over from mesh_
   // along the strips as it marches (AlongStripMap) into remapped_; settlePatch() then swaps.
   const PatchMesh& mesh = moves ? spare_ : mesh_;
-  parabolicBound(mesh, h.a, h.b, in.fz, p_.mu, &field_.bound);
+  parabolicBound(mesh, h.a, h.b, in.fz, p_.mu, &field_);
   // Travel below 1e-9 a is no travel (a subnormal V made 1 / (V dt) infinite: NaN, found by
   // fuzzing): the step then holds the history as dt = 0 does, saturated at the current load.
   if (!(in.dt > 0.0 && in.V * in.dt > 1e-9 * h.a)) {
@@ -172,7 +172,7 @@ StepOutput NssModel::settle(const StepInput& given) {
   HertzEllipse h;
   if (!screen(given, &in, &h, &out)) return out;
   if (meshMustFollow(h)) mesh_.scale(h.a, h.b);  // no carry: the history is overwritten below
-  parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_.bound);
+  parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_);
   const Creepages c{in.xi, in.eta, in.phi};
   updateWeights(c, h.a, h.b);
   lastSpeed_ = in.V;
@@ -192,6 +192,7 @@ StepOutput NssModel::steadyAlongside(const StepInput& given) {
   const StepInput in = mirrored_ ? mirroredInput(given) : given;
   const HertzEllipse h = ref_.at(in.fz);
   scratch_.bound = field_.bound;
+  scratch_.entry = field_.entry;
   const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_),
                                       {in.xi, in.eta, in.phi}, &scratch_);
   StepOutput out = stepOutput(f, in.fz, h.a, h.b);

@@ -29,7 +29,7 @@ StepOutput SteadyModel::step(const StepInput& in) {
   const StepInput fwd = backwards ? mirroredInput(in) : in;
   const HertzEllipse h = ref_.at(fwd.fz);
   mesh_.scale(h.a, h.b);
-  parabolicBound(mesh_, h.a, h.b, fwd.fz, p_.mu, &field_.bound);
+  parabolicBound(mesh_, h.a, h.b, fwd.fz, p_.mu, &field_);
   const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, c_),
                                       {fwd.xi, fwd.eta, fwd.phi}, &field_);
   out = stepOutput(f, fwd.fz, h.a, h.b);

@@ -66,30 +66,62 @@ struct StripStep {
       : x(X, r, h, driveX), y(Y, r, h, gy + 0.5 * h * gphi), pushPerXn(h * gphi * a * y.decay) {}
 };
 
-// A node's history as the march reads it.
+// The (x, y) pair of one per-node quantity: what does not depend on the upstream traction (the
+// history's part of the guess, the filter state's update) is computed for both directions at once.
+using Pair = Eigen::Array2d;
+
+// A step's per-node coefficients packed as (x, y) pairs; the upstream decay stays scalar, on the
+// march's serial chain.
+struct PackedStep {
+  Pair memory, lag, push;
+  double decayX, decayY, pushPerXn;
+  explicit PackedStep(const StripStep& m)
+      : memory(m.x.memory, m.y.memory),
+        lag(m.x.lag, m.y.lag),
+        push(m.x.push, m.y.push),
+        decayX(m.x.decay),
+        decayY(m.y.decay),
+        pushPerXn(m.pushPerXn) {}
+};
+
+// A node's history as the march reads it: the traction and the filter state, (x, y) pairs.
 struct History {
-  double tx, ty, sx, sy;
+  Pair t, s;
 };
 
 // The history in place: node k of the state the march also writes.
 struct InPlace {
   const TransientState& s;
   void strip(int) {}
-  History at(int k, int) const { return {s.tx(k), s.ty(k), s.sx(k), s.sy(k)}; }
+  History at(int k, int) const { return {Pair(s.tx(k), s.ty(k)), Pair(s.sx(k), s.sy(k))}; }
 };
 
 // The history of the previous patch, carried along the strips (AlongStripMap) node by node as the
-// march reads it: no pass of its own, and the old state is read where the march needs it.
+// march reads it: no pass of its own, and the old state is read where the march needs it. Raw
+// pointers, held in registers: through references they were reloaded after every store of the
+// march's slip flags (a bool store may alias anything).
 struct AlongStrips {
-  const AlongStripMap& map;
-  const TransientState& s;
+  const int* index;
+  const double* weights;
+  int nodes;
+  const double *tx, *ty, *sx, *sy;
   int first = 0;  // the strip's first node (old and new patch share the layout)
-  void strip(int j) { first = j * map.nodes(); }
+  AlongStrips(const AlongStripMap& map, const TransientState& s)
+      : index(map.indices()),
+        weights(map.spreadWeights()),
+        nodes(map.nodes()),
+        tx(s.tx.data()),
+        ty(s.ty.data()),
+        sx(s.sx.data()),
+        sy(s.sy.data()) {}
+  void strip(int j) { first = j * nodes; }
   History at(int, int i) const {
-    const int k = first + map.index(i);
-    const Eigen::Array2d c = map.weights(i);
-    return {AlongStripMap::read(&s.tx(k), c), AlongStripMap::read(&s.ty(k), c),
-            AlongStripMap::read(&s.sx(k), c), AlongStripMap::read(&s.sy(k), c)};
+    const int k = first + index[i];
+    // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once.
+    const Pair w0 = Eigen::Map<const Pair, Eigen::Aligned16>(weights + 4 * i),
+               w1 = Eigen::Map<const Pair, Eigen::Aligned16>(weights + 4 * i + 2);
+    return {w0 * Pair(tx[k], ty[k]) + w1 * Pair(tx[k + 1], ty[k + 1]),
+            w0 * Pair(sx[k], sy[k]) + w1 * Pair(sx[k + 1], sy[k + 1])};
   }
 };
 
@@ -99,6 +131,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
                   Source history, TransientState* st, TractionField* f) {
   const double r = historyScale;
   const TimeTerm X(zx, V, dt, r), Y(zy, V, dt, r);
+  const Pair rate(X.rate, Y.rate), rateOld(X.rateOld, Y.rateOld), poleOld(X.poleOld, Y.poleOld);
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
   double *const oldX = st->tx.data(), *const oldY = st->ty.data();
   double *const sX = st->sx.data(), *const sY = st->sy.data();
@@ -112,20 +145,39 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     history.strip(j);
     const int first = mesh.index(0, j), end = first + mesh.nx();
     // The upstream traction enters last: it is the only operand on the march's serial chain.
-    auto node = [&](int k, const StripStep& m) {
+    auto node = [&](int k, const PackedStep& m) {
       const History o = history.at(k, k - first);
-      tx = m.x.history(o.tx, o.sx) + m.x.decay * tx;
-      ty = (m.y.history(o.ty, o.sy) - m.pushPerXn * xn[k]) + m.y.decay * ty;
+      const Pair &old = o.t, &s = o.s;
+      const Pair guess = m.memory * old - m.lag * s - m.push;  // Guess::history, both directions
+      tx = guess(0) + m.decayX * tx;
+      ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
       strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
-      sX[k] = X.nextState(tx, o.tx, o.sx);
-      sY[k] = Y.nextState(ty, o.ty, o.sy);
+      const Pair next = rate * Pair(tx, ty) - rateOld * old - poleOld * s;  // TimeTerm::nextState
+      sX[k] = next(0);
+      sY[k] = next(1);
       oldX[k] = tx;
       oldY[k] = ty;
     };
-    node(first, StripStep(X, Y, r, 0.5 * dx, driveX, gy, gphi, a));  // half step from the edge
-    const StripStep full(X, Y, r, dx, driveX, gy, gphi, a);
-    for (int k = first + 1; k < end; ++k) node(k, full);
-    sums.addStrip(mesh, j, strip);
+    // The loaded nodes are [enter, leave) (the patch is symmetric in x). The first steps from the
+    // patch's leading edge, where the traction is zero.
+    const StripEntry entry = f->entry[j];
+    const int enter = first + entry.first, leave = end - entry.first;
+    if (enter < leave) node(enter, PackedStep(StripStep(X, Y, r, entry.h, driveX, gy, gphi, a)));
+    const PackedStep full(StripStep(X, Y, r, dx, driveX, gy, gphi, a));
+    for (int k = enter + 1; k < leave; ++k) node(k, full);
+    // Outside the patch (a fixed mesh larger than it) the bound is zero: whatever the march would
+    // bring, the traction saturates at zero there; only the filter state moves.
+    auto unloaded = [&](int k) {
+      const History o = history.at(k, k - first);
+      const Pair next = rate * Pair(0.0, 0.0) - rateOld * o.t - poleOld * o.s;
+      sX[k] = next(0);
+      sY[k] = next(1);
+      oldX[k] = oldY[k] = out.tx[k] = out.ty[k] = 0.0;
+      out.slip[k] = true;
+    };
+    for (int k = first; k < std::min(enter, end); ++k) unloaded(k);
+    for (int k = std::max(leave, enter); k < end; ++k) unloaded(k);
+    sums.addStrip(mesh, j, strip, entry, out.tx, out.ty);
   }
   return sums.forces();
 }
@@ -142,10 +194,10 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
                              double historyScale, const AlongStripMap& map,
                              const TransientState& previous, TransientState* st, TractionField* f) {
-  return march(mesh, L, c, V, dt, zx, zy, historyScale, AlongStrips{map, previous}, st, f);
+  return march(mesh, L, c, V, dt, zx, zy, historyScale, AlongStrips(map, previous), st, f);
 }
 
-AlongStripMap::AlongStripMap(int nx) : index_(nx, 0), weights_(2, nx) {}
+AlongStripMap::AlongStripMap(int nx) : index_(nx, 0), weights_(4, nx) {}
 
 void AlongStripMap::set(double ratio) {
   // New node i sits at t_i = 1 - (2i + 1)/nx of its strip (t = x / a_j); at fixed x its old t is
@@ -160,23 +212,24 @@ void AlongStripMap::set(double ratio) {
     const double r = std::min(std::max(r0 + i * dr, -1.0), double(nx));
     index_[i] = std::min(static_cast<int>(std::max(r, 0.0)), nx - 2);
     const double f = r - index_[i];
-    weights_.col(i) =
+    const Eigen::Array2d w =
         Eigen::Array2d(1.0 - f, f).min(Eigen::Array2d(1.0 + 2.0 * f, 3.0 - 2.0 * f)).max(0.0);
+    weights_.col(i) = Eigen::Array4d(w(0), w(0), w(1), w(1));
   }
 }
 
 void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int strips,
                       TransientState* out) {
-  AlongStrips source{map, in};
+  AlongStrips source(map, in);
   for (int j = 0; j < strips; ++j) {
     source.strip(j);
     for (int i = 0; i < map.nodes(); ++i) {
       const History h = source.at(0, i);
       const int k = j * map.nodes() + i;
-      out->tx(k) = h.tx;
-      out->ty(k) = h.ty;
-      out->sx(k) = h.sx;
-      out->sy(k) = h.sy;
+      out->tx(k) = h.t(0);
+      out->ty(k) = h.t(1);
+      out->sx(k) = h.s(0);
+      out->sy(k) = h.s(1);
     }
   }
 }

@@ -15,16 +15,18 @@ using namespace wheel_rail_contact;
 
 namespace {
 
-double error(const PaperScene& s, const char* model, const std::vector<StepOutput>& exact) {
+double error(const PaperScene& s, const char* model, const std::vector<StepOutput>& exact,
+             const char* mesh = "fixed") {
   ContactParameters p = s.params;
   p.model = model;
-  p.mesh = std::string(model) == "auto" ? "auto" : "fixed";
+  p.mesh = std::string(model) == "auto" ? "auto" : mesh;
   p.nx = p.ny = 20;
   auto m = makeContactModel(p);
   return sceneError(s, runScene(*m, s.rows), exact).rmsOverPeak;
 }
 
-void check(const PaperScene& s) {
+// tie: how far nss may lie above shen-li on the fixed mesh (1: strictly below).
+void check(const PaperScene& s, double tie = 1.0) {
   ContactParameters p = s.params;
   p.model = "exact";
   p.nx = p.ny = 20;
@@ -33,7 +35,9 @@ void check(const PaperScene& s) {
   const double nss = error(s, "nss", exact), shenLi = error(s, "shen-li", exact),
                steady = error(s, "steady", exact);
   EXPECT_LT(nss, 0.08) << s.name;
-  EXPECT_LT(nss, shenLi) << s.name;
+  EXPECT_LT(nss, tie * shenLi) << s.name;
+  if (tie > 1.0)  // where the fixed mesh ties, the adaptive one (fitted to the patch) must not
+    EXPECT_LT(error(s, "nss", exact, "adaptive"), error(s, "shen-li", exact, "adaptive")) << s.name;
   EXPECT_LT(nss, steady) << s.name;
   // auto (tolerance 0.05: it picks its mesh and when to run nss).
   const double automatic = error(s, "auto", exact);
@@ -48,6 +52,11 @@ TEST(PaperScenes, CombinedCreepages) {
 }
 
 TEST(PaperScenes, VaryingLoad) {
+  // On the fixed mesh under this varying load nss and shen-li tie at xi >= 0.01 (near full slip the
+  // time term acts only in the small adhesion zone): nss errs up to 2 % above shen-li against this
+  // 20x20 reference (xi = 0.05; 0.1 % against a 30x30 one), 5 % below at xi = 0.002. Before the
+  // fixed mesh integrated from the patch's leading edge, its 11 % too stiff linear coefficient
+  // offset the 20x20 reference's own 5 % and made nss look 3-38 % better.
   for (double xi : {0.002, 0.01, 0.05})
-    check(varyingLoadScene(xi, 15.0, 3, 2.2 * 0.02 * 1.08 / 20));
+    check(varyingLoadScene(xi, 15.0, 3, 2.2 * 0.02 * 1.08 / 20), 1.03);
 }

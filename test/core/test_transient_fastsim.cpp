@@ -124,7 +124,7 @@ TEST(AlongStripMap, FusedStepEqualsCarryThenStepBitForBit) {
   const FilterZ zy = discretise({0.5, 1.0, 0.7}, now.a(), 20.0, 5e-5);
   TractionField fused, separate;
   fused.resize(now.size());
-  parabolicBound(now, now.a(), now.b(), 8e4, 0.3, &fused.bound);
+  parabolicBound(now, now.a(), now.b(), 8e4, 0.3, &fused);
   separate = fused;
   TransientState a, b;
   a.resize(now.size());
