@@ -13,7 +13,8 @@
 //   nan           a non-finite output
 //   refused       a step came back kRejected (a regime the model declines with a message)
 //   blow-up       |F| above mu Fz, or the non-periodic residual grows across the window
-//   oscillation   non-periodic residual (energy off the input's harmonics) above osc_tol
+//   oscillation   non-periodic residual (energy off the input's harmonics) above osc_tol; where
+//                 undersampled, a per-step sign-alternating part above osc_tol
 //   undersampled  fewer than 2 steps per wavelength: the input itself is aliased
 //   inaccurate    error above tol: adhesion against the exact linear reference (relative RMS);
 //                 slip and varying load against the same model at the smallest step, interpolated
@@ -227,10 +228,10 @@ Judgement judge(const Options& o, const ContactParameters& p, const InputCase& c
   // grows ends on a limit cycle, classed as oscillation below).
   if (w.maxForceRatio > 1.0 + 1e-6 || (late > 2.0 * early && late > 0.1 * scale))
     j.cls = "blow-up";
+  else if (stepsPerPeriod < 2.0)  // the samples cannot show the input's period: only a step-to-step
+    j.cls = j.alternating > o.oscTol ? "oscillation" : "undersampled";  // alternation counts
   else if (j.residual > o.oscTol)
     j.cls = "oscillation";
-  else if (stepsPerPeriod < 2.0)
-    j.cls = "undersampled";
   else if (j.error > (linear ? o.tol : o.slipTol))
     j.cls = "inaccurate";
   else
