@@ -21,9 +21,11 @@ struct TransientState {
   void clear();
 };
 
-/// One step of length dt > 0 at speed V > 0. Marches each strip from the leading edge solving the
-/// discretised slip equation with s = 0 for the adhesion guess, saturates at field->bound, then
-/// updates `state` from the saturated traction. field->bound must be filled (parabolicBound).
+/// One step of length dt > 0 at speed V > 0. Marches each strip from the patch's leading edge
+/// solving the discretised slip equation with s = 0 for the adhesion guess, saturates at
+/// field->bound, then updates `state` from the saturated traction. field->bound and field->entry
+/// must be filled (parabolicBound). Nodes outside the patch (zero bound) get zero traction and only
+/// their filter state advances.
 /// The stored history is read times `historyScale` (1: as stored), so a caller can rescale it to a
 /// new patch size without a pass over the state; the state written is unscaled.
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
