@@ -19,7 +19,7 @@ class SteadinessMonitor {
   /// l: relaxation length [m]; window: distance over which the peaks are held (between half of it
   /// and all of it) [m];
   /// c: Kalker's coefficients weighting xi, eta and spin into a force; sqrtAb: sqrt(a0 b0) [m].
-  SteadinessMonitor(double l, double memory, const CreepCoefficients& c, double sqrtAb);
+  SteadinessMonitor(double l, double window, const CreepCoefficients& c, double sqrtAb);
   /// One usable step (dq = |V| dt > 0, fz > 0). Returns the current estimate [-].
   double update(const StepInput& in);
   void reset();

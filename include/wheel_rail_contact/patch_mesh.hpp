@@ -58,12 +58,14 @@ class PatchMesh {
 };
 
 /// The march's step onto node i of a strip with element length dx and half-length aj [m]: from
-/// the leading edge (half an element) for i = 0, else from the upstream node. xMid is the step's
-/// midpoint, where a term linear in x (spin) integrates exactly over the step.
+/// the leading edge (half an element) for i = 0, else from the upstream node; or of a given
+/// length h (from a patch edge inside the mesh). xMid is the step's midpoint, where a term linear
+/// in x (spin) integrates exactly over the step.
 struct UpstreamStep {
   double h, xMid;
-  UpstreamStep(int i, double dx, double aj)
-      : h(i == 0 ? 0.5 * dx : dx), xMid(aj - (i + 0.5) * dx + 0.5 * h) {}
+  UpstreamStep(int i, double dx, double aj, double length)
+      : h(length), xMid(aj - (i + 0.5) * dx + 0.5 * length) {}
+  UpstreamStep(int i, double dx, double aj) : UpstreamStep(i, dx, aj, i == 0 ? 0.5 * dx : dx) {}
 };
 
 }  // namespace wheel_rail_contact

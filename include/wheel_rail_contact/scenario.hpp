@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "wheel_rail_contact/contact_model.hpp"
+
 namespace wheel_rail_contact {
 
 struct ScenarioRow {
@@ -28,5 +30,8 @@ class ScenarioError : public std::runtime_error {
 /// Reads a whole scenario. Every value must be a finite number and t must increase strictly.
 /// `source` names the input in messages. Throws ScenarioError.
 std::vector<ScenarioRow> readScenario(std::istream& in, const std::string& source);
+
+/// The step of row k: dt from the previous row's time, 0 for the first (as contact_cli runs it).
+StepInput stepInputAt(const std::vector<ScenarioRow>& rows, size_t k);
 
 }  // namespace wheel_rail_contact

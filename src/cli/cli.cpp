@@ -108,8 +108,7 @@ int runCommand(const Options& o, std::ostream& out, std::ostream& err) {
   out << "t,fx,fy,mz,fz,a,b,adhesion_fraction,status\n";
   for (size_t k = 0; k < rows.size(); ++k) {
     const ScenarioRow& r = rows[k];
-    const double dt = k == 0 ? 0.0 : r.t - rows[k - 1].t;
-    const StepOutput s = model->step({dt, r.V, r.xi, r.eta, r.phi, r.fz});
+    const StepOutput s = model->step(stepInputAt(rows, k));
     if (s.status == StepStatus::kRejected)
       err << file << ": row at t = " << r.t << ": " << s.message << "\n";
     writeRow(out, r.t, s);

@@ -156,12 +156,11 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
     const int k0 = mesh.index(0, j);
     double tx = 0.0, ty = 0.0;
     StripSums strip;
-    // A step of length h onto node i; xMid is its midpoint (exact for spin, linear in x).
     auto node = [&](int i, double h) {
       const int k = k0 + i;
-      const double xMid = aj - (i + 0.5) * dx + 0.5 * h;
-      tx -= h * sx;
-      ty -= h * (gy + gphi * xMid);
+      const UpstreamStep step(i, dx, aj, h);
+      tx -= step.h * sx;
+      ty -= step.h * (gy + gphi * step.xMid);
       strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
     };
     int i = 0;

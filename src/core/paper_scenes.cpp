@@ -63,10 +63,7 @@ std::vector<StepOutput> runScene(ContactModel& model, const std::vector<Scenario
   model.reset();
   std::vector<StepOutput> out;
   out.reserve(rows.size());
-  for (size_t k = 0; k < rows.size(); ++k) {
-    const ScenarioRow& r = rows[k];
-    out.push_back(model.step({k == 0 ? 0.0 : r.t - rows[k - 1].t, r.V, r.xi, r.eta, r.phi, r.fz}));
-  }
+  for (size_t k = 0; k < rows.size(); ++k) out.push_back(model.step(stepInputAt(rows, k)));
   return out;
 }
 

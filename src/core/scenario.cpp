@@ -32,6 +32,11 @@ std::vector<std::string> splitCsv(const std::string& line) {
 
 }  // namespace
 
+StepInput stepInputAt(const std::vector<ScenarioRow>& rows, size_t k) {
+  const ScenarioRow& r = rows[k];
+  return {k == 0 ? 0.0 : r.t - rows[k - 1].t, r.V, r.xi, r.eta, r.phi, r.fz};
+}
+
 std::vector<ScenarioRow> readScenario(std::istream& in, const std::string& source) {
   std::string line;
   long lineNo = 0;

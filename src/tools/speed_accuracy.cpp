@@ -196,18 +196,13 @@ double threadCpuNs() {
   return 1e9 * ts.tv_sec + ts.tv_nsec;
 }
 
-StepInput rowInput(const std::vector<ScenarioRow>& rows, size_t k) {
-  const ScenarioRow& r = rows[k];
-  return {k == 0 ? 0.0 : r.t - rows[k - 1].t, r.V, r.xi, r.eta, r.phi, r.fz};
-}
-
 // One pass over the rows from a fresh state; the forces go to a sink so that nothing is elided and
 // nothing is stored (an output vector would add its own cost to every step).
 double timedPass(ContactModel& model, const std::vector<ScenarioRow>& rows) {
   static volatile double sink = 0.0;
   model.reset();
   const double t0 = threadCpuNs();
-  for (size_t k = 0; k < rows.size(); ++k) sink = sink + model.step(rowInput(rows, k)).fx;
+  for (size_t k = 0; k < rows.size(); ++k) sink = sink + model.step(stepInputAt(rows, k)).fx;
   return threadCpuNs() - t0;
 }
 
@@ -220,7 +215,7 @@ std::vector<StepOutput> recordedPass(ContactModel& model, const std::vector<Scen
   out.reserve(rows.size());
   size_t nss = 0;
   for (size_t k = 0; k < rows.size(); ++k) {
-    out.push_back(model.step(rowInput(rows, k)));
+    out.push_back(model.step(stepInputAt(rows, k)));
     nss += automatic && automatic->nonSteady();
   }
   *nssShare = automatic ? double(nss) / rows.size() : 1.0;

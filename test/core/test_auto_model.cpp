@@ -171,10 +171,10 @@ TEST(AutoModel, MeetsItsToleranceOnWavesTheChartDidNotSee) {
         int nssScored = 0, scored = 0;
         const double from = h.scene.rows.back().t - h.scene.period;
         for (size_t k = 0; k < h.scene.rows.size(); ++k) {
-          const ScenarioRow& r = h.scene.rows[k];
-          out.push_back(
-              m.step({k ? r.t - h.scene.rows[k - 1].t : 0.0, r.V, r.xi, r.eta, r.phi, r.fz}));
-          if (r.t >= from) ++scored, nssScored += m.nonSteady();
+          out.push_back(m.step(stepInputAt(h.scene.rows, k)));
+          if (h.scene.rows[k].t < from) continue;
+          ++scored;
+          nssScored += m.nonSteady();
         }
         const std::string at = std::string(toString(kind)) + " lambda/a " + std::to_string(lambda) +
                                " tolerance " + std::to_string(tolerance);
