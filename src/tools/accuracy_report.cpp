@@ -4,8 +4,7 @@
 //   freq_ab1.csv      the a/b = 1 curves of every model (figure 1)
 //   scenes.csv        per paper scene and model: RMS error / peak, / (mu Fz0), dFx / (mu dFz)
 //   scene_<name>.csv  force histories of every model (figures 2-4, 9-10)
-//   accuracy_report [--out doc/data] [--grid 30] [--load-grid 30] [--nx 20 --ny 20] [--periods 3]
-//                   [--parts all|freq|scenes] [--scenes all|load|combined] [--exact-from DIR]
+// Options: accuracy_report --help.
 // --exact-from DIR reads the exact force histories of the scenes from an earlier run's
 // DIR/scene_<name>.csv instead of re-solving them (minutes instead of seconds per scene; the
 // histories are written with 6 significant digits, enough for errors of 0.1 %).
@@ -20,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "tool_args.hpp"
 #include "wheel_rail_contact/chi_table.hpp"
 #include "wheel_rail_contact/fastsim_frequency.hpp"
 #include "wheel_rail_contact/nonsteady_coefficients.hpp"
@@ -42,7 +42,8 @@ const char* kKindName[3] = {"11", "22", "23"};
 const CreepageKind kKinds[3] = {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi};
 
 void frequencyErrors(const Options& o, const ChiTable& table) {
-  std::ofstream errs(o.out + "/freq_errors.csv"), fig(o.out + "/freq_ab1.csv");
+  std::ofstream errs = tools::writeFile(o.out + "/freq_errors.csv"),
+                fig = tools::writeFile(o.out + "/freq_ab1.csv");
   errs << "a_over_b,kind,lambda_over_a,err_nss,err_shenli,err_steady\n";
   fig << "kind,lambda_over_a,model,c_real,c_imag,ratio_real,ratio_imag\n";
   std::vector<double> lambdas;
@@ -119,14 +120,14 @@ void sceneErrors(const Options& o) {
     for (double xi : {0.002, 0.01, 0.05, 0.1})
       for (double l : {5.0, 15.0, 40.0})
         scenes.push_back(varyingLoadScene(xi, l, o.periods, loadStep));
-  std::ofstream table(o.out + "/scenes.csv");
+  std::ofstream table = tools::writeFile(o.out + "/scenes.csv");
   table << "scene,model,mesh,rms_over_peak,rms_over_mu_fz0,dfx_over_mu_dfz,exact_dfx_over_mu_dfz\n";
   const std::pair<const char*, const char*> models[] = {
       {"nss", "fixed"}, {"nss", "adaptive"}, {"shen-li", "fixed"}, {"steady", "fixed"}};
   for (const PaperScene& s : scenes) {
     ContactParameters p = s.params;
     const std::vector<StepOutput> exact = exactHistory(o, s);
-    std::ofstream hist(o.out + "/scene_" + s.name + ".csv");
+    std::ofstream hist = tools::writeFile(o.out + "/scene_" + s.name + ".csv");
     hist << "t,fz,model,mesh,fx,fy\n";
     auto write = [&](const char* m, const char* mesh, const std::vector<StepOutput>& r) {
       for (size_t k = 0; k < r.size(); ++k) {
@@ -155,37 +156,49 @@ void sceneErrors(const Options& o) {
   }
 }
 
-}  // namespace
+const char* const kUsage =
+    "usage: accuracy_report [--out doc/data] [--grid 30] [--load-grid 30] [--nx 20 --ny 20]\n"
+    "                       [--periods 3] [--parts all|freq|scenes] [--scenes all|load|combined]\n"
+    "                       [--exact-from DIR]\n";
 
-int main(int argc, char** argv) {
-  Options o;
-  for (int k = 1; k + 1 < argc; k += 2) {
-    const std::string name = argv[k], v = argv[k + 1];
-    if (name == "--out")
-      o.out = v;
-    else if (name == "--grid")
-      o.grid = std::stoi(v);
-    else if (name == "--nx")
-      o.nx = std::stoi(v);
-    else if (name == "--ny")
-      o.ny = std::stoi(v);
-    else if (name == "--periods")
-      o.periods = std::stoi(v);
-    else if (name == "--load-grid")
-      o.loadGrid = std::stoi(v);
-    else if (name == "--parts")
-      o.parts = v;
-    else if (name == "--scenes")
-      o.scenes = v;
-    else if (name == "--exact-from")
-      o.exactFrom = v;
-    else {
-      std::cerr << "accuracy_report: unknown option " << name << "\n";
-      return 2;
-    }
-  }
+void readOption(tools::Args& a, Options* o) {
+  if (a.is("--out"))
+    o->out = a.text();
+  else if (a.is("--grid"))
+    o->grid = a.integer();
+  else if (a.is("--nx"))
+    o->nx = a.integer();
+  else if (a.is("--ny"))
+    o->ny = a.integer();
+  else if (a.is("--periods"))
+    o->periods = a.integer();
+  else if (a.is("--load-grid"))
+    o->loadGrid = a.integer();
+  else if (a.is("--parts"))
+    o->parts = a.text();
+  else if (a.is("--scenes"))
+    o->scenes = a.text();
+  else if (a.is("--exact-from"))
+    o->exactFrom = a.text();
+  else
+    a.unknown();
+}
+
+int run(const Options& o) {
+  tools::requireFolder(o.out);
   const ChiTable table = ChiTable::load(ChiTable::defaultPath());
   if (o.parts != "scenes") frequencyErrors(o, table);
   if (o.parts != "freq") sceneErrors(o);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  int code = 0;
+  if (!tools::parseArgs(
+          "accuracy_report", kUsage, argc, argv, [&](tools::Args& a) { readOption(a, &o); }, &code))
+    return code;
+  return tools::runTool("accuracy_report", [&] { return run(o); });
 }

@@ -13,10 +13,7 @@
 // cached in <out>/speed_accuracy_reference.csv, reused when its key line matches, rebuilt on
 // --refresh.
 // Writes <out>/speed_accuracy.csv (one row per model and mesh) and speed_accuracy_scenes.csv.
-//   speed_accuracy [--out doc/data] [--models LIST]
-//                  [--meshes 5,10,20,30,40] [--exact-meshes 10,20] [--grid 40] [--load-grid 30]
-//                  [--periods 3] [--repeats 7] [--tolerances 0.1,0.05] [--set NAME=VALUE]...
-//                  [--refresh]
+// Options: speed_accuracy --help.
 // LIST: NAME[:MESH],... (mesh fixed when left out), by default
 // steady,shen-li,nss:fixed,nss:adaptive,exact,auto:auto; a model this build lacks is skipped, with
 // a note. auto runs once per tolerance, on the mesh it chooses.
@@ -35,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "tool_args.hpp"
 #include "wheel_rail_contact/auto_model.hpp"
 #include "wheel_rail_contact/harmonic_scenes.hpp"
 #include "wheel_rail_contact/nonsteady_coefficients.hpp"
@@ -141,7 +139,7 @@ bool readCache(const Options& o, std::vector<Scene>* scenes) {
 }
 
 void writeCache(const Options& o, const std::vector<Scene>& scenes) {
-  std::ofstream out(cachePath(o));
+  std::ofstream out = tools::writeFile(cachePath(o));
   out << cacheKey(o) << "\nscene,row,fx,fy\n";
   for (const Scene& s : scenes)
     for (size_t k = 0; k < s.reference.size(); ++k) {
@@ -281,7 +279,8 @@ double worstOf(const Result& r, const std::vector<Scene>& scenes, const std::str
 
 void writeResults(const Options& o, const std::vector<Result>& results,
                   const std::vector<Scene>& scenes) {
-  std::ofstream table(o.out + "/speed_accuracy.csv"), per(o.out + "/speed_accuracy_scenes.csv");
+  std::ofstream table = tools::writeFile(o.out + "/speed_accuracy.csv"),
+                per = tools::writeFile(o.out + "/speed_accuracy_scenes.csv");
   table << "model,mesh,nx,ny,tolerance,ns_per_step,worst_error,mean_error,worst_freq,"
            "worst_combined,worst_load\n";
   per << "model,mesh,nx,ny,tolerance,scene,family,error,ns_per_step,nss_share\n";
@@ -304,57 +303,45 @@ void writeResults(const Options& o, const std::vector<Result>& results,
   }
 }
 
-void parseOption(Options* o, const std::string& name, const std::string& v) {
-  auto ints = [](const std::string& text) {
-    std::vector<int> out;
-    for (const std::string& s : split(text, ',')) out.push_back(std::stoi(s));
-    return out;
-  };
-  if (name == "--out")
-    o->out = v;
-  else if (name == "--models")
-    o->models = split(v, ',');
-  else if (name == "--meshes")
-    o->meshes = ints(v);
-  else if (name == "--exact-meshes")
-    o->exactMeshes = ints(v);
-  else if (name == "--tolerances") {
-    o->tolerances.clear();
-    for (const std::string& t : split(v, ',')) o->tolerances.push_back(std::stod(t));
-  } else if (name == "--grid")
-    o->grid = std::stoi(v);
-  else if (name == "--load-grid")
-    o->loadGrid = std::stoi(v);
-  else if (name == "--periods")
-    o->periods = std::stoi(v);
-  else if (name == "--repeats")
-    o->repeats = std::max(1, std::stoi(v));
-  else if (name == "--set" && v.find('=') != std::string::npos)
-    o->overrides.push_back({v.substr(0, v.find('=')), v.substr(v.find('=') + 1)});
-  else
-    throw std::invalid_argument("unknown option " + name + " " + v);
+const char* const kUsage =
+    "usage: speed_accuracy [--out doc/data] [--models LIST] [--meshes 5,10,20,30,40]\n"
+    "                      [--exact-meshes 10,20] [--grid 40] [--load-grid 30] [--periods 3]\n"
+    "                      [--repeats 7] [--tolerances 0.1,0.05] [--set NAME=VALUE]... "
+    "[--refresh]\n";
+
+void readOption(tools::Args& a, Options* o) {
+  if (a.is("--refresh")) {
+    o->refresh = true;
+  } else if (a.is("--out")) {
+    o->out = a.text();
+  } else if (a.is("--models")) {
+    o->models = split(a.text(), ',');
+  } else if (a.is("--meshes")) {
+    o->meshes = a.integers();
+  } else if (a.is("--exact-meshes")) {
+    o->exactMeshes = a.integers();
+  } else if (a.is("--tolerances")) {
+    o->tolerances = a.reals();
+  } else if (a.is("--grid")) {
+    o->grid = a.integer();
+  } else if (a.is("--load-grid")) {
+    o->loadGrid = a.integer();
+  } else if (a.is("--periods")) {
+    o->periods = a.integer();
+  } else if (a.is("--repeats")) {
+    o->repeats = std::max(1, a.integer());
+  } else if (a.is("--set")) {
+    const std::string v = a.text();
+    const size_t eq = v.find('=');
+    if (eq == std::string::npos) throw std::invalid_argument("--set needs NAME=VALUE, got " + v);
+    o->overrides.push_back({v.substr(0, eq), v.substr(eq + 1)});
+  } else {
+    a.unknown();
+  }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  Options o;
-  try {
-    for (int k = 1; k < argc; ++k) {
-      const std::string name = argv[k];
-      if (name == "--refresh")
-        o.refresh = true;
-      else if (k + 1 < argc)
-        parseOption(&o, name, argv[++k]);
-      else
-        throw std::invalid_argument("option " + name + " needs a value");
-    }
-    ContactParameters probe;  // an unknown --set name fails here, not as a skip of every model
-    for (const auto& kv : o.overrides) setParameter(&probe, kv.first, kv.second);
-  } catch (const std::exception& e) {
-    std::cerr << "speed_accuracy: " << e.what() << "\n";
-    return 2;
-  }
+int run(const Options& o) {
+  tools::requireFolder(o.out);
   std::vector<Scene> paper = paperScenes(o);
   if (o.refresh || !readCache(o, &paper)) {
     std::cerr << "computing the exact reference (grid " << o.grid << ", load grid " << o.loadGrid
@@ -375,4 +362,22 @@ int main(int argc, char** argv) {
   }
   writeResults(o, results, scenes);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  int code = 0;
+  if (!tools::parseArgs(
+          "speed_accuracy", kUsage, argc, argv, [&](tools::Args& a) { readOption(a, &o); }, &code))
+    return code;
+  try {
+    ContactParameters probe;  // an unknown --set name fails here, not as a skip of every model
+    for (const auto& kv : o.overrides) setParameter(&probe, kv.first, kv.second);
+  } catch (const std::exception& e) {
+    std::cerr << "speed_accuracy: " << e.what() << "\n";
+    return 2;
+  }
+  return tools::runTool("speed_accuracy", [&] { return run(o); });
 }

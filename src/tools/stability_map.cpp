@@ -21,8 +21,7 @@
 //                 in the travel over the part both windows cover (RMS / mu Fz)
 //   good
 // Output: <out>/stability_map.csv (one row per model, input, lambda/a, V dt/dx).
-//   stability_map [--out doc/data] [--nx 20] [--lambdas 10] [--ratios 7] [--ref-grid 30]
-//                 [--exact-grid 12] [--no-exact] [--tol 0.1] [--slip-tol 0.05] [--osc-tol 0.02]
+// Options: stability_map --help.
 #include <Eigen/Dense>
 #include <chrono>
 #include <cmath>
@@ -34,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "tool_args.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/kalker_coefficients.hpp"
 #include "wheel_rail_contact/nonsteady_coefficients.hpp"
@@ -287,58 +287,42 @@ struct Sweep {
   }
 };
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(k + " needs a value");
-      return argv[++i];
-    };
-    if (k == "--out")
-      o.out = next();
-    else if (k == "--nx")
-      o.nx = std::stoi(next());
-    else if (k == "--lambdas")
-      o.lambdas = std::stoi(next());
-    else if (k == "--ratios")
-      o.ratios = std::stoi(next());
-    else if (k == "--ref-grid")
-      o.refGrid = std::stoi(next());
-    else if (k == "--exact-grid")
-      o.exactGrid = std::stoi(next());
-    else if (k == "--no-exact")
-      o.exact = false;
-    else if (k == "--tol")
-      o.tol = std::stod(next());
-    else if (k == "--slip-tol")
-      o.slipTol = std::stod(next());
-    else if (k == "--osc-tol")
-      o.oscTol = std::stod(next());
-    else
-      throw std::invalid_argument("unknown option " + k);
-  }
-  return o;
+const char* const kUsage =
+    "usage: stability_map [--out doc/data] [--nx 20] [--lambdas 10] [--ratios 7] [--ref-grid 30]\n"
+    "                     [--exact-grid 12] [--no-exact] [--tol 0.1] [--slip-tol 0.05]\n"
+    "                     [--osc-tol 0.02]\n";
+
+void readOption(tools::Args& a, Options* o) {
+  if (a.is("--out"))
+    o->out = a.text();
+  else if (a.is("--nx"))
+    o->nx = a.integer();
+  else if (a.is("--lambdas"))
+    o->lambdas = a.integer();
+  else if (a.is("--ratios"))
+    o->ratios = a.integer();
+  else if (a.is("--ref-grid"))
+    o->refGrid = a.integer();
+  else if (a.is("--exact-grid"))
+    o->exactGrid = a.integer();
+  else if (a.is("--no-exact"))
+    o->exact = false;
+  else if (a.is("--tol"))
+    o->tol = a.real();
+  else if (a.is("--slip-tol"))
+    o->slipTol = a.real();
+  else if (a.is("--osc-tol"))
+    o->oscTol = a.real();
+  else
+    a.unknown();
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  Options o;
-  try {
-    o = parse(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "stability_map: " << e.what() << "\n";
-    return 2;
-  }
+int run(const Options& o) {
+  tools::requireFolder(o.out);
   const ContactParameters p;
   const NonSteadyCoefficients x(CreepageKind::kXi, p.a0 / p.b0, p.nu, o.refGrid, o.refGrid);
   const NonSteadyCoefficients y(CreepageKind::kEta, p.a0 / p.b0, p.nu, o.refGrid, o.refGrid);
-  std::ofstream csv(o.out + "/stability_map.csv");
-  if (!csv) {
-    std::cerr << "stability_map: cannot write " << o.out << "/stability_map.csv\n";
-    return 1;
-  }
+  std::ofstream csv = tools::writeFile(o.out + "/stability_map.csv");
   csv << "model,input,lambda_over_a,step_over_dx,steps_per_period,class,error,residual,"
          "alternating,max_force_ratio,not_converged,reference\n";
   Sweep sweep{o, csv, {&x, &y}};
@@ -359,4 +343,15 @@ int main(int argc, char** argv) {
     sweep.model({"exact", "exact", "fixed", false}, el, er, o.exactGrid);
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  int code = 0;
+  if (!tools::parseArgs(
+          "stability_map", kUsage, argc, argv, [&](tools::Args& a) { readOption(a, &o); }, &code))
+    return code;
+  return tools::runTool("stability_map", [&] { return run(o); });
 }

@@ -1,0 +1,119 @@
+// Command-line options of the offline tools: "--name value" pairs and bare switches. A missing
+// value, an unknown name or an unreadable number is one message naming the option and exit code
+// 2; "--help" prints the tool's usage and exits 0. So a typo never runs a long job with defaults
+// (and overwrites the committed results in doc/data). Past the command line, runTool() turns an
+// exception (a value the library refuses, an output that cannot be written) into one message and
+// exit code 1 instead of an abort.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace wheel_rail_contact {
+namespace tools {
+
+/// The options of one command line, walked name by name.
+class Args {
+ public:
+  Args(int argc, char** argv) : words_(argv + 1, argv + argc) {}
+  /// Moves to the next option name; false after the last.
+  bool next() {
+    if (k_ >= words_.size()) return false;
+    name_ = words_[k_++];
+    return true;
+  }
+  bool is(const char* name) const { return name_ == name; }
+  const std::string& name() const { return name_; }
+  /// The current option's value (consumed).
+  std::string text() {
+    if (k_ >= words_.size()) throw std::invalid_argument("option " + name_ + " needs a value");
+    return words_[k_++];
+  }
+  int integer() { return number<int>(text()); }
+  double real() { return number<double>(text()); }
+  /// A comma-separated list as the current option's value.
+  std::vector<int> integers() { return list<int>(); }
+  std::vector<double> reals() { return list<double>(); }
+  [[noreturn]] void unknown() const { throw std::invalid_argument("unknown option " + name_); }
+
+ private:
+  template <class T>
+  T number(const std::string& v) const {
+    try {
+      size_t used = 0;
+      const T x = std::is_integral<T>::value ? T(std::stoi(v, &used)) : T(std::stod(v, &used));
+      if (used == v.size()) return x;
+    } catch (const std::exception&) {  // stoi/stod: invalid_argument or out_of_range
+    }
+    throw std::invalid_argument("option " + name_ + ": not a number: '" + v + "'");
+  }
+  template <class T>
+  std::vector<T> list() {
+    std::vector<T> out;
+    std::string item;
+    for (std::istringstream items(text()); std::getline(items, item, ',');)
+      out.push_back(number<T>(item));
+    return out;
+  }
+
+  std::vector<std::string> words_;
+  size_t k_ = 0;
+  std::string name_;
+};
+
+/// Walks argv, calling option(args) at each name (it reads its value or calls args.unknown()).
+/// False when the tool must stop with *exitCode: 0 after --help, 2 after a bad option.
+template <class Option>
+bool parseArgs(const char* tool, const char* usage, int argc, char** argv, Option option,
+               int* exitCode) {
+  Args args(argc, argv);
+  try {
+    while (args.next()) {
+      if (args.is("--help") || args.is("-h")) {
+        std::cout << usage;
+        *exitCode = 0;
+        return false;
+      }
+      option(args);
+    }
+  } catch (const std::invalid_argument& e) {
+    std::cerr << tool << ": " << e.what() << "\n" << usage;
+    *exitCode = 2;
+    return false;
+  }
+  return true;
+}
+
+/// The tool's work, body() returning its exit code; an exception ends it with a message, code 1.
+template <class Body>
+int runTool(const char* tool, Body body) {
+  try {
+    return body();
+  } catch (const std::exception& e) {
+    std::cerr << tool << ": " << e.what() << "\n";
+    return 1;
+  }
+}
+
+/// Fails before a long run, not after it, when its output folder is missing.
+inline void requireFolder(const std::string& path) {
+  if (!std::filesystem::is_directory(path))
+    throw std::runtime_error("output folder " + path + " does not exist");
+}
+
+/// `path` opened for writing, or std::runtime_error naming it.
+inline std::ofstream writeFile(const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  return out;
+}
+
+}  // namespace tools
+}  // namespace wheel_rail_contact
