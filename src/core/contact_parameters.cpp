@@ -42,12 +42,12 @@ std::string str(double v) {
 std::vector<ParameterDoc> parameterDocs() {
   const ContactParameters d;
   return {
-      {"G", "Pa", str(d.G), "shear modulus of wheel and rail (> 0)"},
+      {"G", "Pa", str(d.G), "shear modulus of wheel and rail, [1e3, 1e13]"},
       {"nu", "-", str(d.nu), "Poisson ratio, [0, 0.5]"},
-      {"mu", "-", str(d.mu), "Coulomb friction coefficient (>= 0)"},
-      {"a0", "m", str(d.a0), "reference semi-axis along the rolling direction at fz0 (> 0)"},
-      {"b0", "m", str(d.b0), "reference lateral semi-axis at fz0 (> 0; a0/b0 in [0.1, 10])"},
-      {"fz0", "N", str(d.fz0), "reference normal load; a, b scale as (fz/fz0)^(1/3) (> 0)"},
+      {"mu", "-", str(d.mu), "Coulomb friction coefficient, 0 or [1e-6, 1e3]"},
+      {"a0", "m", str(d.a0), "reference semi-axis along the rolling direction at fz0, [1e-6, 1]"},
+      {"b0", "m", str(d.b0), "reference lateral semi-axis at fz0, [1e-6, 1]; a0/b0 in [0.1, 10]"},
+      {"fz0", "N", str(d.fz0), "reference normal load, [1e-6, 1e9]; a, b scale as (fz/fz0)^(1/3)"},
       {"nx", "-", std::to_string(d.nx), "FastSim nodes per strip, [2, 400]"},
       {"ny", "-", std::to_string(d.ny), "FastSim strips, [1, 400]"},
       {"model", "", d.model, "steady | shen-li | nss | exact | auto (steady or nss, as needed)"},
@@ -60,13 +60,24 @@ std::vector<ParameterDoc> parameterDocs() {
   };
 }
 
+namespace {
+
+// A physical range, wide enough for any wheel-rail or laboratory contact; beyond it (e.g. a
+// subnormal mu, G = 1e200 Pa) the solvers' arithmetic under- or overflows into NaN.
+void requireIn(const char* name, double v, double lo, double hi, const char* unit) {
+  if (!(v >= lo && v <= hi) || !std::isfinite(v))
+    fail(name, "must be in [" + str(lo) + ", " + str(hi) + "]" + unit + ", got " + str(v));
+}
+
+}  // namespace
+
 void validate(const ContactParameters& p) {
-  if (!(p.G > 0.0) || !std::isfinite(p.G)) fail("G", "must be > 0, got " + str(p.G));
+  requireIn("G", p.G, 1e3, 1e13, " Pa");
   if (!(p.nu >= 0.0 && p.nu <= 0.5)) fail("nu", "must be in [0, 0.5], got " + str(p.nu));
-  if (!(p.mu >= 0.0) || !std::isfinite(p.mu)) fail("mu", "must be >= 0, got " + str(p.mu));
-  if (!(p.a0 > 0.0) || !std::isfinite(p.a0)) fail("a0", "must be > 0, got " + str(p.a0));
-  if (!(p.b0 > 0.0) || !std::isfinite(p.b0)) fail("b0", "must be > 0, got " + str(p.b0));
-  if (!(p.fz0 > 0.0) || !std::isfinite(p.fz0)) fail("fz0", "must be > 0, got " + str(p.fz0));
+  if (p.mu != 0.0) requireIn("mu", p.mu, 1e-6, 1e3, " (or 0: frictionless)");
+  requireIn("a0", p.a0, 1e-6, 1.0, " m");
+  requireIn("b0", p.b0, 1e-6, 1.0, " m");
+  requireIn("fz0", p.fz0, 1e-6, 1e9, " N");
   const double ab = p.a0 / p.b0;
   if (!(ab >= kKalkerMinAOverB && ab <= kKalkerMaxAOverB))
     fail("b0", "a0/b0 = " + str(ab) + " is outside Kalker's table [0.1, 10]");

@@ -73,9 +73,11 @@ TEST(ContactCli, BadOptionsExitNonZeroNamingTheOption) {
     std::vector<std::string> args;
     std::string mention;
   } cases[] = {
-      {{"run", "--scenario", f, "--a0", "-1"}, "a0: must be > 0"},
-      {{"run", "--scenario", f, "--a0", "0"}, "a0: must be > 0"},
-      {{"run", "--scenario", f, "--mu", "-0.1"}, "mu: must be >= 0"},
+      {{"run", "--scenario", f, "--a0", "-1"}, "a0: must be in [1e-06, 1] m"},
+      {{"run", "--scenario", f, "--a0", "0"}, "a0: must be in [1e-06, 1] m"},
+      {{"run", "--scenario", f, "--mu", "-0.1"}, "mu: must be in [1e-06, 1000]"},
+      {{"run", "--scenario", f, "--mu", "1e-200"}, "mu: must be in [1e-06, 1000]"},
+      {{"run", "--scenario", f, "--G", "1e200"}, "G: must be in [1000, 1e+13] Pa"},
       {{"run", "--scenario", f, "--nx", "1"}, "nx: must be in [2, 400]"},
       {{"run", "--scenario", f, "--ny", "x"}, "ny: expected an integer"},
       {{"run", "--scenario", f, "--G", "abc"}, "G: expected a finite number"},

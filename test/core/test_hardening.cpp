@@ -133,3 +133,41 @@ TEST(Hardening, ExactModelSubnormalCreepage) {
   const StepOutput o = m->step({1e-3, 10.0, 1.9e-314, 0.0, 0.0, 8e4});
   EXPECT_TRUE(std::isfinite(o.fx) && std::isfinite(o.fy) && std::isfinite(o.mz));
 }
+
+// validate() took any positive finite material: mu = 1e-200 or G = 1e200 made the exact solver
+// NaN. It now holds them to physical ranges; at every corner of those ranges each model is finite.
+TEST(Hardening, ParametersOutsideThePhysicalRangesAreRefused) {
+  auto refused = [](void (*set)(ContactParameters*)) {
+    ContactParameters p;
+    set(&p);
+    EXPECT_THROW(validate(p), std::invalid_argument);
+  };
+  refused([](ContactParameters* p) { p->mu = 1e-200; });
+  refused([](ContactParameters* p) { p->G = 1e200; });
+  refused([](ContactParameters* p) { p->a0 = p->b0 = 2.0; });
+  refused([](ContactParameters* p) { p->fz0 = 1e-9; });
+}
+
+TEST(Hardening, EveryModelIsFiniteAtTheCornersOfThePhysicalRanges) {
+  struct Corner {
+    double G, mu, a0, fz0;
+  };
+  for (const Corner c : {Corner{1e3, 1e-6, 1e-6, 1e9}, Corner{1e13, 1e3, 1.0, 1e-6},
+                         Corner{1e13, 1e-6, 1e-6, 1e-6}, Corner{1e3, 1e3, 1.0, 1e9}}) {
+    for (const char* model : {"steady", "nss", "exact"}) {
+      ContactParameters p = params(model, "fixed", 6);
+      p.G = c.G;
+      p.mu = c.mu;
+      p.a0 = p.b0 = c.a0;
+      p.fz0 = c.fz0;
+      auto m = makeContactModel(p);
+      for (int k = 0; k < 4; ++k) {
+        const double fz = c.fz0 * (1.0 + 0.2 * k);
+        const StepOutput o = m->step({1e-4, 20.0, 2e-3, -1e-3, 1.0, fz});
+        ASSERT_TRUE(std::isfinite(o.fx) && std::isfinite(o.fy) && std::isfinite(o.mz))
+            << model << " G " << c.G << " mu " << c.mu << " a0 " << c.a0 << " fz0 " << c.fz0;
+        EXPECT_LE(std::hypot(o.fx, o.fy), c.mu * fz * (1 + 1e-9)) << model;
+      }
+    }
+  }
+}

@@ -76,17 +76,16 @@ class Decoder {
     }
   }
 
-  /// A parameter: `typical` unless the fuzzer says otherwise, then within 2^+-30 of it, or one
-  /// that validate() must refuse (negative, NaN, Inf) or 0. Not beyond 2^+-30: validate() accepts
-  /// e.g. mu = 5e-324 or G = 1e-300, for which the exact solver's arithmetic underflows (an open
-  /// finding, README "Fuzzing and sanitizers"); inputs get the full range.
+  /// A parameter: `typical` unless the fuzzer says otherwise, then within 2^+-60 of it (beyond
+  /// validate()'s physical ranges on both sides), or one that validate() must refuse (negative,
+  /// NaN, Inf) or 0.
   double param(double typical) {
     static const double kSpecial[] = {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
                                       std::numeric_limits<double>::infinity()};
     if (!flag()) return typical;
     switch (pick(3)) {
       case 0:
-        return std::ldexp(typical, pick(61) - 30);
+        return std::ldexp(typical, pick(121) - 60);
       case 1:
         return kSpecial[pick(std::size(kSpecial))] * typical;
       default: {

@@ -80,14 +80,16 @@ TEST(BadParameters, FatalNamesTheParameter) {
 }
 
 TEST(BadParameters, EveryParameterOutOfRange) {
-  expectFatal("_G:=0", "G: must be > 0, got 0");
+  expectFatal("_G:=0", "G: must be in [1000, 1e+13] Pa, got 0");
+  expectFatal("_G:=1e200", "G: must be in [1000, 1e+13] Pa, got 1e+200");
   expectFatal("_G:=nan", "G: expected a finite number, got 'nan'");
   expectFatal("_nu:=-0.1", "nu: must be in [0, 0.5]");
-  expectFatal("_mu:=-0.3", "mu: must be >= 0, got -0.3");
-  expectFatal("_a0:=0", "a0: must be > 0");
-  expectFatal("_b0:=-1e-3", "b0: must be > 0");
+  expectFatal("_mu:=-0.3", "mu: must be in [1e-06, 1000] (or 0: frictionless), got -0.3");
+  expectFatal("_mu:=1e-200", "mu: must be in [1e-06, 1000] (or 0: frictionless), got 1e-200");
+  expectFatal("_a0:=0", "a0: must be in [1e-06, 1] m, got 0");
+  expectFatal("_b0:=-1e-3", "b0: must be in [1e-06, 1] m, got -0.001");
   expectFatal("_a0:=0.1 _b0:=0.001", "b0: a0/b0 = 100 is outside Kalker's table");
-  expectFatal("_fz0:=-5", "fz0: must be > 0");
+  expectFatal("_fz0:=-5", "fz0: must be in [1e-06, 1e+09] N, got -5");
   expectFatal("_nx:=1", "nx: must be in [2, 400], got 1");
   expectFatal("_nx:=401", "nx: must be in [2, 400], got 401");
   expectFatal("_ny:=0", "ny: must be in [1, 400], got 0");
