@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "wheel_rail_contact/chi_table.hpp"
+#include "wheel_rail_contact/second_order_flexibility.hpp"
 
 namespace wheel_rail_contact {
 
@@ -34,5 +35,26 @@ ChiFit evaluateChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny
 /// minimising meanErrorLog + maxWeight * maxError.
 ChiFit fitChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
               const std::vector<FrequencyPoint>& exact, double maxWeight = 0.0);
+
+/// The same measures for a second-order F (second_order_flexibility.hpp).
+struct SecondOrderFit {
+  SecondOrderChi chi;
+  double meanErrorLog = 0.0;     ///< as ChiFit [-]
+  double meanErrorLinear = 0.0;  ///< as ChiFit [-]
+  double maxError = 0.0;         ///< max over the points with lambda/a >= 2 [-]
+  int evaluations = 0;
+};
+
+SecondOrderFit evaluateSecondOrderChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
+                                      const SecondOrderChi& chi,
+                                      const std::vector<FrequencyPoint>& exact);
+
+/// Best stable second-order F (SecondOrderChi::valid) minimising meanErrorLog + maxWeight *
+/// maxError + max(0, highFrequencyGain - maxHighFrequencyGain). The gain bound keeps F from
+/// buying the fit at lambda/a >= 2 with a huge flexibility at very short waves (unbounded, the
+/// fit drives chi5 -> 0, an almost improper F). Starts from fitChi(..., maxWeight).
+SecondOrderFit fitSecondOrderChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
+                                 const std::vector<FrequencyPoint>& exact, double maxWeight = 10.0,
+                                 double maxHighFrequencyGain = 5.0);
 
 }  // namespace wheel_rail_contact

@@ -10,6 +10,7 @@
 
 #include "wheel_rail_contact/chi_table.hpp"
 #include "wheel_rail_contact/nss_filter.hpp"
+#include "wheel_rail_contact/second_order_flexibility.hpp"
 
 namespace wheel_rail_contact {
 
@@ -18,6 +19,11 @@ namespace wheel_rail_contact {
 std::complex<double> fastsimNonSteadyCoefficient(CreepageKind kind, double a_over_b, double nu,
                                                  int nx, int ny, const ChiParameters& chi,
                                                  double lambda_over_a);
+
+/// The same with a second-order dynamic flexibility (second_order_flexibility.hpp).
+std::complex<double> fastsimSecondOrderCoefficient(CreepageKind kind, double a_over_b, double nu,
+                                                   int nx, int ny, const SecondOrderChi& chi,
+                                                   double lambda_over_a);
 
 /// The steady FastSim coefficient on the same mesh (real; equals Kalker's C within the mesh error).
 double fastsimSteadyCoefficient(CreepageKind kind, double a_over_b, double nu, int nx, int ny);

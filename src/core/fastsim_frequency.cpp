@@ -7,16 +7,20 @@
 
 namespace wheel_rail_contact {
 
-std::complex<double> fastsimNonSteadyCoefficient(CreepageKind kind, double a_over_b, double nu,
-                                                 int nx, int ny, const ChiParameters& chi,
-                                                 double lambda_over_a) {
+namespace {
+
+// C^ for a given flexibility F(k) at the wave's k (F = 1 for Shen & Li); a = 1, so the time term
+// is (i k / a) F = i k F.
+template <typename Flexibility>
+std::complex<double> responseOf(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
+                                const Flexibility& flexibility, double lambda_over_a) {
   using C = std::complex<double>;
   const double a = 1.0, b = a / a_over_b, G = 1.0;  // C^ is scale-free: unit a and G
   const PatchMesh mesh(nx, ny, a, b);
   const Flexibilities L = kalkerFlexibilities(a, b, G, kalkerCoefficients(a_over_b, nu));
   const bool steady = !std::isfinite(lambda_over_a);
   const double k = steady ? 0.0 : 2.0 * M_PI / lambda_over_a;
-  const C timeTerm = steady ? C(0.0) : C(0.0, k / a) * transferFunction(chi, k);
+  const C timeTerm = steady ? C(0.0) : C(0.0, k / a) * flexibility(k);
   C force = 0.0;
   for (int j = 0; j < ny; ++j) {
     const double dx = mesh.stripStep(j), aj = mesh.stripHalfLength(j);
@@ -34,6 +38,23 @@ std::complex<double> fastsimNonSteadyCoefficient(CreepageKind kind, double a_ove
   }
   const double norm = kind == CreepageKind::kPhi ? G * std::pow(a * b, 1.5) : G * a * b;
   return -force / norm;
+}
+
+}  // namespace
+
+std::complex<double> fastsimNonSteadyCoefficient(CreepageKind kind, double a_over_b, double nu,
+                                                 int nx, int ny, const ChiParameters& chi,
+                                                 double lambda_over_a) {
+  return responseOf(
+      kind, a_over_b, nu, nx, ny, [&](double k) { return transferFunction(chi, k); },
+      lambda_over_a);
+}
+
+std::complex<double> fastsimSecondOrderCoefficient(CreepageKind kind, double a_over_b, double nu,
+                                                   int nx, int ny, const SecondOrderChi& chi,
+                                                   double lambda_over_a) {
+  return responseOf(
+      kind, a_over_b, nu, nx, ny, [&](double k) { return chi.at(k); }, lambda_over_a);
 }
 
 double fastsimSteadyCoefficient(CreepageKind kind, double a_over_b, double nu, int nx, int ny) {

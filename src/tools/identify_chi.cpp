@@ -4,6 +4,9 @@
 // and writes the table, plus every exact curve for plots.
 //   identify_chi [--out config/chi_table.csv] [--curves doc/data/exact_curves.csv]
 //                [--nx 20 --ny 20] [--grid 30] [--nu 0.28] [--points 25] [--ab 0.2,...,5]
+//                [--spin-out FILE]
+// --spin-out also fits a second-order F to kind 23 (second_order_flexibility.hpp; frequency domain
+// only, the march does not read it) and writes its chi1..chi5 with the same error measures.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -28,7 +31,8 @@ int main(int argc, char** argv) {
                                             {"grid", "30"},
                                             {"nu", "0.28"},
                                             {"points", "25"},
-                                            {"ab", "0.2,0.3,0.5,0.7,1,1.4,2,3,5"}};
+                                            {"ab", "0.2,0.3,0.5,0.7,1,1.4,2,3,5"},
+                                            {"spin-out", ""}};
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string name = std::string(argv[k]).substr(2);
     if (!opt.count(name)) {
@@ -65,6 +69,19 @@ int main(int argc, char** argv) {
            "err_max: max over lambda/a >= 2.\n"
         << "a_over_b,kind,chi1,chi2,chi3,err_log,err_linear,err_max,shenli_err_log\n";
   curves << "a_over_b,kind,lambda_over_a,c_real,c_imag,c_steady\n";
+  std::ofstream spin;
+  if (!opt["spin-out"].empty()) {
+    spin.open(opt["spin-out"]);
+    if (!spin) {
+      std::cerr << "identify_chi: cannot write " << opt["spin-out"] << "\n";
+      return 1;
+    }
+    spin << "# Second-order F(k) = (chi2 + s chi1 + s^2 chi4) / (1 + s chi3 + s^2 chi5), s = i k, "
+            "kind 23, fitted by identify_chi on "
+         << date << ",\n# exact " << grid << "x" << grid << ", FastSim " << nx << "x" << ny
+         << ", cost err_log + 10 err_max, |F(inf)| <= 5. Columns as chi_table.csv.\n"
+         << "a_over_b,kind,chi1,chi2,chi3,chi4,chi5,err_log,err_linear,err_max\n";
+  }
   const CreepageKind kinds[3] = {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi};
   const char* names[3] = {"11", "22", "23"};
   for (double ab : ratios) {
@@ -88,6 +105,15 @@ int main(int argc, char** argv) {
                     fit.chi.chi1, fit.chi.chi2, fit.chi.chi3, fit.meanErrorLog, fit.meanErrorLinear,
                     fit.maxError, shenLi.meanErrorLog);
       table << line;
+      if (spin.is_open() && kinds[q] == CreepageKind::kPhi) {
+        const SecondOrderFit f2 = fitSecondOrderChi(kinds[q], ab, nu, nx, ny, curve);
+        char line2[256];
+        std::snprintf(line2, sizeof line2, "%g,23,%.6f,%.6f,%.6f,%.6f,%.6f,%.5f,%.5f,%.5f\n", ab,
+                      f2.chi.chi1, f2.chi.chi2, f2.chi.chi3, f2.chi.chi4, f2.chi.chi5,
+                      f2.meanErrorLog, f2.meanErrorLinear, f2.maxError);
+        spin << line2;
+        std::cerr << "  second order: " << line2;
+      }
       const double secs =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       std::cerr << "a/b " << ab << " kind " << names[q] << ": " << line << "  (" << secs << " s)\n";
