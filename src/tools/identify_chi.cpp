@@ -2,9 +2,7 @@
 // our exact half-space solver (method-notes section 5). For each creepage kind and a/b of the grid
 // it computes the exact C^(lambda/a) / C_steady curve, fits chi (chi_fit.hpp) at the FastSim mesh
 // and writes the table, plus every exact curve for plots.
-//   identify_chi [--out config/chi_table.csv] [--curves doc/data/exact_curves.csv]
-//                [--nx 20 --ny 20] [--grid 30] [--nu 0.28] [--points 25] [--ab 0.2,...,5]
-//                [--spin-out FILE]
+// Options: identify_chi --help.
 // --spin-out also fits a second-order F to kind 23 (second_order_flexibility.hpp; frequency domain
 // only, the march does not read it) and writes its chi1..chi5 with the same error measures.
 #include <chrono>
@@ -13,48 +11,62 @@
 #include <ctime>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "tool_args.hpp"
 #include "wheel_rail_contact/chi_fit.hpp"
 #include "wheel_rail_contact/nonsteady_coefficients.hpp"
 
 using namespace wheel_rail_contact;
 
-int main(int argc, char** argv) {
-  std::map<std::string, std::string> opt = {{"out", "config/chi_table.csv"},
-                                            {"curves", "doc/data/exact_curves.csv"},
-                                            {"nx", "20"},
-                                            {"ny", "20"},
-                                            {"grid", "30"},
-                                            {"nu", "0.28"},
-                                            {"points", "25"},
-                                            {"ab", "0.2,0.3,0.5,0.7,1,1.4,2,3,5"},
-                                            {"spin-out", ""}};
-  for (int k = 1; k + 1 < argc; k += 2) {
-    const std::string name = std::string(argv[k]).substr(2);
-    if (!opt.count(name)) {
-      std::cerr << "identify_chi: unknown option " << argv[k] << "\n";
-      return 2;
-    }
-    opt[name] = argv[k + 1];
-  }
-  const int nx = std::stoi(opt["nx"]), ny = std::stoi(opt["ny"]), grid = std::stoi(opt["grid"]);
-  const int points = std::stoi(opt["points"]);
-  const double nu = std::stod(opt["nu"]);
-  std::vector<double> ratios;
-  std::stringstream list(opt["ab"]);
-  for (std::string v; std::getline(list, v, ',');) ratios.push_back(std::stod(v));
+namespace {
+
+struct Options {
+  std::string out = "config/chi_table.csv", curves = "doc/data/exact_curves.csv", spinOut;
+  int nx = 20, ny = 20, grid = 30, points = 25;
+  double nu = 0.28;
+  std::vector<double> ratios = {0.2, 0.3, 0.5, 0.7, 1, 1.4, 2, 3, 5};
+};
+
+const char* const kUsage =
+    "usage: identify_chi [--out config/chi_table.csv] [--curves doc/data/exact_curves.csv]\n"
+    "                    [--nx 20 --ny 20] [--grid 30] [--nu 0.28] [--points 25]\n"
+    "                    [--ab 0.2,0.3,0.5,0.7,1,1.4,2,3,5] [--spin-out FILE]\n";
+
+void readOption(tools::Args& a, Options* o) {
+  if (a.is("--out"))
+    o->out = a.text();
+  else if (a.is("--curves"))
+    o->curves = a.text();
+  else if (a.is("--spin-out"))
+    o->spinOut = a.text();
+  else if (a.is("--nx"))
+    o->nx = a.integer();
+  else if (a.is("--ny"))
+    o->ny = a.integer();
+  else if (a.is("--grid"))
+    o->grid = a.integer();
+  else if (a.is("--points"))
+    o->points = a.integer();
+  else if (a.is("--nu"))
+    o->nu = a.real();
+  else if (a.is("--ab"))
+    o->ratios = a.reals();
+  else
+    a.unknown();
+}
+
+int run(const Options& o) {
+  const int nx = o.nx, ny = o.ny, grid = o.grid, points = o.points;
+  const double nu = o.nu;
+  const std::vector<double>& ratios = o.ratios;
+  if (points < 2) throw std::invalid_argument("--points must be >= 2");
   std::vector<double> lambdas;
   for (int q = 0; q < points; ++q) lambdas.push_back(std::pow(100.0, q / (points - 1.0)));
 
-  std::ofstream table(opt["out"]), curves(opt["curves"]);
-  if (!table || !curves) {
-    std::cerr << "identify_chi: cannot write " << opt["out"] << " or " << opt["curves"] << "\n";
-    return 1;
-  }
+  std::ofstream table = tools::writeFile(o.out), curves = tools::writeFile(o.curves);
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
@@ -70,12 +82,8 @@ int main(int argc, char** argv) {
         << "a_over_b,kind,chi1,chi2,chi3,err_log,err_linear,err_max,shenli_err_log\n";
   curves << "a_over_b,kind,lambda_over_a,c_real,c_imag,c_steady\n";
   std::ofstream spin;
-  if (!opt["spin-out"].empty()) {
-    spin.open(opt["spin-out"]);
-    if (!spin) {
-      std::cerr << "identify_chi: cannot write " << opt["spin-out"] << "\n";
-      return 1;
-    }
+  if (!o.spinOut.empty()) {
+    spin = tools::writeFile(o.spinOut);
     spin << "# Second-order F(k) = (chi2 + s chi1 + s^2 chi4) / (1 + s chi3 + s^2 chi5), s = i k, "
             "kind 23, fitted by identify_chi on "
          << date << ",\n# exact " << grid << "x" << grid << ", FastSim " << nx << "x" << ny
@@ -120,4 +128,15 @@ int main(int argc, char** argv) {
     }
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  int code = 0;
+  if (!tools::parseArgs(
+          "identify_chi", kUsage, argc, argv, [&](tools::Args& a) { readOption(a, &o); }, &code))
+    return code;
+  return tools::runTool("identify_chi", [&] { return run(o); });
 }
