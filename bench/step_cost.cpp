@@ -31,6 +31,6 @@ int main(int argc, char** argv) {
   StepInput in[256];
   for (int k = 0; k < 256; ++k) in[k] = bench::input(k, std::string(argv[4]) == "vary");
   for (int k = 0; k < 256; ++k) m->step(in[k]);
-  std::printf("%g\n", runSteps(*m, in, std::stoi(argv[5])));
+  std::printf("%.17g\n", runSteps(*m, in, std::stoi(argv[5])));
   return 0;
 }
