@@ -1,8 +1,10 @@
 // Cost of one step of each FastSim model and mesh (ns per step). Run:
 //   build/devel/lib/wheel_rail_contact/bench_fastsim --benchmark_repetitions=9 \
 //     --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true
-// (random interleaving spreads the machine's load over every model alike). Instruction counts,
-// which do not depend on the load: scripts/step_cost.sh.
+// (random interleaving spreads the machine's load over every model alike). Each nss row compares
+// with steady FastSim on the same mesh: the adaptive mesh with Steady (SteadyModel, mesh fitted to
+// the patch), the fixed mesh with SteadyFixedMesh (steady FastSim on nss's fixed mesh). Instruction
+// counts, which do not depend on the load: scripts/step_cost.sh.
 #include <benchmark/benchmark.h>
 
 #include "step_inputs.hpp"
