@@ -1,8 +1,10 @@
 // Cost of one step of each FastSim model and mesh (ns per step). Run:
 //   build/devel/lib/wheel_rail_contact/bench_fastsim --benchmark_repetitions=9 \
 //     --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true
-// (random interleaving spreads the machine's load over every model alike). Instruction counts,
-// which do not depend on the load: scripts/step_cost.sh.
+// (random interleaving spreads the machine's load over every model alike). Each nss row compares
+// with steady FastSim on the same mesh: the adaptive mesh with Steady (SteadyModel, mesh fitted to
+// the patch), the fixed mesh with SteadyFixedMesh (steady FastSim on nss's fixed mesh). Instruction
+// counts, which do not depend on the load: scripts/step_cost.sh.
 #include <benchmark/benchmark.h>
 
 #include "step_inputs.hpp"
@@ -22,6 +24,9 @@ void run(benchmark::State& state, const char* model, const char* mesh, bool vary
 }
 
 void Steady(benchmark::State& s) {
+  run(s, "steady", "fitted", true);
+}
+void SteadyFixedMesh(benchmark::State& s) {
   run(s, "steady", "fixed", true);
 }
 void ShenLi(benchmark::State& s) {
@@ -40,6 +45,7 @@ void NssAdaptiveConstantLoad(benchmark::State& s) {
 }  // namespace
 
 BENCHMARK(Steady)->Arg(10)->Arg(20)->Arg(30)->Arg(40);
+BENCHMARK(SteadyFixedMesh)->Arg(10)->Arg(20)->Arg(30)->Arg(40);
 BENCHMARK(ShenLi)->Arg(10)->Arg(20)->Arg(30)->Arg(40);
 BENCHMARK(NssFixed)->Arg(10)->Arg(20)->Arg(30)->Arg(40);
 BENCHMARK(NssAdaptive)->Arg(10)->Arg(20)->Arg(30)->Arg(40);

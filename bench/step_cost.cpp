@@ -2,7 +2,8 @@
 // steps (load-independent, unlike wall clock). scripts/step_cost.sh runs every model and mesh:
 //   valgrind --tool=callgrind --toggle-collect='*runSteps*' \
 //     build/devel/lib/wheel_rail_contact/step_cost MODEL MESH N LOAD STEPS
-// MODEL steady|shen-li|nss, MESH fixed|adaptive, N nodes per strip and strips, LOAD vary|constant.
+// MODEL steady|shen-li|nss, MESH fixed|adaptive (steady: fitted, SteadyModel, or fixed, on the
+// mesh nss fixed uses), N nodes per strip and strips, LOAD vary|constant.
 // The first 256 steps (a warm-up that fills the history) are not counted.
 #include <cstdio>
 #include <string>
@@ -30,6 +31,6 @@ int main(int argc, char** argv) {
   StepInput in[256];
   for (int k = 0; k < 256; ++k) in[k] = bench::input(k, std::string(argv[4]) == "vary");
   for (int k = 0; k < 256; ++k) m->step(in[k]);
-  std::printf("%g\n", runSteps(*m, in, std::stoi(argv[5])));
+  std::printf("%.17g\n", runSteps(*m, in, std::stoi(argv[5])));
   return 0;
 }

@@ -80,6 +80,11 @@ struct FieldPointers {
   bool* slip;
   explicit FieldPointers(TractionField* f)
       : tx(f->tx.data()), ty(f->ty.data()), bound(f->bound.data()), slip(f->slip.data()) {}
+  /// Node k outside the patch (zero bound): zero traction, saturated.
+  void unloaded(int k) const {
+    tx[k] = ty[k] = 0.0;
+    slip[k] = true;
+  }
 };
 
 /// Running sums of one strip, so the march integrates the forces as it goes. Keep it a local that
@@ -133,7 +138,7 @@ CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& field)
 
 /// Steady FastSim: marches each strip from the patch's leading edge in adhesion, saturates at the
 /// bound. `field.bound` and `field.entry` must be filled (parabolicBound); tx, ty and slip are
-/// written. Nodes upstream of the patch (zero bound) get zero traction.
+/// written. Nodes outside the patch (zero bound) get zero traction, marked slipping, unmarched.
 CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                           TractionField* field);
 

@@ -163,13 +163,14 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
       ty -= step.h * (gy + gphi * step.xMid);
       strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
     };
-    int i = 0;
-    for (; i < entry.first; ++i) node(i, dx);  // upstream of the patch: saturates at zero
-    if (i < nx) {
-      tx = ty = 0.0;  // the patch's leading edge
-      node(i++, entry.h);
-    }
-    for (; i < nx; ++i) node(i, dx);
+    // The loaded nodes are [enter, leave) (the patch is symmetric in x); the first steps from the
+    // patch's leading edge. Outside the patch (a mesh larger than it) the bound is zero: whatever
+    // the march would bring saturates at zero there, so those nodes are not marched.
+    const int enter = entry.first, leave = nx - entry.first;
+    if (enter < leave) node(enter, entry.h);
+    for (int i = enter + 1; i < leave; ++i) node(i, dx);
+    for (int i = 0; i < std::min(enter, nx); ++i) out.unloaded(k0 + i);
+    for (int i = std::max(leave, enter); i < nx; ++i) out.unloaded(k0 + i);
     sums.addStrip(mesh, j, strip, entry, out.tx, out.ty);
   }
   return sums.forces();

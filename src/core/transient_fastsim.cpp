@@ -172,8 +172,8 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       const Pair next = rate * Pair(0.0, 0.0) - rateOld * o.t - poleOld * o.s;
       sX[k] = next(0);
       sY[k] = next(1);
-      oldX[k] = oldY[k] = out.tx[k] = out.ty[k] = 0.0;
-      out.slip[k] = true;
+      oldX[k] = oldY[k] = 0.0;
+      out.unloaded(k);
     };
     for (int k = first; k < std::min(enter, end); ++k) unloaded(k);
     for (int k = std::max(leave, enter); k < end; ++k) unloaded(k);
