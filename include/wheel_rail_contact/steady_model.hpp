@@ -10,7 +10,12 @@ namespace wheel_rail_contact {
 
 class SteadyModel : public ContactModel {
  public:
-  explicit SteadyModel(const ContactParameters& p);
+  /// Which mesh the march runs on: fitted to each step's patch (every node loaded; the model's
+  /// own choice), or NssModel's fixed mesh sized for fz_max, the patch clipped onto it and the
+  /// nodes outside it skipped (the same-mesh reference for nss on the fixed mesh in the
+  /// benchmarks).
+  enum class Mesh { kFittedToPatch, kSizedForFzMax };
+  explicit SteadyModel(const ContactParameters& p, Mesh mesh = Mesh::kFittedToPatch);
   StepOutput step(const StepInput& in) override;
   void reset() override { last_ = StepOutput(); }
   std::string name() const override { return "steady"; }
@@ -25,6 +30,7 @@ class SteadyModel : public ContactModel {
   CreepCoefficients c_;
   PatchMesh mesh_;
   TractionField field_;
+  bool fitted_;      // mesh_ follows the patch
   StepOutput last_;  // held at standstill
 };
 

@@ -4,11 +4,13 @@
 
 namespace wheel_rail_contact {
 
-SteadyModel::SteadyModel(const ContactParameters& p)
+SteadyModel::SteadyModel(const ContactParameters& p, Mesh mesh)
     : p_(p),
       ref_{p.a0, p.b0, p.fz0},
       c_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
-      mesh_(p.nx, p.ny, p.a0, p.b0) {
+      fitted_(mesh == Mesh::kFittedToPatch) {
+  const HertzEllipse sized = ref_.at(fitted_ ? p.fz0 : effectiveFzMax(p));
+  mesh_ = PatchMesh(p.nx, p.ny, sized.a, sized.b);
   field_.resize(mesh_.size());
 }
 
@@ -28,7 +30,7 @@ StepOutput SteadyModel::step(const StepInput& in) {
   const bool backwards = in.V < 0.0;
   const StepInput fwd = backwards ? mirroredInput(in) : in;
   const HertzEllipse h = ref_.at(fwd.fz);
-  mesh_.scale(h.a, h.b);
+  if (fitted_) mesh_.scale(h.a, h.b);
   parabolicBound(mesh_, h.a, h.b, fwd.fz, p_.mu, &field_);
   const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, c_),
                                       {fwd.xi, fwd.eta, fwd.phi}, &field_);

@@ -195,10 +195,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options o;
-  int code = 0;
-  if (!tools::parseArgs(
-          "accuracy_report", kUsage, argc, argv, [&](tools::Args& a) { readOption(a, &o); }, &code))
-    return code;
-  return tools::runTool("accuracy_report", [&] { return run(o); });
+  return tools::runMain<Options>("accuracy_report", kUsage, argc, argv, readOption, run);
 }

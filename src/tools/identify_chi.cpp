@@ -133,10 +133,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options o;
-  int code = 0;
-  if (!tools::parseArgs(
-          "identify_chi", kUsage, argc, argv, [&](tools::Args& a) { readOption(a, &o); }, &code))
-    return code;
-  return tools::runTool("identify_chi", [&] { return run(o); });
+  return tools::runMain<Options>("identify_chi", kUsage, argc, argv, readOption, run);
 }

@@ -335,6 +335,8 @@ void readOption(tools::Args& a, Options* o) {
     const size_t eq = v.find('=');
     if (eq == std::string::npos) throw std::invalid_argument("--set needs NAME=VALUE, got " + v);
     o->overrides.push_back({v.substr(0, eq), v.substr(eq + 1)});
+    ContactParameters probe;  // an unknown name fails here, not as a skip of every model
+    setParameter(&probe, o->overrides.back().first, o->overrides.back().second);
   } else {
     a.unknown();
   }
@@ -367,17 +369,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options o;
-  int code = 0;
-  if (!tools::parseArgs(
-          "speed_accuracy", kUsage, argc, argv, [&](tools::Args& a) { readOption(a, &o); }, &code))
-    return code;
-  try {
-    ContactParameters probe;  // an unknown --set name fails here, not as a skip of every model
-    for (const auto& kv : o.overrides) setParameter(&probe, kv.first, kv.second);
-  } catch (const std::exception& e) {
-    std::cerr << "speed_accuracy: " << e.what() << "\n";
-    return 2;
-  }
-  return tools::runTool("speed_accuracy", [&] { return run(o); });
+  return tools::runMain<Options>("speed_accuracy", kUsage, argc, argv, readOption, run);
 }

@@ -348,10 +348,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options o;
-  int code = 0;
-  if (!tools::parseArgs(
-          "stability_map", kUsage, argc, argv, [&](tools::Args& a) { readOption(a, &o); }, &code))
-    return code;
-  return tools::runTool("stability_map", [&] { return run(o); });
+  return tools::runMain<Options>("stability_map", kUsage, argc, argv, readOption, run);
 }

@@ -108,6 +108,18 @@ inline void requireFolder(const std::string& path) {
     throw std::runtime_error("output folder " + path + " does not exist");
 }
 
+/// A tool's main: its Options read from argv by read(args, &options) (parseArgs), then
+/// run(options) (runTool).
+template <class Options, class Read, class Run>
+int runMain(const char* tool, const char* usage, int argc, char** argv, Read read, Run run) {
+  Options o;
+  int code = 0;
+  if (!parseArgs(
+          tool, usage, argc, argv, [&](Args& a) { read(a, &o); }, &code))
+    return code;
+  return runTool(tool, [&] { return run(o); });
+}
+
 /// `path` opened for writing, or std::runtime_error naming it.
 inline std::ofstream writeFile(const std::string& path) {
   std::ofstream out(path);
