@@ -6,6 +6,8 @@
 set -eo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
+# shellcheck source=scripts/make_retry.sh
+source scripts/make_retry.sh
 mode="${1:-demo}"
 
 # Debian 12's own ROS 1 and tools (see doc/ and ../shared/docs/ros1-debian.md for why each).
@@ -36,7 +38,7 @@ build() {
   export PATH="/usr/bin:$PATH"
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
     -DCATKIN_ENABLE_TESTING=ON > build.log 2>&1 || { cat build.log; exit 1; }
-  make -C build -j"$(nproc)" all tests >> build.log 2>&1 || { tail -60 build.log; exit 1; }
+  make_retry build.log -C build -j"$(nproc)" all tests || { tail -60 build.log; exit 1; }
   echo "[quickstart] built (log: build.log)"
 }
 

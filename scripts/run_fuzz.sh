@@ -10,6 +10,8 @@
 set -o pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
+# shellcheck source=scripts/make_retry.sh
+source scripts/make_retry.sh
 junit=""
 [ "${1:-}" = "--junit" ] && junit="$2"
 export PATH="/usr/bin:$PATH"
@@ -28,8 +30,8 @@ finish() {
 
 t0=$(date +%s)
 mkdir -p "$dir/logs"
-if ! { cmake -S test/fuzz -B "$dir" -DCMAKE_CXX_COMPILER=clang++ &&
-  make -C "$dir" -j"$jobs" "${targets[@]}"; } > "$dir/logs/build.log" 2>&1; then
+if ! { cmake -S test/fuzz -B "$dir" -DCMAKE_CXX_COMPILER=clang++ > "$dir/logs/build.log" 2>&1 &&
+  make_retry "$dir/logs/build.log" -C "$dir" -j"$jobs" "${targets[@]}"; }; then
   tail -40 "$dir/logs/build.log"
   record fuzz_build "$(($(date +%s) - t0))" "build failed" "$dir/logs/build.log"
   finish

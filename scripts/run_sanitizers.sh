@@ -7,6 +7,8 @@
 set -o pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
+# shellcheck source=scripts/make_retry.sh
+source scripts/make_retry.sh
 junit=""
 [ "${1:-}" = "--junit" ] && junit="$2"
 export PATH="/usr/bin:$PATH"
@@ -74,7 +76,8 @@ if ! cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS="$
 fi
 targets=(core_tests ros_wrapper_tests)
 [ "${WRC_SANITIZE_ROSTESTS:-1}" = "1" ] && targets+=(tests)
-if ! make -C "$dir" -j"$jobs" "${targets[@]}" > "$dir/logs/build.log" 2>&1; then
+: > "$dir/logs/build.log"
+if ! make_retry "$dir/logs/build.log" -C "$dir" -j"$jobs" "${targets[@]}"; then
   tail -40 "$dir/logs/build.log"
   record build "$(($(date +%s) - t0))" "build failed" "$dir/logs/build.log"
   finish
