@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <vector>
 
 #include "wheel_rail_contact/fastsim_frequency.hpp"
@@ -281,4 +282,39 @@ TEST(NssModel, SettledStateContinuesWithoutAJump) {
       const StepOutput alongside = m.steadyAlongside(in);
       EXPECT_NEAR(alongside.fx, settled.fx, 1e-9 * std::abs(settled.fx)) << mesh;
     }
+}
+
+// A table with the fitted second-order F for kind 23 and first-order 11, 22: spin switches the
+// march to second order, no spin back to first (s2 dropped). Every path that touches the state
+// (adaptive carry, reversal, speed change, settle) must stay finite and bounded, and a model that
+// never spins must not see the second order at all.
+TEST(NssModel, SecondOrderSpinSurvivesEveryStatePath) {
+  const std::string path = ::testing::TempDir() + "chi_second.csv";
+  std::ofstream(path) << "a_over_b,kind,chi1,chi2,chi3,chi4,chi5\n1.5,11,0.4,1.1,0.6,0,0\n"
+                         "1.5,22,0.5,1.0,0.7,0,0\n"
+                         "1.5,23,0.744200,1.776235,0.511910,0.107313,0.021463\n";
+  const ChiTable table = ChiTable::load(path);
+  std::ofstream(path) << "a_over_b,kind,chi1,chi2,chi3\n1.5,11,0.4,1.1,0.6\n1.5,22,0.5,1.0,0.7\n"
+                         "1.5,23,0.744200,1.776235,0.511910\n";
+  const ChiTable firstOrder = ChiTable::load(path);
+  for (const char* mesh : {"fixed", "adaptive", "auto"}) {
+    NssModel m(params("nss", mesh), table), first(params("nss", mesh), firstOrder);
+    for (int k = 0; k < 600; ++k) {
+      StepInput in = scene(k);
+      in.phi = (k / 100) % 2 ? 0.0 : 3.0;                          // second order, then first, ...
+      if (k >= 300) in.V = -in.V * (1 + 0.5 * std::sin(0.1 * k));  // reversal, varying speed
+      const StepOutput o = k == 450 ? m.settle(in) : m.step(in);
+      ASSERT_TRUE(std::isfinite(o.fx) && std::isfinite(o.fy) && std::isfinite(o.mz)) << k;
+      ASSERT_LE(std::hypot(o.fx, o.fy), 0.3 * in.fz * (1 + 1e-9)) << mesh << " " << k;
+    }
+    // Without spin both directions keep their first-order kinds: the same as a first-order table.
+    NssModel noSpin(params("nss", mesh), table);
+    for (int k = 0; k < 50; ++k) {
+      StepInput in = scene(k);
+      in.phi = 0.0;
+      const StepOutput a = noSpin.step(in), b = first.step(in);
+      EXPECT_EQ(a.fx, b.fx) << mesh;
+      EXPECT_EQ(a.fy, b.fy) << mesh;
+    }
+  }
 }
