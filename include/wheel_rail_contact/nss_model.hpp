@@ -65,6 +65,10 @@ class NssModel : public ContactModel {
   // Kinds 11, 22, 23 at this a/b (a/b does not change with load); first order where the table
   // has no chi4, chi5 (kinds 11, 22; 23 in an older table).
   SecondOrderChi chi_[3];
+  bool secondKind_[3] = {false, false, false};  // chi_[k] has chi4 or chi5 != 0
+  /// Kind k's filter for a step: the first-order discretise where chi_[k] is first order (spares
+  /// the first-order step the second-order dispatch).
+  FilterZ discretiseKind(int k, double a, double V, double dt) const;
   PatchMesh mesh_, spare_;
   TransientState state_, remapped_;  // the history; the next one while the patch moves
   AlongStripMap carry_;  // the history's path from the previous patch to this one (adaptive)

@@ -19,8 +19,9 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
         dynamic_ ? chi.secondOrderAt(static_cast<CreepageKind>(k), p.a0 / p.b0) : SecondOrderChi{};
   // Linear interpolation between two stable second-order rows need not be stable (the Routh
   // condition is not convex in chi): refuse an a/b where it is not.
-  for (const SecondOrderChi& c : chi_)
-    if ((c.chi4 != 0.0 || c.chi5 != 0.0) && !c.valid())
+  for (int k = 0; k < 3; ++k) secondKind_[k] = chi_[k].chi4 != 0.0 || chi_[k].chi5 != 0.0;
+  for (int k = 0; k < 3; ++k)
+    if (secondKind_[k] && !chi_[k].valid())
       throw std::invalid_argument("nss: the chi table's second-order F at a/b = " +
                                   std::to_string(p.a0 / p.b0) + " is not stable");
   const HertzEllipse largest = ref_.at(adaptive_ ? p.fz0 : effectiveFzMax(p));
@@ -122,14 +123,20 @@ void NssModel::updateWeights(const Creepages& c, double a, double b) {
   }
 }
 
+FilterZ NssModel::discretiseKind(int k, double a, double V, double dt) const {
+  const SecondOrderChi& c = chi_[k];
+  return secondKind_[k] ? discretise(c, a, V, dt)
+                        : discretise(ChiParameters{c.chi1, c.chi2, c.chi3}, a, V, dt);
+}
+
 void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, double dt) {
   if (!dynamic_) {
     zx_ = zy_ = FilterZ{};
     return;
   }
   updateWeights(c, a, b);
-  const FilterZ z11 = discretise(chi_[0], a, V, dt), z22 = discretise(chi_[1], a, V, dt),
-                z23 = discretise(chi_[2], a, V, dt);
+  const FilterZ z11 = discretiseKind(0, a, V, dt), z22 = discretiseKind(1, a, V, dt),
+                z23 = discretiseKind(2, a, V, dt);
   zx_ = weightedFilter(z11, wx_[0], z23, wx_[1]);
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
   const bool second = zx_.secondOrder() || zy_.secondOrder();

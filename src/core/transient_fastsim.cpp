@@ -36,7 +36,7 @@ namespace {
 //   s2 = b2 g - a2 (b0 g + r s_old) = rate2 tau - rate2 r tau_old - a2 r s_old.
 // The guess sees only h, i.e. b0 and s_old: s2 reaches the traction one step later, through s.
 struct TimeTerm {
-  double beta, lagPerLength, rate, rateOld, poleOld, rate2, rate2Old, pole2Old;
+  double beta, lagPerLength, rate, rateOld, poleOld;
   TimeTerm(const FilterZ& z, double V, double dt, double r)
       // A negative b0 (not produced by a fitted table) would make 1 + h beta vanish: clamp at
       // zero, i.e. drop the time term rather than divide by zero.
@@ -44,10 +44,7 @@ struct TimeTerm {
         lagPerLength(r / V),
         rate((z.b1 - z.a1 * z.b0) / dt),
         rateOld(rate * r),
-        poleOld(z.a1 * r),
-        rate2((z.b2 - z.a2 * z.b0) / dt),
-        rate2Old(rate2 * r),
-        pole2Old(z.a2 * r) {}
+        poleOld(z.a1 * r) {}
   double nextState(double tau, double old, double s) const {
     return rate * tau - rateOld * old - poleOld * s;
   }
@@ -140,24 +137,29 @@ struct AlongStrips {
 };
 
 // The filter states' update at a node from its final traction t and history (old, s, s2):
-// TimeTerm's algebra for both directions. First order: s only; second order: s and s2.
+// TimeTerm's algebra for both directions. First order: s only; second order: s and s2 (its
+// constants are set up only then, so the first-order step pays nothing for them).
 template <bool kSecond>
 struct StateUpdate {
   Pair rate, rateOld, poleOld, rate2, rate2Old, pole2Old;
   double r;
   double *sX, *sY, *s2X, *s2Y;
-  StateUpdate(const TimeTerm& X, const TimeTerm& Y, double r, TransientState* st)
+  StateUpdate(const TimeTerm& X, const TimeTerm& Y, const FilterZ& zx, const FilterZ& zy, double dt,
+              double r, TransientState* st)
       : rate(X.rate, Y.rate),
         rateOld(X.rateOld, Y.rateOld),
         poleOld(X.poleOld, Y.poleOld),
-        rate2(X.rate2, Y.rate2),
-        rate2Old(X.rate2Old, Y.rate2Old),
-        pole2Old(X.pole2Old, Y.pole2Old),
         r(r),
         sX(st->sx.data()),
         sY(st->sy.data()),
         s2X(st->s2x.data()),
-        s2Y(st->s2y.data()) {}
+        s2Y(st->s2y.data()) {
+    if constexpr (kSecond) {
+      rate2 = Pair(zx.b2 - zx.a2 * zx.b0, zy.b2 - zy.a2 * zy.b0) / dt;
+      rate2Old = rate2 * r;
+      pole2Old = Pair(zx.a2, zy.a2) * r;
+    }
+  }
   template <class Source>
   void operator()(const Source& history, int k, int i, const Pair& t, const Pair& old,
                   const Pair& s) const {
@@ -181,7 +183,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
                   Source history, TransientState* st, TractionField* f) {
   const double r = historyScale;
   const TimeTerm X(zx, V, dt, r), Y(zy, V, dt, r);
-  const StateUpdate<kSecond> update(X, Y, r, st);
+  const StateUpdate<kSecond> update(X, Y, zx, zy, dt, r, st);
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
   double *const oldX = st->tx.data(), *const oldY = st->ty.data();
   const double* const xn = mesh.xNorms().data();
