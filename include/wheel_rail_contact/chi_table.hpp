@@ -2,7 +2,9 @@
 /// 11 (kXi), 22 (kEta), 23 (kPhi) against the semi-axis ratio a/b, interpolated linearly in ln(a/b)
 /// and clamped at the table's ends.
 /// File format (CSV, '#' comment lines carry units, mesh and date of the fit):
-///   a_over_b,kind,chi1,chi2,chi3        with kind in {11, 22, 23}
+///   a_over_b,kind,chi1,chi2,chi3[,chi4,chi5][,...]        with kind in {11, 22, 23}
+/// chi4, chi5 (optional columns, named in the header right after chi3): the second-order F of
+/// second_order_flexibility.hpp; 0 in a first-order row. A table without them is first order.
 #pragma once
 
 #include <string>
@@ -10,6 +12,7 @@
 
 #include "wheel_rail_contact/creepage_kind.hpp"
 #include "wheel_rail_contact/nss_filter.hpp"
+#include "wheel_rail_contact/second_order_flexibility.hpp"
 
 namespace wheel_rail_contact {
 
@@ -23,13 +26,18 @@ class ChiTable {
   static std::string defaultPath();
   /// A table with the same chi for every kind and a/b (tests; {0, 1, 0} is Shen & Li).
   static ChiTable uniform(const ChiParameters& chi);
+  static ChiTable uniformSecondOrder(const SecondOrderChi& chi);
 
+  /// The first-order part (chi1, chi2, chi3) at a/b.
   ChiParameters at(CreepageKind kind, double a_over_b) const;
+  /// All five chi at a/b (chi4 = chi5 = 0 for a first-order row). Interpolated like at(): the
+  /// caller checks SecondOrderChi::valid() between two second-order rows.
+  SecondOrderChi secondOrderAt(CreepageKind kind, double a_over_b) const;
 
  private:
   struct Row {
     double logAB;
-    ChiParameters chi;
+    SecondOrderChi chi;
   };
   std::vector<Row> rows_[3];  // per kind, sorted by a/b
 };

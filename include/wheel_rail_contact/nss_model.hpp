@@ -10,6 +10,7 @@
 #include "wheel_rail_contact/chi_table.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/hertz.hpp"
+#include "wheel_rail_contact/second_order_flexibility.hpp"
 #include "wheel_rail_contact/transient_fastsim.hpp"
 
 namespace wheel_rail_contact {
@@ -58,7 +59,16 @@ class NssModel : public ContactModel {
   CreepCoefficients kalker_;
   bool adaptive_ = false;
   bool dynamic_ = false;  // nss (else shen-li)
-  ChiParameters chi_[3];  // kinds 11, 22, 23 at this a/b (a/b does not change with load)
+  /// Drops the second filter state of both history buffers (first order from now on).
+  void dropSecondState();
+
+  // Kinds 11, 22, 23 at this a/b (a/b does not change with load); first order where the table
+  // has no chi4, chi5 (kinds 11, 22; 23 in an older table).
+  SecondOrderChi chi_[3];
+  bool secondKind_[3] = {false, false, false};  // chi_[k] has chi4 or chi5 != 0
+  /// Kind k's filter for a step: the first-order discretise where chi_[k] is first order (spares
+  /// the first-order step the second-order dispatch).
+  FilterZ discretiseKind(int k, double a, double V, double dt) const;
   PatchMesh mesh_, spare_;
   TransientState state_, remapped_;  // the history; the next one while the patch moves
   AlongStripMap carry_;  // the history's path from the previous patch to this one (adaptive)
@@ -66,9 +76,10 @@ class NssModel : public ContactModel {
   FilterZ zx_, zy_;
   double wx_[2], wy_[2];  // eq. 15 weights, kept while both vanish
   StepOutput last_;
-  double lastA_ = 0.0;      // a of the step that left the history (0: none yet) [m]
-  double lastSpeed_ = 0.0;  // |V| of the step that left the filter state (0: none yet) [m/s]
-  bool mirrored_ = false;   // the history is in the mirror frame (rolling backwards)
+  double lastA_ = 0.0;        // a of the step that left the history (0: none yet) [m]
+  double lastSpeed_ = 0.0;    // |V| of the step that left the filter state (0: none yet) [m/s]
+  bool mirrored_ = false;     // the history is in the mirror frame (rolling backwards)
+  bool secondOrder_ = false;  // the last step marched s2: state_.s2x/s2y (remapped_'s) may be != 0
 };
 
 }  // namespace wheel_rail_contact

@@ -2,8 +2,8 @@
 /// a first-order F cannot follow at 2 <= lambda/a < 5; README "Accuracy against our exact solver"):
 ///   F(k) = (chi2 + s chi1 + s^2 chi4) / (1 + s chi3 + s^2 chi5),  s = i k,  k = 2 pi a / lambda,
 /// with s <-> (a/V) d/dt as for the first-order F of nss_filter.hpp, which it contains
-/// (chi4 = chi5 = 0). All chi dimensionless. Frequency domain only so far: the time-domain march
-/// does not use it (what it would need: README, "Spin: a second-order F").
+/// (chi4 = chi5 = 0). All chi dimensionless. The march discretises it with discretise() of
+/// nss_filter.hpp (README, "Spin: why C23 misses, and a second-order F").
 #pragma once
 
 #include <complex>

@@ -17,6 +17,10 @@ namespace wheel_rail_contact {
 struct TransientState {
   Eigen::ArrayXd tx, ty;  ///< traction at the previous step [Pa]
   Eigen::ArrayXd sx, sy;  ///< filter state (transposed direct form II) [Pa/s]
+  /// The second filter state of a second-order F [Pa/s] (a traction rate like s: in transposed
+  /// direct form II every state is a combination of past rates g and h). Zero while the filter is
+  /// first order: the first-order march neither reads nor writes it.
+  Eigen::ArrayXd s2x, s2y;
   void resize(int n);
   void clear();
 };
@@ -26,6 +30,8 @@ struct TransientState {
 /// field->bound, then updates `state` from the saturated traction. field->bound and field->entry
 /// must be filled (parabolicBound). Nodes outside the patch (zero bound) get zero traction and only
 /// their filter state advances.
+/// Second order (zx or zy with b2 or a2 != 0) marches s2 as well; first order leaves s2 untouched
+/// (the caller keeps it zero, see NssModel::chooseFilters).
 /// The stored history is read times `historyScale` (1: as stored), so a caller can rescale it to a
 /// new patch size without a pass over the state; the state written is unscaled.
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,

@@ -49,17 +49,17 @@ FrequencyResponse frequencyResponse(const ContactParameters& p, CreepageKind kin
   }
   // FastSim models: their exact linear response in the continuous-time limit
   // (fastsim_frequency.hpp).
-  ChiParameters chi;  // shen-li: F == 1
+  SecondOrderChi chi;  // shen-li: F == 1; nss: first or second order, as the table holds
   if (p.model == "nss") {
     const std::string path = p.chi_table.empty() ? ChiTable::defaultPath() : p.chi_table;
-    chi = ChiTable::load(path).at(kind, ab);
+    chi = ChiTable::load(path).secondOrderAt(kind, ab);
   }
   FrequencyResponse r;
   r.steady = fastsimSteadyCoefficient(kind, ab, p.nu, p.nx, p.ny);
   for (double l : lambda_over_a)
     r.c.push_back(p.model == "steady"
                       ? std::complex<double>(r.steady)
-                      : fastsimNonSteadyCoefficient(kind, ab, p.nu, p.nx, p.ny, chi, l));
+                      : fastsimSecondOrderCoefficient(kind, ab, p.nu, p.nx, p.ny, chi, l));
   return r;
 }
 

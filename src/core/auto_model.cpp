@@ -104,7 +104,7 @@ double nssRelaxationLength(const ContactParameters& p, const ChiTable& chi) {
   double worst = 0.0;
   for (const CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
     const std::complex<double> c =
-        fastsimNonSteadyCoefficient(k, ab, p.nu, 10, 10, chi.at(k, ab), lambdaOverA);
+        fastsimSecondOrderCoefficient(k, ab, p.nu, 10, 10, chi.secondOrderAt(k, ab), lambdaOverA);
     worst = std::max(worst, std::abs(1.0 - c / fastsimSteadyCoefficient(k, ab, p.nu, 10, 10)));
   }
   // A first-order lag 1 / (1 + i 2 pi l / lambda) errs by about 2 pi l / lambda.

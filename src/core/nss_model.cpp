@@ -1,6 +1,8 @@
 #include "wheel_rail_contact/nss_model.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "wheel_rail_contact/rolling_direction.hpp"
 
@@ -13,7 +15,15 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
       adaptive_(p.mesh != "fixed"),  // "auto": fitted to the patch, moved only when fz changes
       dynamic_(p.model == "nss") {
   for (int k = 0; k < 3; ++k)
-    chi_[k] = dynamic_ ? chi.at(static_cast<CreepageKind>(k), p.a0 / p.b0) : ChiParameters{};
+    chi_[k] =
+        dynamic_ ? chi.secondOrderAt(static_cast<CreepageKind>(k), p.a0 / p.b0) : SecondOrderChi{};
+  // Linear interpolation between two stable second-order rows need not be stable (the Routh
+  // condition is not convex in chi): refuse an a/b where it is not.
+  for (int k = 0; k < 3; ++k) secondKind_[k] = chi_[k].chi4 != 0.0 || chi_[k].chi5 != 0.0;
+  for (int k = 0; k < 3; ++k)
+    if (secondKind_[k] && !chi_[k].valid())
+      throw std::invalid_argument("nss: the chi table's second-order F at a/b = " +
+                                  std::to_string(p.a0 / p.b0) + " is not stable");
   const HertzEllipse largest = ref_.at(adaptive_ ? p.fz0 : effectiveFzMax(p));
   mesh_ = PatchMesh(p.nx, p.ny, largest.a, largest.b);
   spare_ = mesh_;
@@ -25,8 +35,20 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
   reset();
 }
 
+void NssModel::dropSecondState() {
+  // A first-order march neither reads nor writes s2, so it must find zeros there when a
+  // second-order step comes back (the s2 left by the last second-order step is dropped with the
+  // second-order filter). Both buffers: the moving march writes remapped_.
+  state_.s2x.setZero();
+  state_.s2y.setZero();
+  remapped_.s2x.setZero();
+  remapped_.s2y.setZero();
+  secondOrder_ = false;
+}
+
 void NssModel::reset() {
   state_.clear();
+  dropSecondState();
   field_.tx.setZero();
   field_.ty.setZero();
   field_.slip.setConstant(false);
@@ -80,6 +102,11 @@ void NssModel::keepRatePerTravel(double speed) {
     const double r = speed / lastSpeed_;
     state_.sx *= r;
     state_.sy *= r;
+    // s2 is a rate too (transposed direct form II: a combination of past g and h) [Pa/s].
+    if (secondOrder_) {
+      state_.s2x *= r;
+      state_.s2y *= r;
+    }
   }
   lastSpeed_ = speed;
 }
@@ -96,16 +123,25 @@ void NssModel::updateWeights(const Creepages& c, double a, double b) {
   }
 }
 
+FilterZ NssModel::discretiseKind(int k, double a, double V, double dt) const {
+  const SecondOrderChi& c = chi_[k];
+  return secondKind_[k] ? discretise(c, a, V, dt)
+                        : discretise(ChiParameters{c.chi1, c.chi2, c.chi3}, a, V, dt);
+}
+
 void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, double dt) {
   if (!dynamic_) {
     zx_ = zy_ = FilterZ{};
     return;
   }
   updateWeights(c, a, b);
-  const FilterZ z11 = discretise(chi_[0], a, V, dt), z22 = discretise(chi_[1], a, V, dt),
-                z23 = discretise(chi_[2], a, V, dt);
+  const FilterZ z11 = discretiseKind(0, a, V, dt), z22 = discretiseKind(1, a, V, dt),
+                z23 = discretiseKind(2, a, V, dt);
   zx_ = weightedFilter(z11, wx_[0], z23, wx_[1]);
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
+  const bool second = zx_.secondOrder() || zy_.secondOrder();
+  if (secondOrder_ && !second) dropSecondState();
+  secondOrder_ = second;
 }
 
 CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool moves) {
@@ -185,6 +221,7 @@ StepOutput NssModel::settle(const StepInput& given) {
   state_.ty = field_.ty;
   state_.sx.setZero();
   state_.sy.setZero();
+  if (secondOrder_) dropSecondState();
   return finish(f, in, h);
 }
 

@@ -35,6 +35,8 @@ void mirrorAlongX(const PatchMesh& mesh, TransientState* s) {
   reverseStrips(mesh, &s->sx, -1.0);
   reverseStrips(mesh, &s->ty, 1.0);
   reverseStrips(mesh, &s->sy, 1.0);
+  reverseStrips(mesh, &s->s2x, -1.0);
+  reverseStrips(mesh, &s->s2y, 1.0);
 }
 
 void mirrorAlongX(const PatchMesh& mesh, TractionField* f) {

@@ -10,6 +10,8 @@ void TransientState::resize(int n) {
   ty.setZero(n);
   sx.setZero(n);
   sy.setZero(n);
+  s2x.setZero(n);
+  s2y.setZero(n);
 }
 
 void TransientState::clear() {
@@ -17,6 +19,8 @@ void TransientState::clear() {
   ty.setZero();
   sx.setZero();
   sy.setZero();
+  s2x.setZero();
+  s2y.setZero();
 }
 
 namespace {
@@ -28,6 +32,9 @@ namespace {
 //   tau (1 + h beta) = tau_up + h (beta r tau_old - r s_old / V - drive),  beta = b0 / (V dt),
 // and the filter state advances from the final (saturated) traction, g = (tau - r tau_old) / dt:
 //   s = b1 g - a1 (b0 g + r s_old) = rate tau - rate r tau_old - a1 r s_old.
+// A second-order filter adds r s2_old to s and keeps (h = b0 g + r s_old as before)
+//   s2 = b2 g - a2 (b0 g + r s_old) = rate2 tau - rate2 r tau_old - a2 r s_old.
+// The guess sees only h, i.e. b0 and s_old: s2 reaches the traction one step later, through s.
 struct TimeTerm {
   double beta, lagPerLength, rate, rateOld, poleOld;
   TimeTerm(const FilterZ& z, double V, double dt, double r)
@@ -94,6 +101,7 @@ struct InPlace {
   const TransientState& s;
   void strip(int) {}
   History at(int k, int) const { return {Pair(s.tx(k), s.ty(k)), Pair(s.sx(k), s.sy(k))}; }
+  Pair second(int k, int) const { return Pair(s.s2x(k), s.s2y(k)); }
 };
 
 // The history of the previous patch, carried along the strips (AlongStripMap) node by node as the
@@ -104,7 +112,7 @@ struct AlongStrips {
   const int* index;
   const double* weights;
   int nodes;
-  const double *tx, *ty, *sx, *sy;
+  const double *tx, *ty, *sx, *sy, *s2x, *s2y;
   int first = 0;  // the strip's first node (old and new patch share the layout)
   AlongStrips(const AlongStripMap& map, const TransientState& s)
       : index(map.indices()),
@@ -113,28 +121,71 @@ struct AlongStrips {
         tx(s.tx.data()),
         ty(s.ty.data()),
         sx(s.sx.data()),
-        sy(s.sy.data()) {}
+        sy(s.sy.data()),
+        s2x(s.s2x.data()),
+        s2y(s.s2y.data()) {}
   void strip(int j) { first = j * nodes; }
-  History at(int, int i) const {
+  // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once.
+  Pair carried(const double* x, const double* y, int i) const {
     const int k = first + index[i];
-    // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once.
     const Pair w0 = Eigen::Map<const Pair, Eigen::Aligned16>(weights + 4 * i),
                w1 = Eigen::Map<const Pair, Eigen::Aligned16>(weights + 4 * i + 2);
-    return {w0 * Pair(tx[k], ty[k]) + w1 * Pair(tx[k + 1], ty[k + 1]),
-            w0 * Pair(sx[k], sy[k]) + w1 * Pair(sx[k + 1], sy[k + 1])};
+    return w0 * Pair(x[k], y[k]) + w1 * Pair(x[k + 1], y[k + 1]);
+  }
+  History at(int, int i) const { return {carried(tx, ty, i), carried(sx, sy, i)}; }
+  Pair second(int, int i) const { return carried(s2x, s2y, i); }
+};
+
+// The filter states' update at a node from its final traction t and history (old, s, s2):
+// TimeTerm's algebra for both directions. First order: s only; second order: s and s2 (its
+// constants are set up only then, so the first-order step pays nothing for them).
+template <bool kSecond>
+struct StateUpdate {
+  Pair rate, rateOld, poleOld, rate2, rate2Old, pole2Old;
+  double r;
+  double *sX, *sY, *s2X, *s2Y;
+  StateUpdate(const TimeTerm& X, const TimeTerm& Y, const FilterZ& zx, const FilterZ& zy, double dt,
+              double r, TransientState* st)
+      : rate(X.rate, Y.rate),
+        rateOld(X.rateOld, Y.rateOld),
+        poleOld(X.poleOld, Y.poleOld),
+        r(r),
+        sX(st->sx.data()),
+        sY(st->sy.data()),
+        s2X(st->s2x.data()),
+        s2Y(st->s2y.data()) {
+    if constexpr (kSecond) {
+      rate2 = Pair(zx.b2 - zx.a2 * zx.b0, zy.b2 - zy.a2 * zy.b0) / dt;
+      rate2Old = rate2 * r;
+      pole2Old = Pair(zx.a2, zy.a2) * r;
+    }
+  }
+  template <class Source>
+  void operator()(const Source& history, int k, int i, const Pair& t, const Pair& old,
+                  const Pair& s) const {
+    Pair next = rate * t - rateOld * old - poleOld * s;  // TimeTerm::nextState
+    if constexpr (kSecond) {
+      // Read before the store below: in place, s2 of node k is its own history.
+      const Pair s2 = history.second(k, i);
+      next += r * s2;
+      const Pair next2 = rate2 * t - rate2Old * old - pole2Old * s;
+      s2X[k] = next2(0);
+      s2Y[k] = next2(1);
+    }
+    sX[k] = next(0);
+    sY[k] = next(1);
   }
 };
 
-template <class Source>
+template <bool kSecond, class Source>
 CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c, double V,
                   double dt, const FilterZ& zx, const FilterZ& zy, double historyScale,
                   Source history, TransientState* st, TractionField* f) {
   const double r = historyScale;
   const TimeTerm X(zx, V, dt, r), Y(zy, V, dt, r);
-  const Pair rate(X.rate, Y.rate), rateOld(X.rateOld, Y.rateOld), poleOld(X.poleOld, Y.poleOld);
+  const StateUpdate<kSecond> update(X, Y, zx, zy, dt, r, st);
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
   double *const oldX = st->tx.data(), *const oldY = st->ty.data();
-  double *const sX = st->sx.data(), *const sY = st->sy.data();
   const double* const xn = mesh.xNorms().data();
   const FieldPointers out(f);
   ForceSums sums;
@@ -152,9 +203,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       tx = guess(0) + m.decayX * tx;
       ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
       strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
-      const Pair next = rate * Pair(tx, ty) - rateOld * old - poleOld * s;  // TimeTerm::nextState
-      sX[k] = next(0);
-      sY[k] = next(1);
+      update(history, k, k - first, Pair(tx, ty), old, s);
       oldX[k] = tx;
       oldY[k] = ty;
     };
@@ -169,9 +218,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     // bring, the traction saturates at zero there; only the filter state moves.
     auto unloaded = [&](int k) {
       const History o = history.at(k, k - first);
-      const Pair next = rate * Pair(0.0, 0.0) - rateOld * o.t - poleOld * o.s;
-      sX[k] = next(0);
-      sY[k] = next(1);
+      update(history, k, k - first, Pair(0.0, 0.0), o.t, o.s);
       oldX[k] = oldY[k] = 0.0;
       out.unloaded(k);
     };
@@ -187,14 +234,19 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
                              double historyScale, TransientState* st, TractionField* f) {
-  return march(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{*st}, st, f);
+  if (zx.secondOrder() || zy.secondOrder())
+    return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{*st}, st, f);
+  return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{*st}, st, f);
 }
 
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
                              double historyScale, const AlongStripMap& map,
                              const TransientState& previous, TransientState* st, TractionField* f) {
-  return march(mesh, L, c, V, dt, zx, zy, historyScale, AlongStrips(map, previous), st, f);
+  const AlongStrips carried(map, previous);
+  if (zx.secondOrder() || zy.secondOrder())
+    return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
+  return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
 }
 
 AlongStripMap::AlongStripMap(int nx) : index_(nx, 0), weights_(4, nx) {}
@@ -230,6 +282,9 @@ void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int st
       out->ty(k) = h.t(1);
       out->sx(k) = h.s(0);
       out->sy(k) = h.s(1);
+      const Pair s2 = source.second(0, i);
+      out->s2x(k) = s2(0);
+      out->s2y(k) = s2(1);
     }
   }
 }
@@ -316,6 +371,8 @@ void remapState(const PatchMesh& from, const TransientState& in, const PatchMesh
         out->ty(k) += w0 * in.ty(k0) + w1 * in.ty(k1);
         out->sx(k) += w0 * in.sx(k0) + w1 * in.sx(k1);
         out->sy(k) += w0 * in.sy(k0) + w1 * in.sy(k1);
+        out->s2x(k) += w0 * in.s2x(k0) + w1 * in.s2x(k1);
+        out->s2y(k) += w0 * in.s2y(k0) + w1 * in.s2y(k1);
       }
     }
   }

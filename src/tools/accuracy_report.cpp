@@ -53,10 +53,10 @@ void frequencyErrors(const Options& o, const ChiTable& table) {
       const NonSteadyCoefficients exact(kKinds[k], ab, 0.28, o.grid, o.grid);
       const double ce = exact.steady();
       const double cf = fastsimSteadyCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny);
-      const ChiParameters chi = table.at(kKinds[k], ab);
+      const SecondOrderChi chi = table.secondOrderAt(kKinds[k], ab);  // either order
       for (double l : lambdas) {
         const std::complex<double> re = exact.at(l) / ce;
-        const auto nss = fastsimNonSteadyCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny, chi, l);
+        const auto nss = fastsimSecondOrderCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny, chi, l);
         const auto sl = fastsimNonSteadyCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny, {}, l);
         char line[256];
         std::snprintf(line, sizeof line, "%g,%s,%.5g,%.5f,%.5f,%.5f\n", ab, kKindName[k], l,

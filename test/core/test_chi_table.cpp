@@ -43,6 +43,13 @@ TEST(ChiTable, ShippedTableLoadsAndIsStable) {
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
     for (CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi})
       EXPECT_GT(t.at(k, ab).chi3, 0.0);
+  // Kind 23 is second order, and so is every a/b between its rows (NssModel refuses an unstable
+  // interpolated F): a fine sweep in ln(a/b) over the table and beyond.
+  for (double x = std::log(0.1); x <= std::log(10.0); x += 0.01) {
+    const SecondOrderChi spin = t.secondOrderAt(CreepageKind::kPhi, std::exp(x));
+    EXPECT_GT(spin.chi5, 0.0) << std::exp(x);
+    EXPECT_TRUE(spin.valid()) << std::exp(x);
+  }
 }
 
 TEST(ChiTable, MalformedTablesNameFileAndLine) {
@@ -91,4 +98,33 @@ TEST(ChiTable, EveryMalformedTableGetsAMessageNamingTheProblem) {
     EXPECT_NE(std::string(e.what()).find("read error (a directory?)"), std::string::npos)
         << e.what();
   }
+}
+
+TEST(ChiTable, ReadsOptionalSecondOrderColumnsAndInterpolatesThem) {
+  const std::string path =
+      write("chi2.csv",
+            "a_over_b,kind,chi1,chi2,chi3,chi4,chi5,err_log\n"
+            "1,11,0.2,1.0,0.3,0,0,0.1\n1,22,0.2,0.9,0.3,0,0,0.1\n"
+            "0.5,23,0.86,2.12,0.55,0.16,0.032,0.01\n2,23,0.66,1.57,0.48,0.08,0.016,0.01\n");
+  const ChiTable t = ChiTable::load(path);
+  const SecondOrderChi spin = t.secondOrderAt(CreepageKind::kPhi, 1.0);
+  EXPECT_NEAR(spin.chi4, 0.12, 1e-12);  // halfway in ln(a/b)
+  EXPECT_NEAR(spin.chi5, 0.024, 1e-12);
+  EXPECT_NEAR(t.at(CreepageKind::kPhi, 1.0).chi1, 0.76, 1e-12);
+  EXPECT_EQ(t.secondOrderAt(CreepageKind::kXi, 1.0).chi4, 0.0);
+  // A first-order table reads as second order with chi4 = chi5 = 0.
+  const ChiTable first = ChiTable::load(write(
+      "chi1.csv", std::string(kHeader) + "1,11,0.1,1.0,0.2\n1,22,0.1,1,0.2\n1,23,0.1,1,0.2\n"));
+  EXPECT_EQ(first.secondOrderAt(CreepageKind::kPhi, 1.0).chi5, 0.0);
+  EXPECT_EQ(first.secondOrderAt(CreepageKind::kPhi, 1.0).chi3, 0.2);
+}
+
+TEST(ChiTable, RejectsAnUnstableSecondOrderRowNamingIt) {
+  const std::string e = loadError(
+      "a_over_b,kind,chi1,chi2,chi3,chi4,chi5\n1,11,0.2,1,0.3,0,0\n1,22,0.2,1,0.3,0,0\n"
+      "1.5,23,0.1,1.0,0.1,1.0,0.01\n");  // B < 0, B^2 > 4 chi1 chi2 chi3 chi5
+  EXPECT_NE(e.find(":4:"), std::string::npos) << e;
+  EXPECT_NE(e.find("kind 23 at a/b = 1.5"), std::string::npos) << e;
+  EXPECT_NE(loadError("a_over_b,kind,chi1,chi2,chi3,chi4,chi5\n1,11,0.2,1,0.3\n").find("7 or more"),
+            std::string::npos);
 }

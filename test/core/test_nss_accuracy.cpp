@@ -29,7 +29,8 @@ CurveErrors errors(CreepageKind kind, double ab, double from) {
   for (int q = 0; q <= n; ++q) {
     const double l = from * std::pow(100.0 / from, double(q) / n);
     const std::complex<double> r = exact.at(l) / ce;
-    const auto nss = fastsimNonSteadyCoefficient(kind, ab, 0.28, 20, 20, table.at(kind, ab), l);
+    const auto nss =
+        fastsimSecondOrderCoefficient(kind, ab, 0.28, 20, 20, table.secondOrderAt(kind, ab), l);
     const auto sl = fastsimNonSteadyCoefficient(kind, ab, 0.28, 20, 20, {}, l);
     e.maxNss = std::max(e.maxNss, std::abs(nss / cf - r));
     e.meanNss += std::abs(nss / cf - r) / (n + 1);
@@ -49,13 +50,13 @@ TEST(NssAccuracy, LongitudinalAndLateralWithinFivePercentFromLambdaOverA2) {
     }
 }
 
-TEST(NssAccuracy, SpinCoefficientWithinFivePercentFromLambdaOverA5) {
-  // Known limit: the first-order filter cannot follow the exact C23 between lambda/a = 2 and
-  // about 4.5 (max error 0.08-0.12 there, see README); from lambda/a = 5 it is within 0.05.
+TEST(NssAccuracy, SpinCoefficientWithinFivePercentFromLambdaOverA2) {
+  // The shipped table's kind 23 is second order (README "Spin: why C23 misses"): the first-order
+  // F missed by 0.08-0.12 between lambda/a = 2 and about 4.5; the second-order one meets the
+  // issue target from lambda/a = 2.
   for (double ab : {0.5, 1.0, 2.0}) {
-    EXPECT_LE(errors(CreepageKind::kPhi, ab, 5.0).maxNss, 0.05) << "a/b " << ab;
     const CurveErrors e = errors(CreepageKind::kPhi, ab, 2.0);
-    EXPECT_LE(e.maxNss, 0.13) << "a/b " << ab;
-    EXPECT_LT(e.meanNss, 0.5 * e.meanShenLi) << "a/b " << ab;
+    EXPECT_LE(e.maxNss, 0.05) << "a/b " << ab;  // issue target
+    EXPECT_LT(e.meanNss, 0.2 * e.meanShenLi) << "a/b " << ab;
   }
 }

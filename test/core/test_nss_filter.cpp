@@ -4,6 +4,7 @@
 #include <complex>
 
 #include "wheel_rail_contact/nss_filter.hpp"
+#include "wheel_rail_contact/second_order_flexibility.hpp"
 
 using namespace wheel_rail_contact;
 
@@ -61,4 +62,65 @@ TEST(NssFilter, WeightsAverageTheCoefficients) {
   EXPECT_DOUBLE_EQ(w.a1, 0.25);
   const FilterZ only = weightedFilter(z1, 2.0, z2, 0.0);
   EXPECT_DOUBLE_EQ(only.b0, z1.b0);
+}
+
+namespace {
+// H(z) of the discrete filter at z = exp(i omega dt), with all five coefficients.
+std::complex<double> zResponse(const FilterZ& z, double omegaDt) {
+  const std::complex<double> q = std::exp(std::complex<double>(0.0, -omegaDt));  // z^-1
+  return (z.b0 + q * (z.b1 + q * z.b2)) / (1.0 + q * (z.a1 + q * z.a2));
+}
+}  // namespace
+
+// The fitted kind-23 F at a/b = 1 (doc/data/spin_second_order_chi.csv).
+const SecondOrderChi kSpinChi{0.744200, 1.776235, 0.511910, 0.107313, 0.021463};
+
+TEST(NssFilter, SecondOrderDiscretisationTendsToF) {
+  // Tustin's error is the frequency warping, relative (omega dt)^2 / 12 at small omega dt: a
+  // tenfold smaller step must bring H within 1e-3 of F, and shrink the error about 100 times.
+  const double a = 0.006, V = 20.0;
+  for (double k : {0.3, 1.3, 3.0}) {
+    const double omega = V * k / a;
+    const std::complex<double> F = kSpinChi.at(k);
+    double previous = 0.0;
+    for (double dt : {a / V / 20, a / V / 200}) {
+      const FilterZ z = discretise(kSpinChi, a, V, dt);
+      ASSERT_TRUE(z.secondOrder());
+      const double err = std::abs(zResponse(z, omega * dt) - F) / std::abs(F);
+      if (previous > 0.0) {
+        EXPECT_LT(err, 1e-3) << k;
+        EXPECT_LT(err, 0.02 * previous) << k;
+      }
+      previous = err;
+    }
+  }
+}
+
+TEST(NssFilter, SecondOrderWithoutChi4Chi5IsTheFirstOrderFilterBitForBit) {
+  const ChiParameters first{0.4, 1.1, 0.6};
+  for (double dt : {1e-6, 1e-4, 1e-2}) {
+    const FilterZ z1 = discretise(first, 0.006, 20.0, dt),
+                  z2 = discretise(SecondOrderChi::fromFirstOrder(first), 0.006, 20.0, dt);
+    EXPECT_FALSE(z2.secondOrder());
+    EXPECT_EQ(z1.b0, z2.b0);
+    EXPECT_EQ(z1.b1, z2.b1);
+    EXPECT_EQ(z1.a1, z2.a1);
+    EXPECT_EQ(z2.b2, 0.0);
+    EXPECT_EQ(z2.a2, 0.0);
+  }
+}
+
+TEST(NssFilter, WeightedSecondOrderFilterMixesAllFiveAndStaysStable) {
+  const FilterZ first = discretise(ChiParameters{0.4, 1.1, 0.6}, 0.006, 20.0, 1e-5);
+  for (double dt : {1e-7, 1e-5, 1e-3, 1e-1}) {
+    const FilterZ second = discretise(kSpinChi, 0.006, 20.0, dt);
+    for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+      const FilterZ z = weightedFilter(first, 1.0 - t, second, t);
+      EXPECT_NEAR(z.b2, t * second.b2, 1e-15 + 1e-12 * std::abs(second.b2));
+      EXPECT_NEAR(z.a2, t * second.a2, 1e-15);
+      // Schur stability of 1 + a1 z^-1 + a2 z^-2 (the triangle |a2| < 1, |a1| < 1 + a2).
+      EXPECT_LT(std::abs(z.a2), 1.0) << dt << " " << t;
+      EXPECT_LT(std::abs(z.a1), 1.0 + z.a2) << dt << " " << t;
+    }
+  }
 }

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <vector>
 
 #include "wheel_rail_contact/fastsim_frequency.hpp"
@@ -189,6 +190,53 @@ TEST(NssModel, TimeDomainMatchesItsFrequencyResponse) {
   EXPECT_NEAR(std::abs(measured - predicted) / std::abs(predicted), 0.0, 0.01);
 }
 
+namespace {
+// Pure harmonic spin (amplitude 1e-3 1/m, full adhesion) at lambda/a through NssModel with `table`
+// on p's mesh, V dt = a / stepsPerA: the measured C23 from the 11th and 12th periods.
+std::complex<double> harmonicSpinC23(const ContactParameters& p, const ChiTable& table,
+                                     double lambdaOverA, double stepsPerA) {
+  NssModel m(p, table);
+  const double a = p.a0, b = p.b0, V = 20.0, dt = a / V / stepsPerA, amp = 1e-3;
+  const int perPeriod = static_cast<int>(std::round(lambdaOverA * stepsPerA));
+  std::complex<double> acc = 0.0;
+  for (int k = 0; k < 12 * perPeriod; ++k) {
+    const double wt = 2 * M_PI * k / perPeriod;
+    const StepOutput o = m.step({k == 0 ? 0.0 : dt, V, 0, 0, amp * std::cos(wt), p.fz0});
+    if (k >= 10 * perPeriod) acc += o.fy * std::exp(std::complex<double>(0, -wt));
+  }
+  return -2.0 * acc / double(2 * perPeriod) / (p.G * std::pow(a * b, 1.5) * amp);
+}
+}  // namespace
+
+// Pure harmonic spin through the second-order F at a/b = 1, lambda/a = 3 (where the first-order
+// fit misses the exact C23 by ~0.1): the march's periodic response must match the second-order
+// frequency response of the same mesh (continuous time) to within the march's time
+// discretisation, which is first order in dt: 1.45 % at V dt = a/200, 0.73 % at a/400 (the
+// first-order F on the same march: 1.35 %, 0.68 %; the step sees the creepage at its end, a phase
+// of pi V dt / lambda, and the implicit guess lags). The first-order part of the same chi alone
+// is 5 times further off, so the second state must act in the march.
+TEST(NssModel, SecondOrderSpinMatchesItsFrequencyResponse) {
+  ContactParameters p = params("nss");
+  p.nx = p.ny = 20;
+  p.b0 = p.a0;
+  p.fz_max = p.fz0;
+  p.mu = 1000.0;
+  const SecondOrderChi chi{0.744200, 1.776235, 0.511910, 0.107313, 0.021463};  // fit, a/b = 1
+  const double lambdaOverA = 3.0;
+  const std::complex<double> predicted =
+      fastsimSecondOrderCoefficient(CreepageKind::kPhi, 1.0, p.nu, p.nx, p.ny, chi, lambdaOverA);
+  auto error = [&](double stepsPerA) {
+    const auto c = harmonicSpinC23(p, ChiTable::uniformSecondOrder(chi), lambdaOverA, stepsPerA);
+    return std::abs(c - predicted) / std::abs(predicted);
+  };
+  const double coarse = error(200), fine = error(400);
+  EXPECT_LT(fine, 0.01);
+  EXPECT_NEAR(fine / coarse, 0.5, 0.05);  // first order in dt: tends to zero with the step
+  const std::complex<double> firstOrder = fastsimNonSteadyCoefficient(
+      CreepageKind::kPhi, 1.0, p.nu, p.nx, p.ny, {chi.chi1, chi.chi2, chi.chi3}, lambdaOverA);
+  EXPECT_GT(std::abs(firstOrder - predicted) / std::abs(predicted), 5 * fine);
+}
+
 TEST(NssModel, FrequencyResponseTendsToSteadyAndLags) {
   const ChiParameters shenLi{};
   const double steady = fastsimSteadyCoefficient(CreepageKind::kXi, 1.0, 0.28, 20, 20);
@@ -234,4 +282,39 @@ TEST(NssModel, SettledStateContinuesWithoutAJump) {
       const StepOutput alongside = m.steadyAlongside(in);
       EXPECT_NEAR(alongside.fx, settled.fx, 1e-9 * std::abs(settled.fx)) << mesh;
     }
+}
+
+// A table with the fitted second-order F for kind 23 and first-order 11, 22: spin switches the
+// march to second order, no spin back to first (s2 dropped). Every path that touches the state
+// (adaptive carry, reversal, speed change, settle) must stay finite and bounded, and a model that
+// never spins must not see the second order at all.
+TEST(NssModel, SecondOrderSpinSurvivesEveryStatePath) {
+  const std::string path = ::testing::TempDir() + "chi_second.csv";
+  std::ofstream(path) << "a_over_b,kind,chi1,chi2,chi3,chi4,chi5\n1.5,11,0.4,1.1,0.6,0,0\n"
+                         "1.5,22,0.5,1.0,0.7,0,0\n"
+                         "1.5,23,0.744200,1.776235,0.511910,0.107313,0.021463\n";
+  const ChiTable table = ChiTable::load(path);
+  std::ofstream(path) << "a_over_b,kind,chi1,chi2,chi3\n1.5,11,0.4,1.1,0.6\n1.5,22,0.5,1.0,0.7\n"
+                         "1.5,23,0.744200,1.776235,0.511910\n";
+  const ChiTable firstOrder = ChiTable::load(path);
+  for (const char* mesh : {"fixed", "adaptive", "auto"}) {
+    NssModel m(params("nss", mesh), table), first(params("nss", mesh), firstOrder);
+    for (int k = 0; k < 600; ++k) {
+      StepInput in = scene(k);
+      in.phi = (k / 100) % 2 ? 0.0 : 3.0;                          // second order, then first, ...
+      if (k >= 300) in.V = -in.V * (1 + 0.5 * std::sin(0.1 * k));  // reversal, varying speed
+      const StepOutput o = k == 450 ? m.settle(in) : m.step(in);
+      ASSERT_TRUE(std::isfinite(o.fx) && std::isfinite(o.fy) && std::isfinite(o.mz)) << k;
+      ASSERT_LE(std::hypot(o.fx, o.fy), 0.3 * in.fz * (1 + 1e-9)) << mesh << " " << k;
+    }
+    // Without spin both directions keep their first-order kinds: the same as a first-order table.
+    NssModel noSpin(params("nss", mesh), table);
+    for (int k = 0; k < 50; ++k) {
+      StepInput in = scene(k);
+      in.phi = 0.0;
+      const StepOutput a = noSpin.step(in), b = first.step(in);
+      EXPECT_EQ(a.fx, b.fx) << mesh;
+      EXPECT_EQ(a.fy, b.fy) << mesh;
+    }
+  }
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "wheel_rail_contact/second_order_flexibility.hpp"
 #include "wheel_rail_contact/transient_fastsim.hpp"
 
 using namespace wheel_rail_contact;
@@ -111,30 +112,49 @@ TEST(AlongStripMap, GrowingPatchGivesZeroBeyondTheOldStripEnds) {
 }
 
 TEST(AlongStripMap, FusedStepEqualsCarryThenStepBitForBit) {
-  PatchMesh old(14, 12, 6e-3, 4e-3), now = old;
-  now.scale(1.03 * 6e-3, 1.03 * 4e-3);
-  TransientState previous = linearField(old);
-  previous.tx *= 1e6;
-  previous.sy.setConstant(-3e5);
-  AlongStripMap map(old.nx());
-  map.set(now.a() / old.a());
-  const Flexibilities L = kalkerFlexibilities(now.a(), now.b(), 8.2e10, {4.1, 3.6, 1.4});
-  const Creepages c{1e-3, -5e-4, 0.7};
-  const FilterZ zx = discretise({0.4, 1.1, 0.6}, now.a(), 20.0, 5e-5);
-  const FilterZ zy = discretise({0.5, 1.0, 0.7}, now.a(), 20.0, 5e-5);
-  TractionField fused, separate;
-  fused.resize(now.size());
-  parabolicBound(now, now.a(), now.b(), 8e4, 0.3, &fused);
-  separate = fused;
-  TransientState a, b;
-  a.resize(now.size());
-  b.resize(now.size());
-  const CreepForces fa =
-      transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, map, previous, &a, &fused);
-  remapAlongStrips(map, previous, old.ny(), &b);
-  const CreepForces fb = transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, &b, &separate);
-  EXPECT_EQ(fa.fx, fb.fx);
-  EXPECT_EQ(fa.fy, fb.fy);
-  EXPECT_EQ(fa.mz, fb.mz);
-  EXPECT_TRUE((a.tx == b.tx).all() && (a.sy == b.sy).all());
+  // Second order: zy carries the fitted spin F, and the history a second state.
+  for (const bool second : {false, true}) {
+    PatchMesh old(14, 12, 6e-3, 4e-3), now = old;
+    now.scale(1.03 * 6e-3, 1.03 * 4e-3);
+    TransientState previous = linearField(old);
+    previous.tx *= 1e6;
+    previous.sy.setConstant(-3e5);
+    if (second) previous.s2y.setConstant(2e5);
+    AlongStripMap map(old.nx());
+    map.set(now.a() / old.a());
+    const Flexibilities L = kalkerFlexibilities(now.a(), now.b(), 8.2e10, {4.1, 3.6, 1.4});
+    const Creepages c{1e-3, -5e-4, 0.7};
+    const FilterZ zx = discretise(ChiParameters{0.4, 1.1, 0.6}, now.a(), 20.0, 5e-5);
+    const FilterZ zy =
+        second ? discretise(SecondOrderChi{0.744200, 1.776235, 0.511910, 0.107313, 0.021463},
+                            now.a(), 20.0, 5e-5)
+               : discretise(ChiParameters{0.5, 1.0, 0.7}, now.a(), 20.0, 5e-5);
+    ASSERT_EQ(zy.secondOrder(), second);
+    TractionField fused, separate;
+    fused.resize(now.size());
+    parabolicBound(now, now.a(), now.b(), 8e4, 0.3, &fused);
+    separate = fused;
+    TransientState a, b;
+    a.resize(now.size());
+    b.resize(now.size());
+    const CreepForces fa =
+        transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, map, previous, &a, &fused);
+    remapAlongStrips(map, previous, old.ny(), &b);
+    const CreepForces fb = transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, &b, &separate);
+    EXPECT_EQ(fa.fx, fb.fx);
+    EXPECT_EQ(fa.fy, fb.fy);
+    EXPECT_EQ(fa.mz, fb.mz);
+    EXPECT_TRUE((a.tx == b.tx).all() && (a.sy == b.sy).all());
+    EXPECT_TRUE((a.s2y == b.s2y).all() && (a.s2x == b.s2x).all());
+    // The carried s2 reaches s: a second-order step with and without it differs.
+    if (second) {
+      TransientState c2 = b;
+      remapAlongStrips(map, previous, old.ny(), &c2);
+      c2.s2y.setZero();
+      transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, &c2, &separate);
+      EXPECT_GT((c2.sy - b.sy).abs().maxCoeff(), 1e4);
+    } else {
+      EXPECT_TRUE((a.s2y == 0.0).all());
+    }
+  }
 }
