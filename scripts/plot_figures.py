@@ -29,6 +29,17 @@ def rows(name):
         return list(csv.DictReader(f))
 
 
+def unwrapped_phase(ratios):
+    """Phase [deg] of ratios ordered by lambda/a, continuous from the longest wave (where it is
+    near 0) down: C23's response spirals through the origin at short waves."""
+    out, last = [0.0] * len(ratios), 0.0
+    for i in reversed(range(len(ratios))):
+        phi = math.degrees(math.atan2(ratios[i].imag, ratios[i].real))
+        phi += 360.0 * round((last - phi) / 360.0)
+        out[i] = last = phi
+    return out
+
+
 def freq_figure():
     data = defaultdict(lambda: defaultdict(list))
     for r in rows("freq_ab1.csv"):
@@ -40,8 +51,8 @@ def freq_figure():
             c, ls = STYLE[model]
             lam = [p[0] for p in pts]
             ax[0][col].semilogx(lam, [abs(p[1]) for p in pts], color=c, ls=ls, label=model)
-            ax[1][col].semilogx(lam, [math.degrees(math.atan2(p[1].imag, p[1].real)) for p in pts],
-                                color=c, ls=ls, label=model)
+            ax[1][col].semilogx(lam, unwrapped_phase([p[1] for p in pts]), color=c, ls=ls,
+                                label=model)
         ax[0][col].set_title(f"C{kind}, a/b = 1")
         ax[1][col].set_xlabel("lambda / a")
     ax[0][0].set_ylabel("|C^| / C_steady")

@@ -80,6 +80,7 @@ class NssModel : public ContactModel {
   double lastSpeed_ = 0.0;    // |V| of the step that left the filter state (0: none yet) [m/s]
   bool mirrored_ = false;     // the history is in the mirror frame (rolling backwards)
   bool secondOrder_ = false;  // the last step marched s2: state_.s2x/s2y (remapped_'s) may be != 0
+  bool handingOn_ = false;    // this step marches s2 only to hand it on into s1 (spin stopped)
 };
 
 }  // namespace wheel_rail_contact

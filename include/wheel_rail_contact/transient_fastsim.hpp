@@ -30,13 +30,15 @@ struct TransientState {
 /// field->bound, then updates `state` from the saturated traction. field->bound and field->entry
 /// must be filled (parabolicBound). Nodes outside the patch (zero bound) get zero traction and only
 /// their filter state advances.
-/// Second order (zx or zy with b2 or a2 != 0) marches s2 as well; first order leaves s2 untouched
-/// (the caller keeps it zero, see NssModel::chooseFilters).
+/// Second order (zx or zy with b2 or a2 != 0, or `marchSecond`) marches s2 as well; first order
+/// leaves s2 untouched (the caller keeps it zero, see NssModel::chooseFilters). `marchSecond` with
+/// first-order filters hands the s2 left by a second-order step on into s1 and leaves s2 = 0.
 /// The stored history is read times `historyScale` (1: as stored), so a caller can rescale it to a
 /// new patch size without a pass over the state; the state written is unscaled.
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
-                             double historyScale, TransientState* state, TractionField* field);
+                             double historyScale, TransientState* state, TractionField* field,
+                             bool marchSecond = false);
 
 /// How the adaptive mesh carries its history when the patch changes size (a choice beyond the
 /// paper's eq. 19, see README): every strip keeps its own history (strip j of the new patch reads
@@ -79,7 +81,7 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
                              double historyScale, const AlongStripMap& map,
                              const TransientState& previous, TransientState* state,
-                             TractionField* field);
+                             TractionField* field, bool marchSecond = false);
 
 /// The history of `strips` strips carried by `map` into *out (sized alike).
 void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int strips,

@@ -37,13 +37,12 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
 
 void NssModel::dropSecondState() {
   // A first-order march neither reads nor writes s2, so it must find zeros there when a
-  // second-order step comes back (the s2 left by the last second-order step is dropped with the
-  // second-order filter). Both buffers: the moving march writes remapped_.
+  // second-order step comes back. Both buffers: the moving march writes remapped_.
   state_.s2x.setZero();
   state_.s2y.setZero();
   remapped_.s2x.setZero();
   remapped_.s2y.setZero();
-  secondOrder_ = false;
+  secondOrder_ = handingOn_ = false;
 }
 
 void NssModel::reset() {
@@ -139,9 +138,13 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
                 z23 = discretiseKind(2, a, V, dt);
   zx_ = weightedFilter(z11, wx_[0], z23, wx_[1]);
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
+  if (handingOn_) dropSecondState();  // the last step left s2 = 0 in its buffer; clear the other
   const bool second = zx_.secondOrder() || zy_.secondOrder();
-  if (secondOrder_ && !second) dropSecondState();
-  secondOrder_ = second;
+  // The step after a second-order F ends (spin stopped) still marches s2, with b2 = a2 = 0: it
+  // hands the s2 left by the last second-order step on into s1, as the transposed form does when
+  // its coefficients switch, rather than drop it (a jump in the traction).
+  handingOn_ = secondOrder_ && !second;
+  secondOrder_ = second || handingOn_;
 }
 
 CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool moves) {
@@ -162,9 +165,10 @@ CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool m
   const Flexibilities L = kalkerFlexibilities(h.a, h.b, p_.G, kalker_);
   const double r = historyScale(h.a);
   lastA_ = h.a;
-  return moves ? transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, carry_, state_, &remapped_,
-                                  &field_)
-               : transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, &state_, &field_);
+  return moves
+             ? transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, carry_, state_, &remapped_,
+                                &field_, handingOn_)
+             : transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, &state_, &field_, handingOn_);
 }
 
 StepInput NssModel::faceTravel(const StepInput& in) {

@@ -233,8 +233,9 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
 
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
-                             double historyScale, TransientState* st, TractionField* f) {
-  if (zx.secondOrder() || zy.secondOrder())
+                             double historyScale, TransientState* st, TractionField* f,
+                             bool marchSecond) {
+  if (marchSecond || zx.secondOrder() || zy.secondOrder())
     return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{*st}, st, f);
   return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{*st}, st, f);
 }
@@ -242,9 +243,10 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
                              double historyScale, const AlongStripMap& map,
-                             const TransientState& previous, TransientState* st, TractionField* f) {
+                             const TransientState& previous, TransientState* st, TractionField* f,
+                             bool marchSecond) {
   const AlongStrips carried(map, previous);
-  if (zx.secondOrder() || zy.secondOrder())
+  if (marchSecond || zx.secondOrder() || zy.secondOrder())
     return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
   return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
 }
