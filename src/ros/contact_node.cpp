@@ -227,6 +227,8 @@ void ContactNode::report(const StepResult& r) {
   }
   if (r.out.status == StepStatus::kRejected)
     ROS_WARN_THROTTLE(1.0, "%s: model refused the step: %s", ns, r.out.message.c_str());
+  else if (r.out.status == StepStatus::kOk && !r.out.message.empty())  // clipped or coarse patch
+    ROS_WARN_THROTTLE(5.0, "%s: %s", ns, r.out.message.c_str());
   if (r.staleLoad)
     ROS_WARN_THROTTLE(5.0, "%s: the latest normal_load is %.3f s old (max_load_age)", ns,
                       r.loadAge);

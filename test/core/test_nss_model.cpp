@@ -346,3 +346,15 @@ TEST(NssModel, StoppingSpinHandsTheSecondStateOn) {
     EXPECT_LE(worst, 1e-6 * scale) << mesh;  // dropping s2 instead: 0.09 scale
   }
 }
+
+// fz_max far above the load leaves the patch inside an element or two of the fixed mesh (zero or
+// coarse force): the output says so; a mesh sized as usual says nothing.
+TEST(NssModel, FixedMeshFarAboveTheLoadSaysSo) {
+  for (double ratio : {1.5, 1e4}) {
+    ContactParameters p = params("nss");
+    p.fz_max = ratio * p.fz0;
+    NssModel m(p, kSomeChi);
+    const StepOutput o = m.step({5e-5, 20.0, 1e-3, 0.0, 0.0, p.fz0});
+    EXPECT_EQ(o.message.find("fewer than 4 nodes") != std::string::npos, ratio > 2) << ratio;
+  }
+}
