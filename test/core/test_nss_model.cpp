@@ -35,6 +35,15 @@ StepInput scene(int k, double dt = 5e-5) {
 
 const ChiTable kSomeChi = ChiTable::uniform({0.4, 1.1, 0.6});
 
+// First-order kinds 11 and 22, and kind 23 with the second-order F fitted at a/b = 1.
+ChiTable secondOrderSpinTable() {
+  const std::string path = ::testing::TempDir() + "chi_second.csv";
+  std::ofstream(path) << "a_over_b,kind,chi1,chi2,chi3,chi4,chi5\n1.5,11,0.4,1.1,0.6,0,0\n"
+                         "1.5,22,0.5,1.0,0.7,0,0\n"
+                         "1.5,23,0.744200,1.776235,0.511910,0.107313,0.021463\n";
+  return ChiTable::load(path);
+}
+
 }  // namespace
 
 TEST(NssModel, StaticFilterReproducesShenLiExactly) {
@@ -289,11 +298,8 @@ TEST(NssModel, SettledStateContinuesWithoutAJump) {
 // state (adaptive carry, reversal, speed change, settle) must stay finite and bounded, and a model
 // that never spins must not see the second order at all.
 TEST(NssModel, SecondOrderSpinSurvivesEveryStatePath) {
-  const std::string path = ::testing::TempDir() + "chi_second.csv";
-  std::ofstream(path) << "a_over_b,kind,chi1,chi2,chi3,chi4,chi5\n1.5,11,0.4,1.1,0.6,0,0\n"
-                         "1.5,22,0.5,1.0,0.7,0,0\n"
-                         "1.5,23,0.744200,1.776235,0.511910,0.107313,0.021463\n";
-  const ChiTable table = ChiTable::load(path);
+  const ChiTable table = secondOrderSpinTable();
+  const std::string path = ::testing::TempDir() + "chi_first.csv";
   std::ofstream(path) << "a_over_b,kind,chi1,chi2,chi3\n1.5,11,0.4,1.1,0.6\n1.5,22,0.5,1.0,0.7\n"
                          "1.5,23,0.744200,1.776235,0.511910\n";
   const ChiTable firstOrder = ChiTable::load(path);
@@ -323,11 +329,7 @@ TEST(NssModel, SecondOrderSpinSurvivesEveryStatePath) {
 // handed on into s1 (one more s2 step with b2 = a2 = 0), so the forces continue those of a spin
 // too small to matter (1e-12 1/m, the march still second order) instead of jumping.
 TEST(NssModel, StoppingSpinHandsTheSecondStateOn) {
-  const std::string path = ::testing::TempDir() + "chi_second_stop.csv";
-  std::ofstream(path) << "a_over_b,kind,chi1,chi2,chi3,chi4,chi5\n1.5,11,0.4,1.1,0.6,0,0\n"
-                         "1.5,22,0.5,1.0,0.7,0,0\n"
-                         "1.5,23,0.744200,1.776235,0.511910,0.107313,0.021463\n";
-  const ChiTable table = ChiTable::load(path);
+  const ChiTable table = secondOrderSpinTable();
   for (const char* mesh : {"fixed", "adaptive"}) {
     NssModel stops(params("nss", mesh), table), lingers(params("nss", mesh), table);
     double worst = 0.0, scale = 0.0;
