@@ -35,6 +35,12 @@ struct SceneError {
   double rmsOverMuFz0 = 0.0;  ///< the same RMS / (mu Fz0)
   double dFxOverMuDFz = 0.0;  ///< the model's peak-to-peak Fx / (mu peak-to-peak Fz), last period
   double dFxOverMuDFzExact = 0.0;
+  /// The RMS split in two, rmsOverPeak^2 = meanOverPeak^2 + rmsAboutMeanOverPeak^2: |mean error
+  /// vector| over the period / peak (a bias: on the varying-load scenes mostly FastSim's own steady
+  /// error, which every FastSim model shares), and the RMS of the error about that mean / peak
+  /// (what follows the load: the part the time term acts on).
+  double meanOverPeak = 0.0;
+  double rmsAboutMeanOverPeak = 0.0;
 };
 
 /// Error of `model` against `exact` over the rows with t > t_end - period (force vector Fx, Fy).

@@ -71,7 +71,7 @@ SceneError sceneError(const PaperScene& scene, const std::vector<StepOutput>& mo
                       const std::vector<StepOutput>& exact) {
   SceneError e;
   const double tEnd = scene.rows.back().t, from = tEnd - scene.period * (1.0 + 1e-9);
-  double sum = 0.0, peak = 0.0;
+  double sum = 0.0, peak = 0.0, meanX = 0.0, meanY = 0.0;
   double fxMin = 1e300, fxMax = -1e300, exMin = 1e300, exMax = -1e300, fzMin = 1e300,
          fzMax = -1e300;
   int n = 0;
@@ -79,6 +79,8 @@ SceneError sceneError(const PaperScene& scene, const std::vector<StepOutput>& mo
     if (scene.rows[k].t <= from) continue;
     const double dx = model[k].fx - exact[k].fx, dy = model[k].fy - exact[k].fy;
     sum += dx * dx + dy * dy;
+    meanX += dx;
+    meanY += dy;
     peak = std::max(peak, std::hypot(exact[k].fx, exact[k].fy));
     fxMin = std::min(fxMin, model[k].fx);
     fxMax = std::max(fxMax, model[k].fx);
@@ -90,6 +92,10 @@ SceneError sceneError(const PaperScene& scene, const std::vector<StepOutput>& mo
   }
   const double rms = std::sqrt(sum / std::max(n, 1));
   e.rmsOverPeak = peak > 0.0 ? rms / peak : 0.0;
+  const double mean = std::hypot(meanX, meanY) / std::max(n, 1);
+  e.meanOverPeak = peak > 0.0 ? mean / peak : 0.0;
+  e.rmsAboutMeanOverPeak =
+      peak > 0.0 ? std::sqrt(std::max(0.0, rms * rms - mean * mean)) / peak : 0.0;
   e.rmsOverMuFz0 = rms / (scene.params.mu * scene.params.fz0);
   const double dFz = scene.params.mu * (fzMax - fzMin);
   e.dFxOverMuDFz = dFz > 0.0 ? (fxMax - fxMin) / dFz : 0.0;

@@ -15,23 +15,32 @@ using namespace wheel_rail_contact;
 
 namespace {
 
-double error(const PaperScene& s, const char* model, const std::vector<StepOutput>& exact,
-             const char* mesh = "fixed") {
+SceneError errors(const PaperScene& s, const char* model, const std::vector<StepOutput>& exact,
+                  const char* mesh = "fixed") {
   ContactParameters p = s.params;
   p.model = model;
   p.mesh = std::string(model) == "auto" ? "auto" : mesh;
   p.nx = p.ny = 20;
   auto m = makeContactModel(p);
-  return sceneError(s, runScene(*m, s.rows), exact).rmsOverPeak;
+  return sceneError(s, runScene(*m, s.rows), exact);
 }
 
-// tie: how far nss may lie above shen-li on the fixed mesh (1: strictly below).
-void check(const PaperScene& s, double tie = 1.0) {
+double error(const PaperScene& s, const char* model, const std::vector<StepOutput>& exact,
+             const char* mesh = "fixed") {
+  return errors(s, model, exact, mesh).rmsOverPeak;
+}
+
+std::vector<StepOutput> exactRun(const PaperScene& s) {
   ContactParameters p = s.params;
   p.model = "exact";
   p.nx = p.ny = 20;
   auto exactModel = makeContactModel(p);
-  const std::vector<StepOutput> exact = runScene(*exactModel, s.rows);
+  return runScene(*exactModel, s.rows);
+}
+
+// tie: how far nss may lie above shen-li on the fixed mesh (1: strictly below).
+void check(const PaperScene& s, double tie = 1.0) {
+  const std::vector<StepOutput> exact = exactRun(s);
   const double nss = error(s, "nss", exact), shenLi = error(s, "shen-li", exact),
                steady = error(s, "steady", exact);
   EXPECT_LT(nss, 0.08) << s.name;
@@ -59,4 +68,24 @@ TEST(PaperScenes, VaryingLoad) {
   // offset the 20x20 reference's own 5 % and made nss look 3-38 % better.
   for (double xi : {0.002, 0.01, 0.05})
     check(varyingLoadScene(xi, 15.0, 3, 2.2 * 0.02 * 1.08 / 20), 1.03);
+}
+
+TEST(PaperScenes, VaryingLoadFollowsTheLoad) {
+  // Where nss and shen-li tie (above), the RMS is the mean error: FastSim's steady bias against the
+  // exact solution, which both share (README, "Why nss and shen-li tie under a varying load"). The
+  // part that follows the load, the RMS of the error about its mean over the period, is the one
+  // the time term acts on: there nss must beat shen-li on every varying-load case, on the fixed
+  // mesh (measured here: nss at most 0.93 of shen-li, at xi = 0.1, lambda/a0 = 40) and by a
+  // fifth or more on the adaptive one, mesh for mesh (at most 0.75 of it, xi = 0.1, 40).
+  for (double xi : {0.002, 0.01, 0.05, 0.1})
+    for (double l : {5.0, 15.0, 40.0}) {
+      const PaperScene s = varyingLoadScene(xi, l, 3, 2.2 * 0.02 * 1.08 / 20);
+      const std::vector<StepOutput> exact = exactRun(s);
+      EXPECT_LT(errors(s, "nss", exact).rmsAboutMeanOverPeak,
+                errors(s, "shen-li", exact).rmsAboutMeanOverPeak)
+          << s.name;
+      EXPECT_LT(errors(s, "nss", exact, "adaptive").rmsAboutMeanOverPeak,
+                0.8 * errors(s, "shen-li", exact, "adaptive").rmsAboutMeanOverPeak)
+          << s.name;
+    }
 }
