@@ -14,15 +14,31 @@
 namespace wheel_rail_contact {
 
 /// Traction history at fixed contact coordinates: what one step leaves for the next.
+/// Column k is node k: its traction and filter state side by side, so the march reads and writes a
+/// node's history as (x, y) pairs through one pointer (four arrays cost a pointer and two half
+/// loads or stores each per node). The rows are read and written by name through tx() ... s2y().
 struct TransientState {
-  Eigen::ArrayXd tx, ty;  ///< traction at the previous step [Pa]
-  Eigen::ArrayXd sx, sy;  ///< filter state (transposed direct form II) [Pa/s]
-  /// The second filter state of a second-order F [Pa/s] (a traction rate like s: in transposed
-  /// direct form II every state is a combination of past rates g and h). Zero while the filter is
-  /// first order: the first-order march neither reads nor writes it.
-  Eigen::ArrayXd s2x, s2y;
+  /// Rows tx, ty: traction at the previous step [Pa]; sx, sy: filter state (transposed direct form
+  /// II) [Pa/s].
+  Eigen::Array<double, 4, Eigen::Dynamic> history;
+  /// Rows s2x, s2y: the second filter state of a second-order F [Pa/s] (a traction rate like s:
+  /// in transposed direct form II every state is a combination of past rates g and h). Zero while
+  /// the filter is first order: the first-order march neither reads nor writes it.
+  Eigen::Array<double, 2, Eigen::Dynamic> second;
   void resize(int n);
   void clear();
+  auto tx() { return history.row(0); }
+  auto ty() { return history.row(1); }
+  auto sx() { return history.row(2); }
+  auto sy() { return history.row(3); }
+  auto s2x() { return second.row(0); }
+  auto s2y() { return second.row(1); }
+  auto tx() const { return history.row(0); }
+  auto ty() const { return history.row(1); }
+  auto sx() const { return history.row(2); }
+  auto sy() const { return history.row(3); }
+  auto s2x() const { return second.row(0); }
+  auto s2y() const { return second.row(1); }
 };
 
 /// One step of length dt > 0 at speed V > 0. Marches each strip from the patch's leading edge

@@ -6,21 +6,13 @@
 namespace wheel_rail_contact {
 
 void TransientState::resize(int n) {
-  tx.setZero(n);
-  ty.setZero(n);
-  sx.setZero(n);
-  sy.setZero(n);
-  s2x.setZero(n);
-  s2y.setZero(n);
+  history.setZero(4, n);
+  second.setZero(2, n);
 }
 
 void TransientState::clear() {
-  tx.setZero();
-  ty.setZero();
-  sx.setZero();
-  sy.setZero();
-  s2x.setZero();
-  s2y.setZero();
+  history.setZero();
+  second.setZero();
 }
 
 namespace {
@@ -91,17 +83,35 @@ struct PackedStep {
         pushPerXn(m.pushPerXn) {}
 };
 
+// The (x, y) pair at p, one aligned load or store: TransientState's columns (4 or 2 doubles)
+// start on 16 bytes, and so do their pairs.
+Pair pairAt(const double* p) {
+  return Eigen::Map<const Pair, Eigen::Aligned16>(p);
+}
+void storePair(double* p, const Pair& v) {
+  Eigen::Map<Pair, Eigen::Aligned16> to(p);
+  to = v;
+}
+
 // A node's history as the march reads it: the traction and the filter state, (x, y) pairs.
 struct History {
   Pair t, s;
 };
 
+// Where TransientState keeps node k: its traction at history + 4k, its filter state 2 further,
+// its second filter state at second + 2k.
+constexpr int kTraction = 0, kState = 2, kPerNode = 4, kPerNodeSecond = 2;
+
 // The history in place: node k of the state the march also writes.
 struct InPlace {
-  const TransientState& s;
+  const double *history, *s2;
+  explicit InPlace(const TransientState& s) : history(s.history.data()), s2(s.second.data()) {}
   void strip(int) {}
-  History at(int k, int) const { return {Pair(s.tx(k), s.ty(k)), Pair(s.sx(k), s.sy(k))}; }
-  Pair second(int k, int) const { return Pair(s.s2x(k), s.s2y(k)); }
+  History at(int k, int) const {
+    const double* p = history + kPerNode * k;
+    return {pairAt(p + kTraction), pairAt(p + kState)};
+  }
+  Pair second(int k, int) const { return pairAt(s2 + kPerNodeSecond * k); }
 };
 
 // The history of the previous patch, carried along the strips (AlongStripMap) node by node as the
@@ -112,28 +122,25 @@ struct AlongStrips {
   const int* index;
   const double* weights;
   int nodes;
-  const double *tx, *ty, *sx, *sy, *s2x, *s2y;
+  const double *history, *s2;
   int first = 0;  // the strip's first node (old and new patch share the layout)
   AlongStrips(const AlongStripMap& map, const TransientState& s)
       : index(map.indices()),
         weights(map.spreadWeights()),
         nodes(map.nodes()),
-        tx(s.tx.data()),
-        ty(s.ty.data()),
-        sx(s.sx.data()),
-        sy(s.sy.data()),
-        s2x(s.s2x.data()),
-        s2y(s.s2y.data()) {}
+        history(s.history.data()),
+        s2(s.second.data()) {}
   void strip(int j) { first = j * nodes; }
-  // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once.
-  Pair carried(const double* x, const double* y, int i) const {
-    const int k = first + index[i];
-    const Pair w0 = Eigen::Map<const Pair, Eigen::Aligned16>(weights + 4 * i),
-               w1 = Eigen::Map<const Pair, Eigen::Aligned16>(weights + 4 * i + 2);
-    return w0 * Pair(x[k], y[k]) + w1 * Pair(x[k + 1], y[k + 1]);
+  // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once: the pair at `offset` of
+  // old nodes index(i) and index(i) + 1, columns of `perNode` doubles.
+  Pair carried(const double* v, int perNode, int offset, int i) const {
+    const double* p = v + perNode * (first + index[i]) + offset;
+    return pairAt(weights + 4 * i) * pairAt(p) + pairAt(weights + 4 * i + 2) * pairAt(p + perNode);
   }
-  History at(int, int i) const { return {carried(tx, ty, i), carried(sx, sy, i)}; }
-  Pair second(int, int i) const { return carried(s2x, s2y, i); }
+  History at(int, int i) const {
+    return {carried(history, kPerNode, kTraction, i), carried(history, kPerNode, kState, i)};
+  }
+  Pair second(int, int i) const { return carried(s2, kPerNodeSecond, 0, i); }
 };
 
 // The filter states' update at a node from its final traction t and history (old, s, s2):
@@ -143,17 +150,15 @@ template <bool kSecond>
 struct StateUpdate {
   Pair rate, rateOld, poleOld, rate2, rate2Old, pole2Old;
   double r;
-  double *sX, *sY, *s2X, *s2Y;
+  double *written, *written2;  // the new history (TransientState::history, ::second)
   StateUpdate(const TimeTerm& X, const TimeTerm& Y, const FilterZ& zx, const FilterZ& zy, double dt,
               double r, TransientState* st)
       : rate(X.rate, Y.rate),
         rateOld(X.rateOld, Y.rateOld),
         poleOld(X.poleOld, Y.poleOld),
         r(r),
-        sX(st->sx.data()),
-        sY(st->sy.data()),
-        s2X(st->s2x.data()),
-        s2Y(st->s2y.data()) {
+        written(st->history.data()),
+        written2(st->second.data()) {
     if constexpr (kSecond) {
       rate2 = Pair(zx.b2 - zx.a2 * zx.b0, zy.b2 - zy.a2 * zy.b0) / dt;
       rate2Old = rate2 * r;
@@ -168,12 +173,11 @@ struct StateUpdate {
       // Read before the store below: in place, s2 of node k is its own history.
       const Pair s2 = history.second(k, i);
       next += r * s2;
-      const Pair next2 = rate2 * t - rate2Old * old - pole2Old * s;
-      s2X[k] = next2(0);
-      s2Y[k] = next2(1);
+      storePair(written2 + kPerNodeSecond * k, rate2 * t - rate2Old * old - pole2Old * s);
     }
-    sX[k] = next(0);
-    sY[k] = next(1);
+    double* const p = written + kPerNode * k;
+    storePair(p + kState, next);
+    storePair(p + kTraction, t);
   }
 };
 
@@ -185,7 +189,6 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const TimeTerm X(zx, V, dt, r), Y(zy, V, dt, r);
   const StateUpdate<kSecond> update(X, Y, zx, zy, dt, r, st);
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
-  double *const oldX = st->tx.data(), *const oldY = st->ty.data();
   const double* const xn = mesh.xNorms().data();
   const FieldPointers out(f);
   ForceSums sums;
@@ -204,8 +207,6 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
       strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
       update(history, k, k - first, Pair(tx, ty), old, s);
-      oldX[k] = tx;
-      oldY[k] = ty;
     };
     // The loaded nodes are [enter, leave) (the patch is symmetric in x). The first steps from the
     // patch's leading edge, where the traction is zero.
@@ -219,7 +220,6 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     auto unloaded = [&](int k) {
       const History o = history.at(k, k - first);
       update(history, k, k - first, Pair(0.0, 0.0), o.t, o.s);
-      oldX[k] = oldY[k] = 0.0;
       out.unloaded(k);
     };
     for (int k = first; k < std::min(enter, end); ++k) unloaded(k);
@@ -278,28 +278,22 @@ void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int st
     for (int i = 0; i < map.nodes(); ++i) {
       const History h = source.at(0, i);
       const int k = j * map.nodes() + i;
-      out->tx(k) = h.t(0);
-      out->ty(k) = h.t(1);
-      out->sx(k) = h.s(0);
-      out->sy(k) = h.s(1);
-      const Pair s2 = source.second(0, i);
-      out->s2x(k) = s2(0);
-      out->s2y(k) = s2(1);
+      out->history.col(k) << h.t, h.s;
+      out->second.col(k) = source.second(0, i);
     }
   }
 }
 
 CreepForces holdTraction(const PatchMesh& mesh, TransientState* st, TractionField* f) {
   for (int k = 0; k < mesh.size(); ++k) {
-    const double t = std::hypot(st->tx(k), st->ty(k)), g = f->bound(k);
+    auto traction = st->history.col(k).head<2>();
+    const double t = std::hypot(traction(0), traction(1)), g = f->bound(k);
     if (t > g) {
-      const double s = g / t;
-      st->tx(k) *= s;
-      st->ty(k) *= s;
+      traction *= g / t;
       f->slip(k) = true;
     }
-    f->tx(k) = st->tx(k);
-    f->ty(k) = st->ty(k);
+    f->tx(k) = traction(0);
+    f->ty(k) = traction(1);
   }
   return integrateTraction(mesh, *f);
 }
@@ -367,12 +361,8 @@ void remapState(const PatchMesh& from, const TransientState& in, const PatchMesh
         const AlongStrip at(r0 + i * dr, oldNx);
         const int k = to.index(i, j), k0 = base + at.i0, k1 = base + std::min(at.i0 + 1, oldNx - 1);
         const double w0 = w * at.w0, w1 = w * at.w1;
-        out->tx(k) += w0 * in.tx(k0) + w1 * in.tx(k1);
-        out->ty(k) += w0 * in.ty(k0) + w1 * in.ty(k1);
-        out->sx(k) += w0 * in.sx(k0) + w1 * in.sx(k1);
-        out->sy(k) += w0 * in.sy(k0) + w1 * in.sy(k1);
-        out->s2x(k) += w0 * in.s2x(k0) + w1 * in.s2x(k1);
-        out->s2y(k) += w0 * in.s2y(k0) + w1 * in.s2y(k1);
+        out->history.col(k) += w0 * in.history.col(k0) + w1 * in.history.col(k1);
+        out->second.col(k) += w0 * in.second.col(k0) + w1 * in.second.col(k1);
       }
     }
   }
