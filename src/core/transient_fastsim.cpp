@@ -42,45 +42,29 @@ struct TimeTerm {
   }
 };
 
-// One direction's adhesion guess for a step of length h along a strip, every factor that does not
-// change along the strip folded in:  tau = history + decay tau_up, with
-// history = memory tau_old - lag s_old - push (push: the rigid slip over L, times h).
-struct Guess {
-  double decay, memory, lag, push;
-  Guess(const TimeTerm& T, double r, double h, double drive)
-      : decay(1.0 / (1.0 + h * T.beta)),
-        memory(h * T.beta * r * decay),
-        lag(h * T.lagPerLength * decay),
-        push(h * drive * decay) {}
-  double history(double old, double s) const { return memory * old - lag * s - push; }
-};
-
-// Both directions' guesses on one strip for a step h. Spin drives y linearly in x; over a step it
-// is taken at the step's midpoint x + h/2 (exact for a linear term): push_y = p0 + pushPerXn x/a.
-struct StripStep {
-  Guess x, y;
-  double pushPerXn;
-  StripStep(const TimeTerm& X, const TimeTerm& Y, double r, double h, double driveX, double gy,
-            double gphi, double a)
-      : x(X, r, h, driveX), y(Y, r, h, gy + 0.5 * h * gphi), pushPerXn(h * gphi * a * y.decay) {}
-};
-
 // The (x, y) pair of one per-node quantity: what does not depend on the upstream traction (the
 // history's part of the guess, the filter state's update) is computed for both directions at once.
 using Pair = Eigen::Array2d;
 
-// A step's per-node coefficients packed as (x, y) pairs; the upstream decay stays scalar, on the
-// march's serial chain.
+// Both directions' adhesion guesses for a step of length h along a strip, every factor that does
+// not change along the strip folded in, as (x, y) pairs:  tau = history + decay tau_up, with
+// history = memory tau_old - lag s_old - push (push: the rigid slip over L, times h). Spin drives y
+// linearly in x; over a step it is taken at the step's midpoint x + h/2 (exact for a linear term):
+// push_y = p0 + pushPerXn x/a. The upstream decay stays scalar, on the march's serial chain.
 struct PackedStep {
   Pair memory, lag, push;
   double decayX, decayY, pushPerXn;
-  explicit PackedStep(const StripStep& m)
-      : memory(m.x.memory, m.y.memory),
-        lag(m.x.lag, m.y.lag),
-        push(m.x.push, m.y.push),
-        decayX(m.x.decay),
-        decayY(m.y.decay),
-        pushPerXn(m.pushPerXn) {}
+  // beta: (X.beta, Y.beta); lagPerLength is the same for both directions.
+  PackedStep(const Pair& beta, double lagPerLength, double r, double h, double driveX, double gy,
+             double gphi, double a) {
+    const Pair hb = h * beta, decay = 1.0 / (1.0 + hb);
+    memory = hb * r * decay;
+    lag = h * lagPerLength * decay;
+    push = h * Pair(driveX, gy + 0.5 * h * gphi) * decay;
+    decayX = decay(0);
+    decayY = decay(1);
+    pushPerXn = h * gphi * a * decayY;
+  }
 };
 
 // The (x, y) pair at p, one aligned load or store: TransientState's columns (4 or 2 doubles)
@@ -188,6 +172,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const double r = historyScale;
   const TimeTerm X(zx, V, dt, r), Y(zy, V, dt, r);
   const StateUpdate<kSecond> update(X, Y, zx, zy, dt, r, st);
+  const Pair beta(X.beta, Y.beta);
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
   const double* const xn = mesh.xNorms().data();
   const FieldPointers out(f);
@@ -212,8 +197,9 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     // patch's leading edge, where the traction is zero.
     const StripEntry entry = f->entry[j];
     const int enter = first + entry.first, leave = end - entry.first;
-    if (enter < leave) node(enter, PackedStep(StripStep(X, Y, r, entry.h, driveX, gy, gphi, a)));
-    const PackedStep full(StripStep(X, Y, r, dx, driveX, gy, gphi, a));
+    if (enter < leave)
+      node(enter, PackedStep(beta, X.lagPerLength, r, entry.h, driveX, gy, gphi, a));
+    const PackedStep full(beta, X.lagPerLength, r, dx, driveX, gy, gphi, a);
     for (int k = enter + 1; k < leave; ++k) node(k, full);
     // Outside the patch (a fixed mesh larger than it) the bound is zero: whatever the march would
     // bring, the traction saturates at zero there; only the filter state moves.
