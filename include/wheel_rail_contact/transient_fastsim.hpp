@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 #include "wheel_rail_contact/fastsim.hpp"
@@ -69,12 +70,12 @@ class AlongStripMap {
   void set(double ratio);
   int nodes() const { return static_cast<int>(index_.size()); }
   /// New node i reads old nodes index(i) and index(i) + 1 of its strip with weights(i).
-  int index(int i) const { return index_[i]; }
+  int index(int i) const { return static_cast<int>(index_[i]); }
   Eigen::Array2d weights(int i) const { return {weights_(0, i), weights_(2, i)}; }
   /// index(i) and weights(i) for every i as raw arrays, for loops that must not reload them after
   /// every store; the weights spread for (x, y) pairs: w0, w0, w1, w1 node after node (16-byte
   /// aligned pairs).
-  const int* indices() const { return index_.data(); }
+  const std::ptrdiff_t* indices() const { return index_.data(); }
   const double* spreadWeights() const { return weights_.data(); }
   /// The weighted pair at `nodes` (old node index(i) of a strip) of a per-node field.
   static double read(const double* nodes, const Eigen::Array2d& w) {
@@ -83,7 +84,7 @@ class AlongStripMap {
   }
 
  private:
-  std::vector<int> index_;
+  std::vector<std::ptrdiff_t> index_;  // pointer-sized: the march adds it to a pointer as it is
   Eigen::Array<double, 4, Eigen::Dynamic> weights_;  // w0, w0, w1, w1 per node
 };
 

@@ -103,28 +103,34 @@ struct InPlace {
 // pointers, held in registers: through references they were reloaded after every store of the
 // march's slip flags (a bool store may alias anything).
 struct AlongStrips {
-  const int* index;
+  const std::ptrdiff_t* index;
   const double* weights;
-  int nodes;
+  std::ptrdiff_t nodes;
   const double *history, *s2;
-  int first = 0;  // the strip's first node (old and new patch share the layout)
+  // The old strip's first node (old and new patch share the layout) in history and s2: per node
+  // the march then only adds the map's index.
+  const double *stripHistory = nullptr, *stripS2 = nullptr;
   AlongStrips(const AlongStripMap& map, const TransientState& s)
       : index(map.indices()),
         weights(map.spreadWeights()),
         nodes(map.nodes()),
         history(s.history.data()),
         s2(s.second.data()) {}
-  void strip(int j) { first = j * nodes; }
+  void strip(int j) {
+    stripHistory = history + kPerNode * nodes * j;
+    stripS2 = s2 + kPerNodeSecond * nodes * j;
+  }
   // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once: the pair at `offset` of
-  // old nodes index(i) and index(i) + 1, columns of `perNode` doubles.
-  Pair carried(const double* v, int perNode, int offset, int i) const {
-    const double* p = v + perNode * (first + index[i]) + offset;
+  // old nodes index(i) and index(i) + 1, columns of `perNode` doubles from `strip`.
+  Pair carried(const double* strip, int perNode, int offset, int i) const {
+    const double* p = strip + perNode * index[i] + offset;
     return pairAt(weights + 4 * i) * pairAt(p) + pairAt(weights + 4 * i + 2) * pairAt(p + perNode);
   }
   History at(int, int i) const {
-    return {carried(history, kPerNode, kTraction, i), carried(history, kPerNode, kState, i)};
+    return {carried(stripHistory, kPerNode, kTraction, i),
+            carried(stripHistory, kPerNode, kState, i)};
   }
-  Pair second(int, int i) const { return carried(s2, kPerNodeSecond, 0, i); }
+  Pair second(int, int i) const { return carried(stripS2, kPerNodeSecond, 0, i); }
 };
 
 // The filter states' update at a node from its final traction t and history (old, s, s2):
@@ -248,7 +254,7 @@ void AlongStripMap::set(double ratio) {
     // traction, so towards them the weight falls to zero over that half element (c0 = 1 + 2f for
     // f < 0, c1 = 3 - 2f for f > 1); beyond the ends both are zero.
     const double r = std::min(std::max(r0 + i * dr, -1.0), double(nx));
-    index_[i] = std::min(static_cast<int>(std::max(r, 0.0)), nx - 2);
+    index_[i] = std::min(static_cast<std::ptrdiff_t>(std::max(r, 0.0)), std::ptrdiff_t{nx - 2});
     const double f = r - index_[i];
     const Eigen::Array2d w =
         Eigen::Array2d(1.0 - f, f).min(Eigen::Array2d(1.0 + 2.0 * f, 3.0 - 2.0 * f)).max(0.0);
