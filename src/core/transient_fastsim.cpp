@@ -248,17 +248,25 @@ void AlongStripMap::set(double ratio) {
   // ratio t_i, i.e. old node index r = r0 + i dr.
   const int nx = nodes();
   const double r0 = ((1.0 - ratio * (1.0 - 1.0 / nx)) * nx - 1.0) * 0.5, dr = ratio;
+  // Raw pointers: through the members, every store of an index reloaded the weights' address.
+  std::ptrdiff_t* const index = index_.data();
+  double* const spread = weights_.data();
   for (int i = 0; i < nx; ++i) {
-    // f is r's offset from node i0 (r clamped into the strip). Inside, the weights are (1 - f, f);
-    // the strip's ends lie half an element beyond its first and last node and carry zero
-    // traction, so towards them the weight falls to zero over that half element (c0 = 1 + 2f for
-    // f < 0, c1 = 3 - 2f for f > 1); beyond the ends both are zero.
-    const double r = std::min(std::max(r0 + i * dr, -1.0), double(nx));
-    index_[i] = std::min(static_cast<std::ptrdiff_t>(std::max(r, 0.0)), std::ptrdiff_t{nx - 2});
-    const double f = r - index_[i];
+    const double r = r0 + i * dr;
+    // f is r's offset from node index[i]. Between the first and the last node the weights are
+    // (1 - f, f), f in [0, 1]; the strip's ends lie half an element beyond its first and last node
+    // and carry zero traction, so towards them the weight falls to zero over that half element
+    // (c0 = 1 + 2f for f < 0, c1 = 3 - 2f for f > 1); beyond the ends both are zero.
+    const bool inside = r >= 0.0 && r <= nx - 1.0;
+    const double rc = inside ? r : std::min(std::max(r, -1.0), double(nx));
+    index[i] = std::min(static_cast<std::ptrdiff_t>(std::max(rc, 0.0)), std::ptrdiff_t{nx - 2});
+    const double f = rc - index[i];
     const Eigen::Array2d w =
-        Eigen::Array2d(1.0 - f, f).min(Eigen::Array2d(1.0 + 2.0 * f, 3.0 - 2.0 * f)).max(0.0);
-    weights_.col(i) = Eigen::Array4d(w(0), w(0), w(1), w(1));
+        inside
+            ? Eigen::Array2d(1.0 - f, f)
+            : Eigen::Array2d(1.0 - f, f).min(Eigen::Array2d(1.0 + 2.0 * f, 3.0 - 2.0 * f)).max(0.0);
+    Eigen::Map<Eigen::Array4d, Eigen::Aligned16> to(spread + 4 * i);
+    to << w(0), w(0), w(1), w(1);
   }
 }
 
