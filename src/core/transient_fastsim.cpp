@@ -88,8 +88,13 @@ constexpr int kTraction = 0, kState = 2, kPerNode = 4, kPerNodeSecond = 2;
 
 // The history in place: node k of the state the march also writes.
 struct InPlace {
-  const double *history, *s2;
-  explicit InPlace(const TransientState& s) : history(s.history.data()), s2(s.second.data()) {}
+  const double *history = nullptr, *s2 = nullptr;
+  // Read where the march writes: taken from the same state as the writes' pointers, so that the
+  // compiler sees one pointer (one induction variable, not two).
+  void writesTo(const TransientState& s) {
+    history = s.history.data();
+    s2 = s.second.data();
+  }
   void strip(int) {}
   History at(int k, int) const {
     const double* p = history + kPerNode * k;
@@ -116,6 +121,7 @@ struct AlongStrips {
         nodes(map.nodes()),
         history(s.history.data()),
         s2(s.second.data()) {}
+  void writesTo(const TransientState&) {}  // reads `previous`, never the state written
   void strip(int j) {
     stripHistory = history + kPerNode * nodes * j;
     stripS2 = s2 + kPerNodeSecond * nodes * j;
@@ -178,6 +184,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const double r = historyScale;
   const TimeTerm X(zx, V, dt, r), Y(zy, V, dt, r);
   const StateUpdate<kSecond> update(X, Y, zx, zy, dt, r, st);
+  history.writesTo(*st);
   const Pair beta(X.beta, Y.beta);
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
   const double* const xn = mesh.xNorms().data();
@@ -227,8 +234,8 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
                              double historyScale, TransientState* st, TractionField* f) {
   if (zx.secondOrder() || zy.secondOrder())
-    return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{*st}, st, f);
-  return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{*st}, st, f);
+    return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
+  return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
 }
 
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
