@@ -206,16 +206,12 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
       update(history, k, k - first, Pair(tx, ty), old, s);
     };
-    // The loaded nodes are [enter, leave) (the patch is symmetric in x). The first steps from the
-    // patch's leading edge, where the traction is zero.
+    // The loaded nodes are [enter, leave) (the patch is symmetric in x).
     const StripEntry entry = f->entry[j];
     const int enter = first + entry.first, leave = end - entry.first;
-    if (enter < leave)
-      node(enter, PackedStep(beta, X.lagPerLength, r, entry.h, driveX, gy, gphi, a));
-    const PackedStep full(beta, X.lagPerLength, r, dx, driveX, gy, gphi, a);
-    for (int k = enter + 1; k < leave; ++k) node(k, full);
     // Outside the patch (a fixed mesh larger than it) the bound is zero: whatever the march would
-    // bring, the traction saturates at zero there; only the filter state moves.
+    // bring, the traction saturates at zero there; only the filter state moves. These nodes do not
+    // touch the loaded ones, so they go first: fewer values then live across the loaded march.
     auto unloaded = [&](int k) {
       const History o = history.at(k, k - first);
       update(history, k, k - first, Pair(0.0, 0.0), o.t, o.s);
@@ -223,6 +219,11 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     };
     for (int k = first; k < std::min(enter, end); ++k) unloaded(k);
     for (int k = std::max(leave, enter); k < end; ++k) unloaded(k);
+    // The first loaded node steps from the patch's leading edge, where the traction is zero.
+    if (enter < leave)
+      node(enter, PackedStep(beta, X.lagPerLength, r, entry.h, driveX, gy, gphi, a));
+    const PackedStep full(beta, X.lagPerLength, r, dx, driveX, gy, gphi, a);
+    for (int k = enter + 1; k < leave; ++k) node(k, full);
     sums.addStrip(mesh, j, strip, entry, out.tx, out.ty);
   }
   return sums.forces();
