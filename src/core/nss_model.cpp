@@ -39,8 +39,8 @@ void NssModel::dropSecondState() {
   // A first-order march neither reads nor writes s2, so it must find zeros there when a
   // second-order step comes back (the s2 left by the last second-order step is dropped with the
   // second-order filter). Both buffers: the moving march writes remapped_.
-  state_.second.setZero();
-  remapped_.second.setZero();
+  state_.secondState().setZero();
+  remapped_.secondState().setZero();
   secondOrder_ = false;
 }
 
@@ -102,7 +102,7 @@ void NssModel::keepRatePerTravel(double speed) {
     state_.sy() *= r;
     // s2 is a rate too (transposed direct form II: a combination of past g and h) [Pa/s].
     if (secondOrder_) {
-      state_.second *= r;
+      state_.secondState() *= r;
     }
   }
   lastSpeed_ = speed;

@@ -6,13 +6,11 @@
 namespace wheel_rail_contact {
 
 void TransientState::resize(int n) {
-  history.setZero(4, n);
-  second.setZero(2, n);
+  history.setZero(6, n);
 }
 
 void TransientState::clear() {
   history.setZero();
-  second.setZero();
 }
 
 namespace {
@@ -82,9 +80,9 @@ struct History {
   Pair t, s;
 };
 
-// Where TransientState keeps node k: its traction at history + 4k, its filter state 2 further,
-// its second filter state at second + 2k.
-constexpr int kTraction = 0, kState = 2, kPerNode = 4, kPerNodeSecond = 2;
+// Where TransientState keeps node k: its traction at history + 6k, its filter state 2 further, its
+// second filter state 4 further.
+constexpr int kTraction = 0, kState = 2, kSecondState = 4, kPerNode = TransientState::kRows;
 
 // The history in place: node k of the state the march also writes.
 struct InPlace {
@@ -92,19 +90,16 @@ struct InPlace {
   // marches this source in fewer instructions with it scalar, AlongStrips with it paired
   // (callgrind: 2 % either way).
   static constexpr bool kPairedSpinPush = false;
-  const double *history = nullptr, *s2 = nullptr;
-  // Read where the march writes: taken from the same state as the writes' pointers, so that the
+  const double* history = nullptr;
+  // Read where the march writes: taken from the same state as the writes' pointer, so that the
   // compiler sees one pointer (one induction variable, not two).
-  void writesTo(const TransientState& s) {
-    history = s.history.data();
-    s2 = s.second.data();
-  }
+  void writesTo(const TransientState& s) { history = s.history.data(); }
   void strip(int) {}
   History at(int k, int) const {
     const double* p = history + kPerNode * k;
     return {pairAt(p + kTraction), pairAt(p + kState)};
   }
-  Pair second(int k, int) const { return pairAt(s2 + kPerNodeSecond * k); }
+  Pair second(int k, int) const { return pairAt(history + kPerNode * k + kSecondState); }
 };
 
 // The history of the previous patch, carried along the strips (AlongStripMap) node by node as the
@@ -113,35 +108,28 @@ struct InPlace {
 // march's slip flags (a bool store may alias anything).
 struct AlongStrips {
   static constexpr bool kPairedSpinPush = true;  // see InPlace
-  const std::ptrdiff_t* index;
+  const std::ptrdiff_t* offsets;                 // AlongStripMap::historyOffsets
   const double* weights;
   std::ptrdiff_t nodes;
-  const double *history, *s2;
-  // The old strip's first node (old and new patch share the layout) in history and s2: per node
-  // the march then only adds the map's index.
-  const double *stripHistory = nullptr, *stripS2 = nullptr;
+  const double* history;
+  // The old strip's first node (old and new patch share the layout): per node the march then
+  // only adds the map's index.
+  const double* stripHistory = nullptr;
   AlongStrips(const AlongStripMap& map, const TransientState& s)
-      : index(map.indices()),
+      : offsets(map.historyOffsets()),
         weights(map.spreadWeights()),
         nodes(map.nodes()),
-        history(s.history.data()),
-        s2(s.second.data()) {}
+        history(s.history.data()) {}
   void writesTo(const TransientState&) {}  // reads `previous`, never the state written
-  void strip(int j) {
-    stripHistory = history + kPerNode * nodes * j;
-    stripS2 = s2 + kPerNodeSecond * nodes * j;
-  }
+  void strip(int j) { stripHistory = history + kPerNode * nodes * j; }
   // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once: the pair at `offset` of
-  // old nodes index(i) and index(i) + 1, columns of `perNode` doubles from `strip`.
-  Pair carried(const double* strip, int perNode, int offset, int i) const {
-    const double* p = strip + perNode * index[i] + offset;
-    return pairAt(weights + 4 * i) * pairAt(p) + pairAt(weights + 4 * i + 2) * pairAt(p + perNode);
+  // old nodes index(i) and index(i) + 1 of the strip.
+  Pair carried(int offset, int i) const {
+    const double* p = stripHistory + offsets[i] + offset;
+    return pairAt(weights + 4 * i) * pairAt(p) + pairAt(weights + 4 * i + 2) * pairAt(p + kPerNode);
   }
-  History at(int, int i) const {
-    return {carried(stripHistory, kPerNode, kTraction, i),
-            carried(stripHistory, kPerNode, kState, i)};
-  }
-  Pair second(int, int i) const { return carried(stripS2, kPerNodeSecond, 0, i); }
+  History at(int, int i) const { return {carried(kTraction, i), carried(kState, i)}; }
+  Pair second(int, int i) const { return carried(kSecondState, i); }
 };
 
 // The filter states' update at a node from its final traction t and history (old, s, s2):
@@ -151,15 +139,14 @@ template <bool kSecond>
 struct StateUpdate {
   Pair rate, rateOld, poleOld, rate2, rate2Old, pole2Old;
   double r;
-  double *written, *written2;  // the new history (TransientState::history, ::second)
+  double* written;  // the new history (TransientState::history)
   StateUpdate(const TimeTerm& X, const TimeTerm& Y, const FilterZ& zx, const FilterZ& zy, double dt,
               double r, TransientState* st)
       : rate(X.rate, Y.rate),
         rateOld(X.rateOld, Y.rateOld),
         poleOld(X.poleOld, Y.poleOld),
         r(r),
-        written(st->history.data()),
-        written2(st->second.data()) {
+        written(st->history.data()) {
     if constexpr (kSecond) {
       rate2 = Pair(zx.b2 - zx.a2 * zx.b0, zy.b2 - zy.a2 * zy.b0) / dt;
       rate2Old = rate2 * r;
@@ -174,7 +161,7 @@ struct StateUpdate {
       // Read before the store below: in place, s2 of node k is its own history.
       const Pair s2 = history.second(k, i);
       next += r * s2;
-      storePair(written2 + kPerNodeSecond * k, rate2 * t - rate2Old * old - pole2Old * s);
+      storePair(written + kPerNode * k + kSecondState, rate2 * t - rate2Old * old - pole2Old * s);
     }
     double* const p = written + kPerNode * k;
     storePair(p + kState, next);
@@ -260,15 +247,15 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
   return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
 }
 
-AlongStripMap::AlongStripMap(int nx) : index_(nx, 0), weights_(4, nx) {}
+AlongStripMap::AlongStripMap(int nx) : offset_(nx, 0), weights_(4, nx) {}
 
 void AlongStripMap::set(double ratio) {
   // New node i sits at t_i = 1 - (2i + 1)/nx of its strip (t = x / a_j); at fixed x its old t is
   // ratio t_i, i.e. old node index r = r0 + i dr.
   const int nx = nodes();
   const double r0 = ((1.0 - ratio * (1.0 - 1.0 / nx)) * nx - 1.0) * 0.5, dr = ratio;
-  // Raw pointers: through the members, every store of an index reloaded the weights' address.
-  std::ptrdiff_t* const index = index_.data();
+  // Raw pointers: through the members, every store of an offset reloaded the weights' address.
+  std::ptrdiff_t* const offset = offset_.data();
   double* const spread = weights_.data();
   for (int i = 0; i < nx; ++i) {
     const double r = r0 + i * dr;
@@ -278,8 +265,10 @@ void AlongStripMap::set(double ratio) {
     // (c0 = 1 + 2f for f < 0, c1 = 3 - 2f for f > 1); beyond the ends both are zero.
     const bool inside = r >= 0.0 && r <= nx - 1.0;
     const double rc = inside ? r : std::min(std::max(r, -1.0), double(nx));
-    index[i] = std::min(static_cast<std::ptrdiff_t>(std::max(rc, 0.0)), std::ptrdiff_t{nx - 2});
-    const double f = rc - index[i];
+    const std::ptrdiff_t index =
+        std::min(static_cast<std::ptrdiff_t>(std::max(rc, 0.0)), std::ptrdiff_t{nx - 2});
+    offset[i] = index * TransientState::kRows;
+    const double f = rc - index;
     const Eigen::Array2d w =
         inside
             ? Eigen::Array2d(1.0 - f, f)
@@ -297,8 +286,7 @@ void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int st
     for (int i = 0; i < map.nodes(); ++i) {
       const History h = source.at(0, i);
       const int k = j * map.nodes() + i;
-      out->history.col(k) << h.t, h.s;
-      out->second.col(k) = source.second(0, i);
+      out->history.col(k) << h.t, h.s, source.second(0, i);
     }
   }
 }
@@ -381,7 +369,6 @@ void remapState(const PatchMesh& from, const TransientState& in, const PatchMesh
         const int k = to.index(i, j), k0 = base + at.i0, k1 = base + std::min(at.i0 + 1, oldNx - 1);
         const double w0 = w * at.w0, w1 = w * at.w1;
         out->history.col(k) += w0 * in.history.col(k0) + w1 * in.history.col(k1);
-        out->second.col(k) += w0 * in.second.col(k0) + w1 * in.second.col(k1);
       }
     }
   }
