@@ -86,10 +86,6 @@ constexpr int kTraction = 0, kState = 2, kSecondState = 4, kPerNode = TransientS
 
 // The history in place: node k of the state the march also writes.
 struct InPlace {
-  // How the march subtracts the spin's push from the guess (the same bits either way): GCC 12
-  // marches this source in fewer instructions with it scalar, AlongStrips with it paired
-  // (callgrind: 2 % either way).
-  static constexpr bool kPairedSpinPush = false;
   const double* history = nullptr;
   // Read where the march writes: taken from the same state as the writes' pointer, so that the
   // compiler sees one pointer (one induction variable, not two).
@@ -107,8 +103,7 @@ struct InPlace {
 // pointers, held in registers: through references they were reloaded after every store of the
 // march's slip flags (a bool store may alias anything).
 struct AlongStrips {
-  static constexpr bool kPairedSpinPush = true;  // see InPlace
-  const std::ptrdiff_t* offsets;                 // AlongStripMap::historyOffsets
+  const std::ptrdiff_t* offsets;  // AlongStripMap::historyOffsets
   const double* weights;
   std::ptrdiff_t nodes;
   const double* history;
@@ -193,14 +188,8 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       const History o = history.at(k, k - first);
       const Pair &old = o.t, &s = o.s;
       const Pair guess = m.memory * old - m.lag * s - m.push;  // Guess::history, both directions
-      if constexpr (Source::kPairedSpinPush) {
-        const Pair pushed = guess - Pair(0.0, m.pushPerXn * xn[k]);  // x: minus +0, the same bits
-        tx = pushed(0) + m.decayX * tx;
-        ty = pushed(1) + m.decayY * ty;
-      } else {
-        tx = guess(0) + m.decayX * tx;
-        ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
-      }
+      tx = guess(0) + m.decayX * tx;
+      ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
       strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
       update(history, k, k - first, Pair(tx, ty), old, s);
     };
