@@ -6,7 +6,7 @@
 namespace wheel_rail_contact {
 
 void TransientState::resize(int n) {
-  history.setZero(6, n);
+  history.setZero(kRows, n);
 }
 
 void TransientState::clear() {
@@ -65,8 +65,8 @@ struct PackedStep {
   }
 };
 
-// The (x, y) pair at p, one aligned load or store: TransientState's columns (4 or 2 doubles)
-// start on 16 bytes, and so do their pairs.
+// The (x, y) pair at p, one aligned load or store: TransientState's columns (6 doubles) start on
+// 16 bytes, and so do their pairs (and the carry's spread weights).
 Pair pairAt(const double* p) {
   return Eigen::Map<const Pair, Eigen::Aligned16>(p);
 }
@@ -108,7 +108,7 @@ struct AlongStrips {
   std::ptrdiff_t nodes;
   const double* history;
   // The old strip's first node (old and new patch share the layout): per node the march then
-  // only adds the map's index.
+  // only adds the map's offset.
   const double* stripHistory = nullptr;
   AlongStrips(const AlongStripMap& map, const TransientState& s)
       : offsets(map.historyOffsets()),
@@ -129,7 +129,8 @@ struct AlongStrips {
 
 // The filter states' update at a node from its final traction t and history (old, s, s2):
 // TimeTerm's algebra for both directions. First order: s only; second order: s and s2 (its
-// constants are set up only then, so the first-order step pays nothing for them).
+// constants are set up only then, so the first-order step pays nothing for them). Writes the node's
+// new history: t and the states.
 template <bool kSecond>
 struct StateUpdate {
   Pair rate, rateOld, poleOld, rate2, rate2Old, pole2Old;
@@ -187,7 +188,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     auto node = [&](int k, const PackedStep& m) {
       const History o = history.at(k, k - first);
       const Pair &old = o.t, &s = o.s;
-      const Pair guess = m.memory * old - m.lag * s - m.push;  // Guess::history, both directions
+      const Pair guess = m.memory * old - m.lag * s - m.push;  // PackedStep's history
       tx = guess(0) + m.decayX * tx;
       ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
       strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
