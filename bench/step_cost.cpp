@@ -3,7 +3,8 @@
 //   valgrind --tool=callgrind --toggle-collect='*runSteps*' \
 //     build/devel/lib/wheel_rail_contact/step_cost MODEL MESH N LOAD STEPS
 // MODEL steady|shen-li|nss, MESH fixed|adaptive (steady: fitted, SteadyModel, or fixed, on the
-// mesh nss fixed uses), N nodes per strip and strips, LOAD vary|constant.
+// mesh nss fixed uses), N nodes per strip and strips, LOAD vary|constant; an optional last
+// argument "shipped" gives nss the shipped chi table (bench::makeModel).
 // The first 256 steps (a warm-up that fills the history) are not counted.
 #include <cstdio>
 #include <string>
@@ -23,11 +24,11 @@ __attribute__((noinline)) double runSteps(ContactModel& m, const StepInput* in, 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 6) {
-    std::fprintf(stderr, "usage: step_cost MODEL MESH N vary|constant STEPS\n");
+  if (argc != 6 && !(argc == 7 && std::string(argv[6]) == "shipped")) {
+    std::fprintf(stderr, "usage: step_cost MODEL MESH N vary|constant STEPS [shipped]\n");
     return 2;
   }
-  const auto m = bench::makeModel(argv[1], argv[2], std::stoi(argv[3]));
+  const auto m = bench::makeModel(argv[1], argv[2], std::stoi(argv[3]), argc == 7);
   StepInput in[256];
   for (int k = 0; k < 256; ++k) in[k] = bench::input(k, std::string(argv[4]) == "vary");
   for (int k = 0; k < 256; ++k) m->step(in[k]);

@@ -25,9 +25,10 @@ inline StepInput input(int k, bool varyLoad) {
 
 // model: steady, shen-li or nss; mesh: fixed or adaptive; n x n nodes. Steady on "fitted" is
 // SteadyModel with its mesh fitted to the patch, on "fixed" SteadyModel on NssModel's fixed mesh
-// (the same-mesh reference for nss fixed).
+// (the same-mesh reference for nss fixed). nss runs a uniform first-order chi, or with shippedChi
+// config/chi_table.csv (kind 23 second order: with spin the march carries s2).
 inline std::unique_ptr<ContactModel> makeModel(const std::string& model, const std::string& mesh,
-                                               int n) {
+                                               int n, bool shippedChi = false) {
   ContactParameters p;
   p.model = model;
   p.mesh = mesh;
@@ -35,7 +36,8 @@ inline std::unique_ptr<ContactModel> makeModel(const std::string& model, const s
   if (p.model == "steady" && p.mesh == "fixed")
     return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kSizedForFzMax);
   if (p.model == "steady") return std::make_unique<SteadyModel>(p);
-  return std::make_unique<NssModel>(p, ChiTable::uniform({0.4, 1.1, 0.6}));
+  return std::make_unique<NssModel>(
+      p, shippedChi ? ChiTable::load(ChiTable::defaultPath()) : ChiTable::uniform({0.4, 1.1, 0.6}));
 }
 
 }  // namespace bench

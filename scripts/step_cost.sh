@@ -2,6 +2,8 @@
 # Instructions per step of every FastSim model and mesh (callgrind: independent of the machine's
 # load), and their ratio to steady FastSim on the same mesh. Scene: bench/step_inputs.hpp.
 # usage: scripts/step_cost.sh [SIZES...]   (default: 10 20 40); needs valgrind and a Release build.
+# CHI=shipped gives nss the shipped chi table (kind 23 second order) instead of a uniform
+# first-order one.
 set -eo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bin="$here/build/devel/lib/wheel_rail_contact/step_cost"
@@ -10,7 +12,7 @@ count() {  # model mesh n load -> instructions per step
   local out
   out="$(mktemp)"
   valgrind --tool=callgrind --toggle-collect='*runSteps*' --callgrind-out-file="$out" \
-    "$bin" "$1" "$2" "$3" "$4" "$steps" > /dev/null 2>&1
+    "$bin" "$1" "$2" "$3" "$4" "$steps" ${CHI:+"$CHI"} > /dev/null 2>&1
   callgrind_annotate "$out" 2> /dev/null | awk '/PROGRAM TOTALS/ {gsub(",", "", $1); print $1}' |
     { read -r total; echo $((total / steps)); }
   rm -f "$out"

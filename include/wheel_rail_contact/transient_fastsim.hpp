@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 #include "wheel_rail_contact/fastsim.hpp"
@@ -14,15 +15,31 @@
 namespace wheel_rail_contact {
 
 /// Traction history at fixed contact coordinates: what one step leaves for the next.
+/// Column k is node k: its traction and filter states side by side, so the march reads and writes a
+/// node's history as (x, y) pairs through one pointer (six arrays cost a pointer and two half
+/// loads or stores each per node). The rows are read and written by name through tx() ... s2y().
 struct TransientState {
-  Eigen::ArrayXd tx, ty;  ///< traction at the previous step [Pa]
-  Eigen::ArrayXd sx, sy;  ///< filter state (transposed direct form II) [Pa/s]
-  /// The second filter state of a second-order F [Pa/s] (a traction rate like s: in transposed
-  /// direct form II every state is a combination of past rates g and h). Zero while the filter is
-  /// first order: the first-order march neither reads nor writes it.
-  Eigen::ArrayXd s2x, s2y;
+  /// Rows tx, ty: traction at the previous step [Pa]; sx, sy: filter state (transposed direct form
+  /// II) [Pa/s]; s2x, s2y: the second filter state of a second-order F [Pa/s] (a traction rate
+  /// like s: in transposed direct form II every state is a combination of past rates g and h),
+  /// zero while the filter is first order: the first-order march neither reads nor writes it.
+  static constexpr int kRows = 6;
+  Eigen::Array<double, kRows, Eigen::Dynamic> history;
   void resize(int n);
   void clear();
+  auto tx() { return history.row(0); }
+  auto ty() { return history.row(1); }
+  auto sx() { return history.row(2); }
+  auto sy() { return history.row(3); }
+  auto s2x() { return history.row(4); }
+  auto s2y() { return history.row(5); }
+  auto secondState() { return history.bottomRows<2>(); }  ///< rows s2x, s2y
+  auto tx() const { return history.row(0); }
+  auto ty() const { return history.row(1); }
+  auto sx() const { return history.row(2); }
+  auto sy() const { return history.row(3); }
+  auto s2x() const { return history.row(4); }
+  auto s2y() const { return history.row(5); }
 };
 
 /// One step of length dt > 0 at speed V > 0. Marches each strip from the patch's leading edge
@@ -53,14 +70,15 @@ class AlongStripMap {
   explicit AlongStripMap(int nx = 2);
   /// The patch's a changes by `ratio` = a_new / a_old.
   void set(double ratio);
-  int nodes() const { return static_cast<int>(index_.size()); }
+  int nodes() const { return static_cast<int>(offset_.size()); }
   /// New node i reads old nodes index(i) and index(i) + 1 of its strip with weights(i).
-  int index(int i) const { return index_[i]; }
+  int index(int i) const { return static_cast<int>(offset_[i] / TransientState::kRows); }
   Eigen::Array2d weights(int i) const { return {weights_(0, i), weights_(2, i)}; }
   /// index(i) and weights(i) for every i as raw arrays, for loops that must not reload them after
-  /// every store; the weights spread for (x, y) pairs: w0, w0, w1, w1 node after node (16-byte
-  /// aligned pairs).
-  const int* indices() const { return index_.data(); }
+  /// every store: index(i) as the old node's offset in a strip of TransientState::history
+  /// (index(i) times its rows), the weights spread for (x, y) pairs: w0, w0, w1, w1 node after
+  /// node (16-byte aligned pairs).
+  const std::ptrdiff_t* historyOffsets() const { return offset_.data(); }
   const double* spreadWeights() const { return weights_.data(); }
   /// The weighted pair at `nodes` (old node index(i) of a strip) of a per-node field.
   static double read(const double* nodes, const Eigen::Array2d& w) {
@@ -69,7 +87,8 @@ class AlongStripMap {
   }
 
  private:
-  std::vector<int> index_;
+  // index(i) times TransientState::kRows, pointer-sized: the march adds it to a pointer as it is.
+  std::vector<std::ptrdiff_t> offset_;
   Eigen::Array<double, 4, Eigen::Dynamic> weights_;  // w0, w0, w1, w1 per node
 };
 

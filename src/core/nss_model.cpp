@@ -39,10 +39,8 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
 void NssModel::dropSecondState() {
   // A first-order march neither reads nor writes s2, so it must find zeros there when a
   // second-order step comes back. Both buffers: the moving march writes remapped_.
-  state_.s2x.setZero();
-  state_.s2y.setZero();
-  remapped_.s2x.setZero();
-  remapped_.s2y.setZero();
+  state_.secondState().setZero();
+  remapped_.secondState().setZero();
   secondOrder_ = handingOn_ = false;
 }
 
@@ -100,12 +98,11 @@ void NssModel::keepRatePerTravel(double speed) {
   // travel (V = 1e-9 m/s drove the force to saturation).
   if (lastSpeed_ > 0.0 && speed != lastSpeed_) {
     const double r = speed / lastSpeed_;
-    state_.sx *= r;
-    state_.sy *= r;
+    state_.sx() *= r;
+    state_.sy() *= r;
     // s2 is a rate too (transposed direct form II: a combination of past g and h) [Pa/s].
     if (secondOrder_) {
-      state_.s2x *= r;
-      state_.s2y *= r;
+      state_.secondState() *= r;
     }
   }
   lastSpeed_ = speed;
@@ -228,10 +225,10 @@ StepOutput NssModel::settle(const StepInput& given) {
       steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, &field_);
   // Under constant input the time-term march's fixed point is this traction with the filter at
   // rest (zero traction rate), so the next step() starts from it without a jump.
-  state_.tx = field_.tx;
-  state_.ty = field_.ty;
-  state_.sx.setZero();
-  state_.sy.setZero();
+  state_.tx() = field_.tx.transpose();
+  state_.ty() = field_.ty.transpose();
+  state_.sx().setZero();
+  state_.sy().setZero();
   if (secondOrder_) dropSecondState();
   return finish(f, in, h);
 }

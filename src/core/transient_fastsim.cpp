@@ -6,21 +6,11 @@
 namespace wheel_rail_contact {
 
 void TransientState::resize(int n) {
-  tx.setZero(n);
-  ty.setZero(n);
-  sx.setZero(n);
-  sy.setZero(n);
-  s2x.setZero(n);
-  s2y.setZero(n);
+  history.setZero(kRows, n);
 }
 
 void TransientState::clear() {
-  tx.setZero();
-  ty.setZero();
-  sx.setZero();
-  sy.setZero();
-  s2x.setZero();
-  s2y.setZero();
+  history.setZero();
 }
 
 namespace {
@@ -50,58 +40,62 @@ struct TimeTerm {
   }
 };
 
-// One direction's adhesion guess for a step of length h along a strip, every factor that does not
-// change along the strip folded in:  tau = history + decay tau_up, with
-// history = memory tau_old - lag s_old - push (push: the rigid slip over L, times h).
-struct Guess {
-  double decay, memory, lag, push;
-  Guess(const TimeTerm& T, double r, double h, double drive)
-      : decay(1.0 / (1.0 + h * T.beta)),
-        memory(h * T.beta * r * decay),
-        lag(h * T.lagPerLength * decay),
-        push(h * drive * decay) {}
-  double history(double old, double s) const { return memory * old - lag * s - push; }
-};
-
-// Both directions' guesses on one strip for a step h. Spin drives y linearly in x; over a step it
-// is taken at the step's midpoint x + h/2 (exact for a linear term): push_y = p0 + pushPerXn x/a.
-struct StripStep {
-  Guess x, y;
-  double pushPerXn;
-  StripStep(const TimeTerm& X, const TimeTerm& Y, double r, double h, double driveX, double gy,
-            double gphi, double a)
-      : x(X, r, h, driveX), y(Y, r, h, gy + 0.5 * h * gphi), pushPerXn(h * gphi * a * y.decay) {}
-};
-
 // The (x, y) pair of one per-node quantity: what does not depend on the upstream traction (the
 // history's part of the guess, the filter state's update) is computed for both directions at once.
 using Pair = Eigen::Array2d;
 
-// A step's per-node coefficients packed as (x, y) pairs; the upstream decay stays scalar, on the
-// march's serial chain.
+// Both directions' adhesion guesses for a step of length h along a strip, every factor that does
+// not change along the strip folded in, as (x, y) pairs:  tau = history + decay tau_up, with
+// history = memory tau_old - lag s_old - push (push: the rigid slip over L, times h). Spin drives y
+// linearly in x; over a step it is taken at the step's midpoint x + h/2 (exact for a linear term):
+// push_y = p0 + pushPerXn x/a. The upstream decay stays scalar, on the march's serial chain.
 struct PackedStep {
   Pair memory, lag, push;
   double decayX, decayY, pushPerXn;
-  explicit PackedStep(const StripStep& m)
-      : memory(m.x.memory, m.y.memory),
-        lag(m.x.lag, m.y.lag),
-        push(m.x.push, m.y.push),
-        decayX(m.x.decay),
-        decayY(m.y.decay),
-        pushPerXn(m.pushPerXn) {}
+  // beta: (X.beta, Y.beta); lagPerLength is the same for both directions.
+  PackedStep(const Pair& beta, double lagPerLength, double r, double h, double driveX, double gy,
+             double gphi, double a) {
+    const Pair hb = h * beta, decay = 1.0 / (1.0 + hb);
+    memory = hb * r * decay;
+    lag = h * lagPerLength * decay;
+    push = h * Pair(driveX, gy + 0.5 * h * gphi) * decay;
+    decayX = decay(0);
+    decayY = decay(1);
+    pushPerXn = h * gphi * a * decayY;
+  }
 };
+
+// The (x, y) pair at p, one aligned load or store: TransientState's columns (6 doubles) start on
+// 16 bytes, and so do their pairs (and the carry's spread weights).
+Pair pairAt(const double* p) {
+  return Eigen::Map<const Pair, Eigen::Aligned16>(p);
+}
+void storePair(double* p, const Pair& v) {
+  Eigen::Map<Pair, Eigen::Aligned16> to(p);
+  to = v;
+}
 
 // A node's history as the march reads it: the traction and the filter state, (x, y) pairs.
 struct History {
   Pair t, s;
 };
 
+// Where TransientState keeps node k: its traction at history + 6k, its filter state 2 further, its
+// second filter state 4 further.
+constexpr int kTraction = 0, kState = 2, kSecondState = 4, kPerNode = TransientState::kRows;
+
 // The history in place: node k of the state the march also writes.
 struct InPlace {
-  const TransientState& s;
+  const double* history = nullptr;
+  // Read where the march writes: taken from the same state as the writes' pointer, so that the
+  // compiler sees one pointer (one induction variable, not two).
+  void writesTo(const TransientState& s) { history = s.history.data(); }
   void strip(int) {}
-  History at(int k, int) const { return {Pair(s.tx(k), s.ty(k)), Pair(s.sx(k), s.sy(k))}; }
-  Pair second(int k, int) const { return Pair(s.s2x(k), s.s2y(k)); }
+  History at(int k, int) const {
+    const double* p = history + kPerNode * k;
+    return {pairAt(p + kTraction), pairAt(p + kState)};
+  }
+  Pair second(int k, int) const { return pairAt(history + kPerNode * k + kSecondState); }
 };
 
 // The history of the previous patch, carried along the strips (AlongStripMap) node by node as the
@@ -109,51 +103,46 @@ struct InPlace {
 // pointers, held in registers: through references they were reloaded after every store of the
 // march's slip flags (a bool store may alias anything).
 struct AlongStrips {
-  const int* index;
+  const std::ptrdiff_t* offsets;  // AlongStripMap::historyOffsets
   const double* weights;
-  int nodes;
-  const double *tx, *ty, *sx, *sy, *s2x, *s2y;
-  int first = 0;  // the strip's first node (old and new patch share the layout)
+  std::ptrdiff_t nodes;
+  const double* history;
+  // The old strip's first node (old and new patch share the layout): per node the march then
+  // only adds the map's offset.
+  const double* stripHistory = nullptr;
   AlongStrips(const AlongStripMap& map, const TransientState& s)
-      : index(map.indices()),
+      : offsets(map.historyOffsets()),
         weights(map.spreadWeights()),
         nodes(map.nodes()),
-        tx(s.tx.data()),
-        ty(s.ty.data()),
-        sx(s.sx.data()),
-        sy(s.sy.data()),
-        s2x(s.s2x.data()),
-        s2y(s.s2y.data()) {}
-  void strip(int j) { first = j * nodes; }
-  // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once.
-  Pair carried(const double* x, const double* y, int i) const {
-    const int k = first + index[i];
-    const Pair w0 = Eigen::Map<const Pair, Eigen::Aligned16>(weights + 4 * i),
-               w1 = Eigen::Map<const Pair, Eigen::Aligned16>(weights + 4 * i + 2);
-    return w0 * Pair(x[k], y[k]) + w1 * Pair(x[k + 1], y[k + 1]);
+        history(s.history.data()) {}
+  void writesTo(const TransientState&) {}  // reads `previous`, never the state written
+  void strip(int j) { stripHistory = history + kPerNode * nodes * j; }
+  // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once: the pair at `offset` of
+  // old nodes index(i) and index(i) + 1 of the strip.
+  Pair carried(int offset, int i) const {
+    const double* p = stripHistory + offsets[i] + offset;
+    return pairAt(weights + 4 * i) * pairAt(p) + pairAt(weights + 4 * i + 2) * pairAt(p + kPerNode);
   }
-  History at(int, int i) const { return {carried(tx, ty, i), carried(sx, sy, i)}; }
-  Pair second(int, int i) const { return carried(s2x, s2y, i); }
+  History at(int, int i) const { return {carried(kTraction, i), carried(kState, i)}; }
+  Pair second(int, int i) const { return carried(kSecondState, i); }
 };
 
 // The filter states' update at a node from its final traction t and history (old, s, s2):
 // TimeTerm's algebra for both directions. First order: s only; second order: s and s2 (its
-// constants are set up only then, so the first-order step pays nothing for them).
+// constants are set up only then, so the first-order step pays nothing for them). Writes the node's
+// new history: t and the states.
 template <bool kSecond>
 struct StateUpdate {
   Pair rate, rateOld, poleOld, rate2, rate2Old, pole2Old;
   double r;
-  double *sX, *sY, *s2X, *s2Y;
+  double* written;  // the new history (TransientState::history)
   StateUpdate(const TimeTerm& X, const TimeTerm& Y, const FilterZ& zx, const FilterZ& zy, double dt,
               double r, TransientState* st)
       : rate(X.rate, Y.rate),
         rateOld(X.rateOld, Y.rateOld),
         poleOld(X.poleOld, Y.poleOld),
         r(r),
-        sX(st->sx.data()),
-        sY(st->sy.data()),
-        s2X(st->s2x.data()),
-        s2Y(st->s2y.data()) {
+        written(st->history.data()) {
     if constexpr (kSecond) {
       rate2 = Pair(zx.b2 - zx.a2 * zx.b0, zy.b2 - zy.a2 * zy.b0) / dt;
       rate2Old = rate2 * r;
@@ -168,12 +157,11 @@ struct StateUpdate {
       // Read before the store below: in place, s2 of node k is its own history.
       const Pair s2 = history.second(k, i);
       next += r * s2;
-      const Pair next2 = rate2 * t - rate2Old * old - pole2Old * s;
-      s2X[k] = next2(0);
-      s2Y[k] = next2(1);
+      storePair(written + kPerNode * k + kSecondState, rate2 * t - rate2Old * old - pole2Old * s);
     }
-    sX[k] = next(0);
-    sY[k] = next(1);
+    double* const p = written + kPerNode * k;
+    storePair(p + kState, next);
+    storePair(p + kTraction, t);
   }
 };
 
@@ -184,8 +172,9 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const double r = historyScale;
   const TimeTerm X(zx, V, dt, r), Y(zy, V, dt, r);
   const StateUpdate<kSecond> update(X, Y, zx, zy, dt, r, st);
+  history.writesTo(*st);
+  const Pair beta(X.beta, Y.beta);
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
-  double *const oldX = st->tx.data(), *const oldY = st->ty.data();
   const double* const xn = mesh.xNorms().data();
   const FieldPointers out(f);
   ForceSums sums;
@@ -199,31 +188,30 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     auto node = [&](int k, const PackedStep& m) {
       const History o = history.at(k, k - first);
       const Pair &old = o.t, &s = o.s;
-      const Pair guess = m.memory * old - m.lag * s - m.push;  // Guess::history, both directions
+      const Pair guess = m.memory * old - m.lag * s - m.push;  // PackedStep's history
       tx = guess(0) + m.decayX * tx;
       ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
       strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
       update(history, k, k - first, Pair(tx, ty), old, s);
-      oldX[k] = tx;
-      oldY[k] = ty;
     };
-    // The loaded nodes are [enter, leave) (the patch is symmetric in x). The first steps from the
-    // patch's leading edge, where the traction is zero.
+    // The loaded nodes are [enter, leave) (the patch is symmetric in x).
     const StripEntry entry = f->entry[j];
     const int enter = first + entry.first, leave = end - entry.first;
-    if (enter < leave) node(enter, PackedStep(StripStep(X, Y, r, entry.h, driveX, gy, gphi, a)));
-    const PackedStep full(StripStep(X, Y, r, dx, driveX, gy, gphi, a));
-    for (int k = enter + 1; k < leave; ++k) node(k, full);
     // Outside the patch (a fixed mesh larger than it) the bound is zero: whatever the march would
-    // bring, the traction saturates at zero there; only the filter state moves.
+    // bring, the traction saturates at zero there; only the filter state moves. These nodes do not
+    // touch the loaded ones, so they go first: fewer values then live across the loaded march.
     auto unloaded = [&](int k) {
       const History o = history.at(k, k - first);
       update(history, k, k - first, Pair(0.0, 0.0), o.t, o.s);
-      oldX[k] = oldY[k] = 0.0;
       out.unloaded(k);
     };
     for (int k = first; k < std::min(enter, end); ++k) unloaded(k);
     for (int k = std::max(leave, enter); k < end; ++k) unloaded(k);
+    // The first loaded node steps from the patch's leading edge, where the traction is zero.
+    if (enter < leave)
+      node(enter, PackedStep(beta, X.lagPerLength, r, entry.h, driveX, gy, gphi, a));
+    const PackedStep full(beta, X.lagPerLength, r, dx, driveX, gy, gphi, a);
+    for (int k = enter + 1; k < leave; ++k) node(k, full);
     sums.addStrip(mesh, j, strip, entry, out.tx, out.ty);
   }
   return sums.forces();
@@ -236,8 +224,8 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
                              double historyScale, TransientState* st, TractionField* f,
                              bool marchSecond) {
   if (marchSecond || zx.secondOrder() || zy.secondOrder())
-    return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{*st}, st, f);
-  return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{*st}, st, f);
+    return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
+  return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
 }
 
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
@@ -251,24 +239,34 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
   return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
 }
 
-AlongStripMap::AlongStripMap(int nx) : index_(nx, 0), weights_(4, nx) {}
+AlongStripMap::AlongStripMap(int nx) : offset_(nx, 0), weights_(4, nx) {}
 
 void AlongStripMap::set(double ratio) {
   // New node i sits at t_i = 1 - (2i + 1)/nx of its strip (t = x / a_j); at fixed x its old t is
   // ratio t_i, i.e. old node index r = r0 + i dr.
   const int nx = nodes();
   const double r0 = ((1.0 - ratio * (1.0 - 1.0 / nx)) * nx - 1.0) * 0.5, dr = ratio;
+  // Raw pointers: through the members, every store of an offset reloaded the weights' address.
+  std::ptrdiff_t* const offset = offset_.data();
+  double* const spread = weights_.data();
   for (int i = 0; i < nx; ++i) {
-    // f is r's offset from node i0 (r clamped into the strip). Inside, the weights are (1 - f, f);
-    // the strip's ends lie half an element beyond its first and last node and carry zero
-    // traction, so towards them the weight falls to zero over that half element (c0 = 1 + 2f for
-    // f < 0, c1 = 3 - 2f for f > 1); beyond the ends both are zero.
-    const double r = std::min(std::max(r0 + i * dr, -1.0), double(nx));
-    index_[i] = std::min(static_cast<int>(std::max(r, 0.0)), nx - 2);
-    const double f = r - index_[i];
+    const double r = r0 + i * dr;
+    // f is r's offset from node index[i]. Between the first and the last node the weights are
+    // (1 - f, f), f in [0, 1]; the strip's ends lie half an element beyond its first and last node
+    // and carry zero traction, so towards them the weight falls to zero over that half element
+    // (c0 = 1 + 2f for f < 0, c1 = 3 - 2f for f > 1); beyond the ends both are zero.
+    const bool inside = r >= 0.0 && r <= nx - 1.0;
+    const double rc = inside ? r : std::min(std::max(r, -1.0), double(nx));
+    const std::ptrdiff_t index =
+        std::min(static_cast<std::ptrdiff_t>(std::max(rc, 0.0)), std::ptrdiff_t{nx - 2});
+    offset[i] = index * TransientState::kRows;
+    const double f = rc - index;
     const Eigen::Array2d w =
-        Eigen::Array2d(1.0 - f, f).min(Eigen::Array2d(1.0 + 2.0 * f, 3.0 - 2.0 * f)).max(0.0);
-    weights_.col(i) = Eigen::Array4d(w(0), w(0), w(1), w(1));
+        inside
+            ? Eigen::Array2d(1.0 - f, f)
+            : Eigen::Array2d(1.0 - f, f).min(Eigen::Array2d(1.0 + 2.0 * f, 3.0 - 2.0 * f)).max(0.0);
+    Eigen::Map<Eigen::Array4d, Eigen::Aligned16> to(spread + 4 * i);
+    to << w(0), w(0), w(1), w(1);
   }
 }
 
@@ -280,28 +278,21 @@ void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int st
     for (int i = 0; i < map.nodes(); ++i) {
       const History h = source.at(0, i);
       const int k = j * map.nodes() + i;
-      out->tx(k) = h.t(0);
-      out->ty(k) = h.t(1);
-      out->sx(k) = h.s(0);
-      out->sy(k) = h.s(1);
-      const Pair s2 = source.second(0, i);
-      out->s2x(k) = s2(0);
-      out->s2y(k) = s2(1);
+      out->history.col(k) << h.t, h.s, source.second(0, i);
     }
   }
 }
 
 CreepForces holdTraction(const PatchMesh& mesh, TransientState* st, TractionField* f) {
   for (int k = 0; k < mesh.size(); ++k) {
-    const double t = std::hypot(st->tx(k), st->ty(k)), g = f->bound(k);
+    auto traction = st->history.col(k).head<2>();
+    const double t = std::hypot(traction(0), traction(1)), g = f->bound(k);
     if (t > g) {
-      const double s = g / t;
-      st->tx(k) *= s;
-      st->ty(k) *= s;
+      traction *= g / t;
       f->slip(k) = true;
     }
-    f->tx(k) = st->tx(k);
-    f->ty(k) = st->ty(k);
+    f->tx(k) = traction(0);
+    f->ty(k) = traction(1);
   }
   return integrateTraction(mesh, *f);
 }
@@ -369,12 +360,7 @@ void remapState(const PatchMesh& from, const TransientState& in, const PatchMesh
         const AlongStrip at(r0 + i * dr, oldNx);
         const int k = to.index(i, j), k0 = base + at.i0, k1 = base + std::min(at.i0 + 1, oldNx - 1);
         const double w0 = w * at.w0, w1 = w * at.w1;
-        out->tx(k) += w0 * in.tx(k0) + w1 * in.tx(k1);
-        out->ty(k) += w0 * in.ty(k0) + w1 * in.ty(k1);
-        out->sx(k) += w0 * in.sx(k0) + w1 * in.sx(k1);
-        out->sy(k) += w0 * in.sy(k0) + w1 * in.sy(k1);
-        out->s2x(k) += w0 * in.s2x(k0) + w1 * in.s2x(k1);
-        out->s2y(k) += w0 * in.s2y(k0) + w1 * in.s2y(k1);
+        out->history.col(k) += w0 * in.history.col(k0) + w1 * in.history.col(k1);
       }
     }
   }

@@ -13,9 +13,9 @@ TransientState linearField(const PatchMesh& m) {  // tau_x = x, tau_y = 2 y (in 
   s.resize(m.size());
   for (int j = 0; j < m.ny(); ++j)
     for (int i = 0; i < m.nx(); ++i) {
-      s.tx(m.index(i, j)) = m.nodeX(i, j);
-      s.ty(m.index(i, j)) = 2.0 * m.stripY(j);
-      s.sx(m.index(i, j)) = 1.0;
+      s.tx()(m.index(i, j)) = m.nodeX(i, j);
+      s.ty()(m.index(i, j)) = 2.0 * m.stripY(j);
+      s.sx()(m.index(i, j)) = 1.0;
     }
   return s;
 }
@@ -26,9 +26,9 @@ TEST(RemapState, SamePatchIsTheIdentity) {
   const TransientState in = linearField(m);
   TransientState out;
   remapState(m, in, m, &out);
-  EXPECT_LT((out.tx - in.tx).abs().maxCoeff(), 1e-15);
-  EXPECT_LT((out.ty - in.ty).abs().maxCoeff(), 1e-15);
-  EXPECT_LT((out.sx - in.sx).abs().maxCoeff(), 1e-12);
+  EXPECT_LT((out.tx() - in.tx()).abs().maxCoeff(), 1e-15);
+  EXPECT_LT((out.ty() - in.ty()).abs().maxCoeff(), 1e-15);
+  EXPECT_LT((out.sx() - in.sx()).abs().maxCoeff(), 1e-12);
 }
 
 TEST(RemapState, ShrinkingPatchInterpolatesAtFixedCoordinates) {
@@ -41,8 +41,8 @@ TEST(RemapState, ShrinkingPatchInterpolatesAtFixedCoordinates) {
   // interpolation is linear too, so interior nodes carry the field at their own coordinates.
   for (int j = 4; j < 36; ++j)
     for (int i = 4; i < 36; ++i) {
-      EXPECT_NEAR(out.tx(small.index(i, j)), small.nodeX(i, j), 2e-5) << i << "," << j;
-      EXPECT_NEAR(out.ty(small.index(i, j)), 2.0 * small.stripY(j), 1e-12) << i << "," << j;
+      EXPECT_NEAR(out.tx()(small.index(i, j)), small.nodeX(i, j), 2e-5) << i << "," << j;
+      EXPECT_NEAR(out.ty()(small.index(i, j)), 2.0 * small.stripY(j), 1e-12) << i << "," << j;
     }
 }
 
@@ -52,13 +52,13 @@ TEST(RemapState, GrowingPatchGivesZeroOutsideTheOldOne) {
   grown.scale(2 * 6e-3, 2 * 4e-3);
   TransientState in;
   in.resize(m.size());
-  in.tx.setConstant(5.0);
+  in.tx().setConstant(5.0);
   TransientState out;
   remapState(m, in, grown, &out);
-  EXPECT_EQ(out.tx(grown.index(0, 5)), 0.0);  // leading node of the grown patch lies outside
-  EXPECT_EQ(out.tx(grown.index(5, 0)), 0.0);  // outer strip lies outside
-  EXPECT_NEAR(out.tx(grown.index(5, 5)), 5.0, 1e-12);
-  EXPECT_LE(out.tx.maxCoeff(), 5.0 + 1e-12);
+  EXPECT_EQ(out.tx()(grown.index(0, 5)), 0.0);  // leading node of the grown patch lies outside
+  EXPECT_EQ(out.tx()(grown.index(5, 0)), 0.0);  // outer strip lies outside
+  EXPECT_NEAR(out.tx()(grown.index(5, 5)), 5.0, 1e-12);
+  EXPECT_LE(out.tx().maxCoeff(), 5.0 + 1e-12);
 }
 
 TEST(AlongStripMap, SameSizeIsTheIdentity) {
@@ -69,9 +69,9 @@ TEST(AlongStripMap, SameSizeIsTheIdentity) {
   TransientState out;
   out.resize(m.size());
   remapAlongStrips(map, in, m.ny(), &out);
-  EXPECT_LT((out.tx - in.tx).abs().maxCoeff(), 1e-15);
-  EXPECT_LT((out.ty - in.ty).abs().maxCoeff(), 1e-15);
-  EXPECT_LT((out.sx - in.sx).abs().maxCoeff(), 1e-15);
+  EXPECT_LT((out.tx() - in.tx()).abs().maxCoeff(), 1e-15);
+  EXPECT_LT((out.ty() - in.ty()).abs().maxCoeff(), 1e-15);
+  EXPECT_LT((out.sx() - in.sx()).abs().maxCoeff(), 1e-15);
 }
 
 TEST(AlongStripMap, CarriesAlongStripsAtFixedXAndKeepsEachStrip) {
@@ -86,9 +86,9 @@ TEST(AlongStripMap, CarriesAlongStripsAtFixedXAndKeepsEachStrip) {
   for (int j = 0; j < 40; ++j)
     for (int i = 4; i < 36; ++i) {
       // Along the strip: the linear field at the new node's own x.
-      EXPECT_NEAR(out.tx(small.index(i, j)), small.nodeX(i, j), 1e-15) << i << "," << j;
+      EXPECT_NEAR(out.tx()(small.index(i, j)), small.nodeX(i, j), 1e-15) << i << "," << j;
       // Across strips: strip j keeps strip j's history (its old y).
-      EXPECT_NEAR(out.ty(small.index(i, j)), 2.0 * big.stripY(j), 1e-15) << i << "," << j;
+      EXPECT_NEAR(out.ty()(small.index(i, j)), 2.0 * big.stripY(j), 1e-15) << i << "," << j;
     }
 }
 
@@ -96,19 +96,19 @@ TEST(AlongStripMap, GrowingPatchGivesZeroBeyondTheOldStripEnds) {
   const PatchMesh m(10, 10, 6e-3, 4e-3);
   TransientState in;
   in.resize(m.size());
-  in.tx.setConstant(5.0);
+  in.tx().setConstant(5.0);
   AlongStripMap map(m.nx());
   map.set(2.0);
   TransientState out;
   out.resize(m.size());
   remapAlongStrips(map, in, m.ny(), &out);
   for (int j = 0; j < m.ny(); ++j) {
-    EXPECT_EQ(out.tx(m.index(0, j)), 0.0);  // the leading node of the grown strip lies outside
-    EXPECT_EQ(out.tx(m.index(9, j)), 0.0);  // and so does the trailing one
-    EXPECT_NEAR(out.tx(m.index(5, j)), 5.0, 1e-12);
+    EXPECT_EQ(out.tx()(m.index(0, j)), 0.0);  // the leading node of the grown strip lies outside
+    EXPECT_EQ(out.tx()(m.index(9, j)), 0.0);  // and so does the trailing one
+    EXPECT_NEAR(out.tx()(m.index(5, j)), 5.0, 1e-12);
   }
-  EXPECT_LE(out.tx.maxCoeff(), 5.0 + 1e-12);
-  EXPECT_GE(out.tx.minCoeff(), 0.0);
+  EXPECT_LE(out.tx().maxCoeff(), 5.0 + 1e-12);
+  EXPECT_GE(out.tx().minCoeff(), 0.0);
 }
 
 TEST(AlongStripMap, FusedStepEqualsCarryThenStepBitForBit) {
@@ -117,9 +117,9 @@ TEST(AlongStripMap, FusedStepEqualsCarryThenStepBitForBit) {
     PatchMesh old(14, 12, 6e-3, 4e-3), now = old;
     now.scale(1.03 * 6e-3, 1.03 * 4e-3);
     TransientState previous = linearField(old);
-    previous.tx *= 1e6;
-    previous.sy.setConstant(-3e5);
-    if (second) previous.s2y.setConstant(2e5);
+    previous.tx() *= 1e6;
+    previous.sy().setConstant(-3e5);
+    if (second) previous.s2y().setConstant(2e5);
     AlongStripMap map(old.nx());
     map.set(now.a() / old.a());
     const Flexibilities L = kalkerFlexibilities(now.a(), now.b(), 8.2e10, {4.1, 3.6, 1.4});
@@ -144,17 +144,17 @@ TEST(AlongStripMap, FusedStepEqualsCarryThenStepBitForBit) {
     EXPECT_EQ(fa.fx, fb.fx);
     EXPECT_EQ(fa.fy, fb.fy);
     EXPECT_EQ(fa.mz, fb.mz);
-    EXPECT_TRUE((a.tx == b.tx).all() && (a.sy == b.sy).all());
-    EXPECT_TRUE((a.s2y == b.s2y).all() && (a.s2x == b.s2x).all());
+    EXPECT_TRUE((a.tx() == b.tx()).all() && (a.sy() == b.sy()).all());
+    EXPECT_TRUE((a.s2y() == b.s2y()).all() && (a.s2x() == b.s2x()).all());
     // The carried s2 reaches s: a second-order step with and without it differs.
     if (second) {
       TransientState c2 = b;
       remapAlongStrips(map, previous, old.ny(), &c2);
-      c2.s2y.setZero();
+      c2.s2y().setZero();
       transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, &c2, &separate);
-      EXPECT_GT((c2.sy - b.sy).abs().maxCoeff(), 1e4);
+      EXPECT_GT((c2.sy() - b.sy()).abs().maxCoeff(), 1e4);
     } else {
-      EXPECT_TRUE((a.s2y == 0.0).all());
+      EXPECT_TRUE((a.s2y() == 0.0).all());
     }
   }
 }
