@@ -136,7 +136,6 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
                 z23 = discretiseKind(2, a, V, dt);
   zx_ = weightedFilter(z11, wx_[0], z23, wx_[1]);
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
-  if (handingOn_) dropSecondState();  // the last step left s2 = 0 in its buffer; clear the other
   const bool second = zx_.secondOrder() || zy_.secondOrder();
   // The step after a second-order F ends (spin stopped) still marches s2, with b2 = a2 = 0: it
   // hands the s2 left by the last second-order step on into s1, as the transposed form does when
@@ -163,10 +162,13 @@ CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool m
   const Flexibilities L = kalkerFlexibilities(h.a, h.b, p_.G, kalker_);
   const double r = historyScale(h.a);
   lastA_ = h.a;
-  return moves
-             ? transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, carry_, state_, &remapped_,
-                                &field_, handingOn_)
-             : transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, &state_, &field_, handingOn_);
+  const CreepForces f =
+      moves ? transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, carry_, state_, &remapped_,
+                               &field_, handingOn_)
+            : transientFastSim(mesh, L, c, in.V, in.dt, zx_, zy_, r, &state_, &field_, handingOn_);
+  // Handed on: s2 is zero in the buffer just written; clear the other one too (first order now).
+  if (handingOn_) dropSecondState();
+  return f;
 }
 
 StepInput NssModel::faceTravel(const StepInput& in) {
@@ -198,14 +200,16 @@ bool NssModel::screen(const StepInput& given, StepInput* in, HertzEllipse* h, St
 StepOutput NssModel::finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h) {
   StepOutput out = stepOutput(f, in.fz, h.a, h.b);
   if (mirrored_) mirrorForces(&out);
-  if (!adaptive_ && (h.a > mesh_.a() * (1 + 1e-12)))
-    out.message = "fz exceeds fz_max: the patch is clipped to the fixed mesh";
-  // A fixed mesh sized far above the load leaves the patch a node or two: the force is then
-  // coarse (29 % off at 2 nodes) or zero (inside one element), so say so.
-  else if (!adaptive_ && std::min(h.a / mesh_.a() * p_.nx, h.b / mesh_.b() * p_.ny) < 4.0)
-    out.message =
-        "the patch covers fewer than 4 nodes of the fixed mesh along an axis (fz_max "
-        "far above this load): the force is coarse or zero";
+  if (!adaptive_) {
+    if (h.a > mesh_.a() * (1 + 1e-12))
+      out.message = "fz exceeds fz_max: the patch is clipped to the fixed mesh";
+    // A fixed mesh sized far above the load leaves the patch a node or two: the force is then
+    // coarse (29 % off at 2 nodes) or zero (inside one element), so say so.
+    else if (std::min(h.a / mesh_.a() * p_.nx, h.b / mesh_.b() * p_.ny) < 4.0)
+      out.message =
+          "the patch covers fewer than 4 nodes of the fixed mesh along an axis (fz_max "
+          "far above this load): the force is coarse or zero";
+  }
   last_ = out;
   return out;
 }
