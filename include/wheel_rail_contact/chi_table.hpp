@@ -1,10 +1,13 @@
 /// Table of identified dynamic-flexibility parameters chi (nss_filter.hpp) for the creepage kinds
 /// 11 (kXi), 22 (kEta), 23 (kPhi) against the semi-axis ratio a/b, interpolated linearly in ln(a/b)
-/// and clamped at the table's ends.
-/// File format (CSV, '#' comment lines carry units, mesh and date of the fit):
+/// and clamped at the table's ends, per FastSim mesh: chi absorbs the march's discretisation along
+/// the strips, so it is fitted per nodes per strip nx (it hardly depends on the strips ny).
+/// File format (CSV, '#' comment lines carry units, meshes and date of the fit):
 ///   a_over_b,kind,chi1,chi2,chi3[,chi4,chi5][,...]        with kind in {11, 22, 23}
 /// chi4, chi5 (optional columns, named in the header right after chi3): the second-order F of
 /// second_order_flexibility.hpp; 0 in a first-order row. A table without them is first order.
+/// fastsim_nx (optional column, anywhere after chi3): the FastSim mesh's nodes per strip the row
+/// was fitted at; a table without it is one mesh that serves every nx.
 #pragma once
 
 #include <string>
@@ -20,15 +23,23 @@ class ChiTable {
  public:
   /// Reads a table. Throws std::runtime_error naming the file and line on any malformed (fewer
   /// than 5 fields), non-finite, unstable (chi3 <= 0) or out-of-order (a/b not increasing within
-  /// its kind) entry, on a missing header (an empty file), or if a kind is missing.
+  /// its kind and mesh) entry, a fastsim_nx below 2, on a missing header (an empty file), or if a
+  /// mesh lacks a kind.
   static ChiTable load(const std::string& path);
-  /// The table shipped with the package (config/chi_table.csv).
+  /// The table shipped with the package (config/chi_table.csv: meshes 5x5 to 40x40).
   static std::string defaultPath();
   /// A table with the same chi for every kind and a/b (tests; {0, 1, 0} is Shen & Li).
   static ChiTable uniform(const ChiParameters& chi);
   static ChiTable uniformSecondOrder(const SecondOrderChi& chi);
 
-  /// The first-order part (chi1, chi2, chi3) at a/b.
+  /// The mesh fitted nearest nx nodes per strip, as a table of its own: nearest in 1/nx (the
+  /// march's step along the strip; a tie goes to the finer mesh). A table of one mesh is itself.
+  ChiTable forMesh(int nx) const;
+  /// nx of each mesh the table holds, increasing (one 0: a table without fastsim_nx).
+  std::vector<int> meshes() const;
+
+  /// The first-order part (chi1, chi2, chi3) at a/b. On a table of one mesh: narrow a table of
+  /// several with forMesh() first (std::logic_error otherwise).
   ChiParameters at(CreepageKind kind, double a_over_b) const;
   /// All five chi at a/b (chi4 = chi5 = 0 for a first-order row). Interpolated like at(): the
   /// caller checks SecondOrderChi::valid() between two second-order rows.
@@ -39,7 +50,12 @@ class ChiTable {
     double logAB;
     SecondOrderChi chi;
   };
-  std::vector<Row> rows_[3];  // per kind, sorted by a/b
+  struct Mesh {
+    int nx = 0;                // 0: any
+    std::vector<Row> rows[3];  // per kind, sorted by a/b
+  };
+  std::vector<Mesh> meshes_;  // sorted by nx
+  const Mesh& only() const;
 };
 
 }  // namespace wheel_rail_contact

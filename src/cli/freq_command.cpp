@@ -52,7 +52,7 @@ FrequencyResponse frequencyResponse(const ContactParameters& p, CreepageKind kin
   SecondOrderChi chi;  // shen-li: F == 1; nss: first or second order, as the table holds
   if (p.model == "nss") {
     const std::string path = p.chi_table.empty() ? ChiTable::defaultPath() : p.chi_table;
-    chi = ChiTable::load(path).secondOrderAt(kind, ab);
+    chi = ChiTable::load(path).forMesh(p.nx).secondOrderAt(kind, ab);
   }
   FrequencyResponse r;
   r.steady = fastsimSteadyCoefficient(kind, ab, p.nu, p.nx, p.ny);

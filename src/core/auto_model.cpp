@@ -103,9 +103,10 @@ int meshForTolerance(double tolerance) {
 double nssRelaxationLength(const ContactParameters& p, const ChiTable& chi) {
   const double ab = p.a0 / p.b0, lambdaOverA = 50.0;
   double worst = 0.0;
+  const ChiTable at10 = chi.forMesh(10);
   for (const CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
     const std::complex<double> c =
-        fastsimSecondOrderCoefficient(k, ab, p.nu, 10, 10, chi.secondOrderAt(k, ab), lambdaOverA);
+        fastsimSecondOrderCoefficient(k, ab, p.nu, 10, 10, at10.secondOrderAt(k, ab), lambdaOverA);
     worst = std::max(worst, std::abs(1.0 - c / fastsimSteadyCoefficient(k, ab, p.nu, 10, 10)));
   }
   // A first-order lag 1 / (1 + i 2 pi l / lambda) errs by about 2 pi l / lambda.

@@ -151,6 +151,18 @@ ChiFit fitChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
   return fit;
 }
 
+namespace {
+
+// valid() with a margin: where the best F sits on the edge of the Hurwitz region (B < 0, B^2 = 4
+// chi1 chi2 chi3 chi5: a node undamped for some step), the table's six decimals could push it
+// over (a 5x5 fit did). 10 % clear of the edge in B^2.
+bool clearOfTheStabilityEdge(const SecondOrderChi& c) {
+  const double B = c.chi1 * c.chi3 + c.chi2 * c.chi5 - c.chi4;
+  return B >= 0.0 || B * B < 0.9 * 4.0 * c.chi1 * c.chi2 * c.chi3 * c.chi5;
+}
+
+}  // namespace
+
 SecondOrderFit fitSecondOrderChi(CreepageKind kind, double a_over_b, double nu, int nx, int ny,
                                  const std::vector<FrequencyPoint>& exact, double maxWeight,
                                  double maxHighFrequencyGain) {
@@ -163,7 +175,7 @@ SecondOrderFit fitSecondOrderChi(CreepageKind kind, double a_over_b, double nu, 
   };
   auto cost = [&](const P& p) {
     const SecondOrderChi chi = fromLog5(p);
-    if (!chi.valid()) return 1e9;
+    if (!chi.valid() || !clearOfTheStabilityEdge(chi)) return 1e9;
     const SecondOrderFit e = evaluateSecondOrderChi(kind, a_over_b, nu, nx, ny, chi, exact);
     const double excess = std::max(0.0, chi.highFrequencyGain() - maxHighFrequencyGain);
     const double c = e.meanErrorLog + maxWeight * e.maxError + excess;

@@ -1,6 +1,7 @@
 #include "wheel_rail_contact/chi_table.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -37,9 +38,27 @@ ChiTable ChiTable::uniform(const ChiParameters& chi) {
 
 ChiTable ChiTable::uniformSecondOrder(const SecondOrderChi& chi) {
   ChiTable t;
-  for (auto& rows : t.rows_) rows.push_back({0.0, chi});
+  t.meshes_.emplace_back();
+  for (auto& rows : t.meshes_.back().rows) rows.push_back({0.0, chi});
   return t;
 }
+
+namespace {
+
+// The header's column of `name` after chi3, or -1.
+int columnOf(const std::string& header, const std::string& name) {
+  std::stringstream ss(header);
+  int k = 0;
+  for (std::string s; std::getline(ss, s, ','); ++k)
+    if (k > 4 && s == name) return k;
+  return -1;
+}
+
+const char* kindName(int k) {
+  return k == 0 ? "11" : k == 1 ? "22" : "23";
+}
+
+}  // namespace
 
 ChiTable ChiTable::load(const std::string& path) {
   std::ifstream in(path);
@@ -47,8 +66,9 @@ ChiTable ChiTable::load(const std::string& path) {
   ChiTable t;
   std::string line;
   long n = 0;
-  bool header = false, second = false;  // second: the header names chi4,chi5 after chi3
-  std::string lastAB[3];                // per kind, as written
+  bool header = false, second = false;             // second: the header names chi4,chi5 after chi3
+  int meshColumn = -1;                             // fastsim_nx's field, if any
+  std::vector<std::array<std::string, 3>> lastAB;  // per mesh and kind, as written
   while (std::getline(in, line)) {
     ++n;
     if (line.empty() || line[0] == '#') continue;
@@ -57,23 +77,33 @@ ChiTable ChiTable::load(const std::string& path) {
         fail(path, n, "expected header a_over_b,kind,chi1,chi2,chi3");
       header = true;
       second = line.rfind("a_over_b,kind,chi1,chi2,chi3,chi4,chi5", 0) == 0;
+      meshColumn = columnOf(line, "fastsim_nx");
       continue;
     }
     std::stringstream ss(line);
     std::vector<std::string> f;
     for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
-    const std::size_t needed = second ? 7 : 5;
+    const std::size_t needed = std::max<std::size_t>(second ? 7 : 5, meshColumn + 1);
     if (f.size() < needed)  // more columns (fit errors) are allowed and ignored
       fail(path, n,
            "expected " + std::to_string(needed) + " or more fields (a_over_b,kind,chi1,chi2,chi3" +
-               (second ? ",chi4,chi5" : "") + "), got " + std::to_string(f.size()));
+               (second ? ",chi4,chi5" : "") + (meshColumn > 0 ? ",...,fastsim_nx" : "") +
+               "), got " + std::to_string(f.size()));
     double v[7] = {0, 0, 0, 0, 0, 0, 0};
     for (int k : {0, 2, 3, 4, 5, 6}) {
-      if (k >= static_cast<int>(needed)) break;
+      if (k >= (second ? 7 : 5)) break;
       char* end = nullptr;
       v[k] = std::strtod(f[k].c_str(), &end);
       if (f[k].empty() || *end != '\0' || !std::isfinite(v[k]))
         fail(path, n, "field " + std::to_string(k + 1) + " is not a finite number");
+    }
+    int nx = 0;
+    if (meshColumn > 0) {
+      char* end = nullptr;
+      const long m = std::strtol(f[meshColumn].c_str(), &end, 10);
+      if (f[meshColumn].empty() || *end != '\0' || m < 2 || m > 100000)
+        fail(path, n, "fastsim_nx must be an integer >= 2, got '" + f[meshColumn] + "'");
+      nx = static_cast<int>(m);
     }
     const int kind = kindIndex(f[1]);
     if (kind < 0) fail(path, n, "kind must be 11, 22 or 23, got '" + f[1] + "'");
@@ -87,21 +117,59 @@ ChiTable ChiTable::load(const std::string& path) {
            "kind " + f[1] + " at a/b = " + f[0] +
                ": second-order chi fail SecondOrderChi::valid() (unstable node for some step)");
     }
+    auto mesh = std::find_if(t.meshes_.begin(), t.meshes_.end(),
+                             [nx](const Mesh& m) { return m.nx == nx; });
+    if (mesh == t.meshes_.end()) {
+      t.meshes_.push_back(Mesh{nx, {}});
+      lastAB.emplace_back();
+      mesh = t.meshes_.end() - 1;
+    }
+    auto& rows = mesh->rows[kind];
+    std::string& last = lastAB[mesh - t.meshes_.begin()][kind];
     // Interpolation needs a/b increasing; a row out of order is more likely a slip than intended.
-    if (!t.rows_[kind].empty() && !(std::log(v[0]) > t.rows_[kind].back().logAB))
+    if (!rows.empty() && !(std::log(v[0]) > rows.back().logAB))
       fail(path, n,
-           "a_over_b must increase within kind " + f[1] + ", got " + f[0] + " after " +
-               lastAB[kind]);
-    t.rows_[kind].push_back({std::log(v[0]), chi});
-    lastAB[kind] = f[0];
+           "a_over_b must increase within kind " + f[1] +
+               (nx ? " at fastsim_nx " + f[meshColumn] : "") + ", got " + f[0] + " after " + last);
+    rows.push_back({std::log(v[0]), chi});
+    last = f[0];
   }
   if (in.bad()) fail(path, n, "read error (a directory?)");
   if (!header) fail(path, n, "empty: no header a_over_b,kind,chi1,chi2,chi3");
-  for (int k = 0; k < 3; ++k) {
-    if (t.rows_[k].empty())
-      fail(path, n, "no rows for kind " + std::string(k == 0 ? "11" : k == 1 ? "22" : "23"));
-  }
+  if (t.meshes_.empty()) fail(path, n, "no rows for kind 11");
+  for (const Mesh& m : t.meshes_)
+    for (int k = 0; k < 3; ++k)
+      if (m.rows[k].empty())
+        fail(path, n,
+             std::string("no rows for kind ") + kindName(k) +
+                 (m.nx ? " at fastsim_nx " + std::to_string(m.nx) : ""));
+  std::sort(t.meshes_.begin(), t.meshes_.end(),
+            [](const Mesh& a, const Mesh& b) { return a.nx < b.nx; });
   return t;
+}
+
+ChiTable ChiTable::forMesh(int nx) const {
+  if (meshes_.size() <= 1) return *this;
+  // Increasing nx: the last of the equally near ones is the finer.
+  const Mesh* best = &meshes_.front();
+  for (const Mesh& m : meshes_)
+    if (std::abs(1.0 / m.nx - 1.0 / nx) <= std::abs(1.0 / best->nx - 1.0 / nx)) best = &m;
+  ChiTable t;
+  t.meshes_.push_back(*best);
+  return t;
+}
+
+std::vector<int> ChiTable::meshes() const {
+  std::vector<int> nx;
+  for (const Mesh& m : meshes_) nx.push_back(m.nx);
+  return nx;
+}
+
+const ChiTable::Mesh& ChiTable::only() const {
+  if (meshes_.size() != 1)
+    throw std::logic_error("ChiTable: a table of " + std::to_string(meshes_.size()) +
+                           " FastSim meshes: narrow it with forMesh() first");
+  return meshes_.front();
 }
 
 ChiParameters ChiTable::at(CreepageKind kind, double a_over_b) const {
@@ -110,7 +178,7 @@ ChiParameters ChiTable::at(CreepageKind kind, double a_over_b) const {
 }
 
 SecondOrderChi ChiTable::secondOrderAt(CreepageKind kind, double a_over_b) const {
-  const auto& r = rows_[static_cast<int>(kind)];
+  const auto& r = only().rows[static_cast<int>(kind)];
   const double x = std::log(a_over_b);
   if (r.size() == 1 || x <= r.front().logAB) return r.front().chi;
   if (x >= r.back().logAB) return r.back().chi;

@@ -15,9 +15,10 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
       kalker_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
       adaptive_(p.mesh != "fixed"),  // "auto": fitted to the patch, moved only when fz changes
       dynamic_(p.model == "nss") {
+  const ChiTable mine = chi.forMesh(p.nx);  // chi is fitted per mesh
   for (int k = 0; k < 3; ++k)
     chi_[k] =
-        dynamic_ ? chi.secondOrderAt(static_cast<CreepageKind>(k), p.a0 / p.b0) : SecondOrderChi{};
+        dynamic_ ? mine.secondOrderAt(static_cast<CreepageKind>(k), p.a0 / p.b0) : SecondOrderChi{};
   // Linear interpolation between two stable second-order rows need not be stable (the Routh
   // condition is not convex in chi): refuse an a/b where it is not.
   for (int k = 0; k < 3; ++k) secondKind_[k] = chi_[k].chi4 != 0.0 || chi_[k].chi5 != 0.0;

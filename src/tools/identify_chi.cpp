@@ -1,6 +1,6 @@
 // identify_chi: fits the NSS-FastSim dynamic-flexibility table chi (config/chi_table.csv) against
 // our exact half-space solver (method-notes section 5). For each creepage kind and a/b of the grid
-// it computes the exact C^(lambda/a) / C_steady curve, fits chi (chi_fit.hpp) at the FastSim mesh
+// it computes the exact C^(lambda/a) / C_steady curve, fits chi (chi_fit.hpp) at each FastSim mesh
 // and writes the table, plus every exact curve for plots.
 // Options: identify_chi --help.
 // --spin-out also fits a second-order F to kind 23 (second_order_flexibility.hpp) and writes its
@@ -26,7 +26,8 @@ namespace {
 
 struct Options {
   std::string out = "config/chi_table.csv", curves = "doc/data/exact_curves.csv", spinOut;
-  int nx = 20, ny = 20, grid = 30, points = 25;
+  std::vector<int> meshes = {5, 10, 20, 30, 40};
+  int grid = 30, points = 25;
   double nu = 0.28;
   std::vector<double> ratios = {0.2, 0.3, 0.5, 0.7, 1, 1.4, 2, 3, 5};
   bool secondOrderSpin = false;
@@ -34,9 +35,11 @@ struct Options {
 
 const char* const kUsage =
     "usage: identify_chi [--out config/chi_table.csv] [--curves doc/data/exact_curves.csv]\n"
-    "                    [--nx 20 --ny 20] [--grid 30] [--nu 0.28] [--points 25]\n"
+    "                    [--meshes 5,10,20,30,40] [--grid 30] [--nu 0.28] [--points 25]\n"
     "                    [--ab 0.2,0.3,0.5,0.7,1,1.4,2,3,5] [--spin-out FILE]\n"
-    "                    [--second-order-spin]\n";
+    "                    [--second-order-spin]\n"
+    "--meshes: the FastSim meshes N x N to fit at (chi absorbs the march's discretisation; the\n"
+    "          table's fastsim_nx column, NssModel takes the mesh nearest its nx)\n";
 
 void readOption(tools::Args& a, Options* o) {
   if (a.is("--out"))
@@ -47,10 +50,8 @@ void readOption(tools::Args& a, Options* o) {
     o->spinOut = a.text();
   else if (a.is("--second-order-spin"))
     o->secondOrderSpin = true;
-  else if (a.is("--nx"))
-    o->nx = a.integer();
-  else if (a.is("--ny"))
-    o->ny = a.integer();
+  else if (a.is("--meshes"))
+    o->meshes = a.integers();
   else if (a.is("--grid"))
     o->grid = a.integer();
   else if (a.is("--points"))
@@ -63,11 +64,36 @@ void readOption(tools::Args& a, Options* o) {
     a.unknown();
 }
 
+std::string meshList(const std::vector<int>& meshes) {
+  std::string s;
+  for (int n : meshes) s += (s.empty() ? "" : ", ") + std::to_string(n) + "x" + std::to_string(n);
+  return s;
+}
+
+// One row: a/b, kind, chi (second order: five), the mesh, then the errors.
+std::string row(double ab, const char* kind, const SecondOrderChi& c, bool fiveChi, int nx,
+                double errLog, double errLinear, double errMax, const double* shenLi) {
+  char line[320];
+  int n =
+      std::snprintf(line, sizeof line, "%g,%s,%.6f,%.6f,%.6f", ab, kind, c.chi1, c.chi2, c.chi3);
+  if (fiveChi && c.chi4 == 0.0 && c.chi5 == 0.0)  // a first-order row
+    n += std::snprintf(line + n, sizeof line - n, ",0,0");
+  else if (fiveChi)
+    n += std::snprintf(line + n, sizeof line - n, ",%.6f,%.6f", c.chi4, c.chi5);
+  n +=
+      std::snprintf(line + n, sizeof line - n, ",%d,%.5f,%.5f,%.5f", nx, errLog, errLinear, errMax);
+  if (shenLi) std::snprintf(line + n, sizeof line - n, ",%.5f", *shenLi);
+  return std::string(line) + "\n";
+}
+
 int run(const Options& o) {
-  const int nx = o.nx, ny = o.ny, grid = o.grid, points = o.points;
+  const int grid = o.grid, points = o.points;
   const double nu = o.nu;
   const std::vector<double>& ratios = o.ratios;
   if (points < 2) throw std::invalid_argument("--points must be >= 2");
+  if (o.meshes.empty()) throw std::invalid_argument("--meshes: at least one mesh");
+  for (int n : o.meshes)
+    if (n < 2 || n > 400) throw std::invalid_argument("--meshes: each N in [2, 400]");
   std::vector<double> lambdas;
   for (int q = 0; q < points; ++q) lambdas.push_back(std::pow(100.0, q / (points - 1.0)));
 
@@ -76,30 +102,33 @@ int run(const Options& o) {
   char date[32];
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
   table << "# NSS-FastSim dynamic flexibility F(k) = (chi2 + i k chi1) / (1 + i k chi3), k = 2 pi "
-           "a / "
-           "lambda; chi dimensionless.\n"
+           "a / lambda; chi dimensionless.\n"
         << "# Fitted by identify_chi on " << date << " against the exact half-space solver on a "
-        << grid << "x" << grid << " grid, nu = " << nu << ", FastSim mesh " << nx << "x" << ny
-        << ",\n# on C^/C_steady over lambda/a in [1, 100] (" << points
-        << " log-spaced points), measure d(ln lambda/a).\n"
+        << grid << "x" << grid << " grid, nu = " << nu << ", FastSim meshes " << meshList(o.meshes)
+        << " (column fastsim_nx;\n# NssModel uses the mesh nearest its nx in 1/nx), on "
+           "C^/C_steady over lambda/a in [1, 100] ("
+        << points << " log-spaced points), measure d(ln lambda/a).\n"
         << "# err_log, err_linear: mean |r_exact - r_nss| in d(ln lambda/a) and d(lambda/a); "
            "err_max: max over lambda/a >= 2.\n"
         << (o.secondOrderSpin
                 ? "# Kind 23: second order, F(k) = (chi2 + s chi1 + s^2 chi4) / (1 + s chi3 + s^2 "
                   "chi5), s = i k, cost err_log + 10 err_max, |F(inf)| <= 5.\n"
-                  "a_over_b,kind,chi1,chi2,chi3,chi4,chi5,err_log,err_linear,err_max,"
+                  "a_over_b,kind,chi1,chi2,chi3,chi4,chi5,fastsim_nx,err_log,err_linear,err_max,"
                   "shenli_err_log\n"
-                : "a_over_b,kind,chi1,chi2,chi3,err_log,err_linear,err_max,shenli_err_log\n");
+                : "a_over_b,kind,chi1,chi2,chi3,fastsim_nx,err_log,err_linear,err_max,"
+                  "shenli_err_log\n");
   curves << "a_over_b,kind,lambda_over_a,c_real,c_imag,c_steady\n";
   std::ofstream spin;
   if (!o.spinOut.empty()) {
     spin = tools::writeFile(o.spinOut);
     spin << "# Second-order F(k) = (chi2 + s chi1 + s^2 chi4) / (1 + s chi3 + s^2 chi5), s = i k, "
             "kind 23, fitted by identify_chi on "
-         << date << ",\n# exact " << grid << "x" << grid << ", FastSim " << nx << "x" << ny
+         << date << ",\n# exact " << grid << "x" << grid << ", FastSim " << meshList(o.meshes)
          << ", cost err_log + 10 err_max, |F(inf)| <= 5. Columns as chi_table.csv.\n"
-         << "a_over_b,kind,chi1,chi2,chi3,chi4,chi5,err_log,err_linear,err_max\n";
+         << "a_over_b,kind,chi1,chi2,chi3,chi4,chi5,fastsim_nx,err_log,err_linear,err_max\n";
   }
+  // Rows gathered per mesh (the exact curve is computed once for all meshes), written mesh by mesh.
+  std::vector<std::string> tableRows(o.meshes.size()), spinRows(o.meshes.size());
   const CreepageKind kinds[3] = {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi};
   const char* names[3] = {"11", "22", "23"};
   for (double ab : ratios) {
@@ -116,38 +145,37 @@ int run(const Options& o) {
                       c.imag(), steady);
         curves << line;
       }
-      const ChiFit shenLi = evaluateChi(kinds[q], ab, nu, nx, ny, ChiParameters{}, curve);
       const bool second = kinds[q] == CreepageKind::kPhi && (spin.is_open() || o.secondOrderSpin);
-      char line[256];
-      if (second && o.secondOrderSpin) {  // the second-order fit below is the table's row
-        line[0] = '\0';
-      } else {
-        const ChiFit fit = fitChi(kinds[q], ab, nu, nx, ny, curve);
-        std::snprintf(line, sizeof line, "%g,%s,%.6f,%.6f,%.6f%s,%.5f,%.5f,%.5f,%.5f\n", ab,
-                      names[q], fit.chi.chi1, fit.chi.chi2, fit.chi.chi3,
-                      o.secondOrderSpin ? ",0,0" : "", fit.meanErrorLog, fit.meanErrorLinear,
-                      fit.maxError, shenLi.meanErrorLog);
-        table << line;
-      }
-      if (second) {
-        const SecondOrderFit f2 = fitSecondOrderChi(kinds[q], ab, nu, nx, ny, curve);
-        char line2[256];
-        std::snprintf(line2, sizeof line2, "%g,23,%.6f,%.6f,%.6f,%.6f,%.6f,%.5f,%.5f,%.5f\n", ab,
-                      f2.chi.chi1, f2.chi.chi2, f2.chi.chi3, f2.chi.chi4, f2.chi.chi5,
-                      f2.meanErrorLog, f2.meanErrorLinear, f2.maxError);
-        if (spin.is_open()) spin << line2;
-        std::cerr << "  second order: " << line2;
-        if (o.secondOrderSpin) {
-          std::snprintf(line, sizeof line, "%g,23,%.6f,%.6f,%.6f,%.6f,%.6f,%.5f,%.5f,%.5f,%.5f\n",
-                        ab, f2.chi.chi1, f2.chi.chi2, f2.chi.chi3, f2.chi.chi4, f2.chi.chi5,
-                        f2.meanErrorLog, f2.meanErrorLinear, f2.maxError, shenLi.meanErrorLog);
-          table << line;
+      for (std::size_t m = 0; m < o.meshes.size(); ++m) {
+        const int n = o.meshes[m];
+        const double shenLi =
+            evaluateChi(kinds[q], ab, nu, n, n, ChiParameters{}, curve).meanErrorLog;
+        std::string line;
+        if (!(second && o.secondOrderSpin)) {  // else the second-order fit below is the row
+          const ChiFit f = fitChi(kinds[q], ab, nu, n, n, curve);
+          line = row(ab, names[q], SecondOrderChi::fromFirstOrder(f.chi), o.secondOrderSpin, n,
+                     f.meanErrorLog, f.meanErrorLinear, f.maxError, &shenLi);
         }
+        if (second) {
+          const SecondOrderFit f2 = fitSecondOrderChi(kinds[q], ab, nu, n, n, curve);
+          spinRows[m] += row(ab, "23", f2.chi, true, n, f2.meanErrorLog, f2.meanErrorLinear,
+                             f2.maxError, nullptr);
+          if (o.secondOrderSpin)
+            line = row(ab, "23", f2.chi, true, n, f2.meanErrorLog, f2.meanErrorLinear, f2.maxError,
+                       &shenLi);
+        }
+        tableRows[m] += line;
+        std::cerr << "a/b " << ab << " kind " << names[q] << " mesh " << n << ": " << line;
       }
       const double secs =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::cerr << "a/b " << ab << " kind " << names[q] << ": " << line << "  (" << secs << " s)\n";
+      std::cerr << "  (" << secs << " s)\n";
     }
+  }
+  for (std::size_t m = 0; m < o.meshes.size(); ++m) {
+    const std::string title = "# FastSim mesh " + meshList({o.meshes[m]}) + "\n";
+    table << title << tableRows[m];
+    if (spin.is_open()) spin << title << spinRows[m];
   }
   return 0;
 }

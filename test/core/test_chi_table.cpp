@@ -4,6 +4,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "wheel_rail_contact/chi_table.hpp"
 
@@ -39,17 +40,60 @@ TEST(ChiTable, InterpolatesInLogAOverBAndClamps) {
 }
 
 TEST(ChiTable, ShippedTableLoadsAndIsStable) {
-  const ChiTable t = ChiTable::load(ChiTable::defaultPath());
-  for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
-    for (CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi})
-      EXPECT_GT(t.at(k, ab).chi3, 0.0);
-  // Kind 23 is second order, and so is every a/b between its rows (NssModel refuses an unstable
-  // interpolated F): a fine sweep in ln(a/b) over the table and beyond.
-  for (double x = std::log(0.1); x <= std::log(10.0); x += 0.01) {
-    const SecondOrderChi spin = t.secondOrderAt(CreepageKind::kPhi, std::exp(x));
-    EXPECT_GT(spin.chi5, 0.0) << std::exp(x);
-    EXPECT_TRUE(spin.valid()) << std::exp(x);
+  const ChiTable shipped = ChiTable::load(ChiTable::defaultPath());
+  EXPECT_EQ(shipped.meshes(), (std::vector<int>{5, 10, 20, 30, 40}));
+  for (int nx : shipped.meshes()) {
+    const ChiTable t = shipped.forMesh(nx);
+    for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
+      for (CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi})
+        EXPECT_GT(t.at(k, ab).chi3, 0.0) << nx;
+    // Kind 23 is second order, and so is every a/b between its rows (NssModel refuses an
+    // unstable interpolated F): a fine sweep in ln(a/b) over the table and beyond.
+    for (double x = std::log(0.1); x <= std::log(10.0); x += 0.01) {
+      const SecondOrderChi spin = t.secondOrderAt(CreepageKind::kPhi, std::exp(x));
+      EXPECT_GT(spin.chi5, 0.0) << nx << " " << std::exp(x);
+      EXPECT_TRUE(spin.valid()) << nx << " " << std::exp(x);
+    }
   }
+}
+
+TEST(ChiTable, PicksTheMeshNearestInOneOverNx) {
+  // Meshes 10 and 40 (kinds interleaved with meshes, as a user might write them); chi1 names
+  // the mesh. 1/nx halfway between 1/10 and 1/40 is nx = 16: 15 takes 10, 17 takes 40.
+  std::string text = "a_over_b,kind,chi1,chi2,chi3,fastsim_nx,err\n";
+  for (const char* kind : {"11", "22", "23"})
+    for (int nx : {40, 10})
+      text += std::string("1,") + kind + "," + std::to_string(nx) + ",1,0.5," + std::to_string(nx) +
+              ",0\n";
+  const ChiTable t = ChiTable::load(write("meshes.csv", text));
+  EXPECT_EQ(t.meshes(), (std::vector<int>{10, 40}));
+  EXPECT_THROW(t.at(CreepageKind::kXi, 1.0), std::logic_error);  // which mesh?
+  const std::pair<int, double> picks[] = {{2, 10},  {10, 10}, {15, 10}, {17, 40},
+                                          {20, 40}, {40, 40}, {400, 40}};
+  for (const auto& p : picks)
+    EXPECT_EQ(t.forMesh(p.first).at(CreepageKind::kPhi, 1.0).chi1, p.second) << p.first;
+  // A table without the column serves every mesh.
+  const ChiTable one = ChiTable::load(
+      write("one.csv", std::string(kHeader) + "1,11,0.1,1,0.2\n1,22,0.1,1,0.2\n1,23,0.1,1,0.2\n"));
+  EXPECT_EQ(one.meshes(), (std::vector<int>{0}));
+  EXPECT_EQ(one.forMesh(7).at(CreepageKind::kXi, 1.0).chi1, 0.1);
+}
+
+TEST(ChiTable, MeshColumnErrorsNameTheMesh) {
+  const std::string h = "a_over_b,kind,chi1,chi2,chi3,fastsim_nx\n";
+  const std::string kinds10 = "1,11,0.1,1,1,10\n1,22,0.1,1,1,10\n1,23,0.1,1,1,10\n";
+  EXPECT_NE(loadError(h + "1,11,0.1,1,1,1\n").find(":2: fastsim_nx must be an integer >= 2"),
+            std::string::npos);
+  EXPECT_NE(loadError(h + "1,11,0.1,1,1,ten\n").find("got 'ten'"), std::string::npos);
+  EXPECT_NE(loadError(h + "1,11,0.1,1,1\n").find("expected 6 or more fields"), std::string::npos);
+  EXPECT_NE(
+      loadError(h + kinds10 + "1,11,0.1,1,1,20\n").find("no rows for kind 22 at fastsim_nx 20"),
+      std::string::npos);
+  EXPECT_NE(loadError(h + kinds10 + "0.5,11,0.1,1,1,10\n")
+                .find(":5: a_over_b must increase within kind 11 at fastsim_nx 10"),
+            std::string::npos);
+  // The same a/b at another mesh is no repeat.
+  EXPECT_EQ(loadError(h + kinds10 + "1,11,0.1,1,1,20\n1,22,0.1,1,1,20\n1,23,0.1,1,1,20\n"), "");
 }
 
 TEST(ChiTable, MalformedTablesNameFileAndLine) {
