@@ -3,8 +3,9 @@
 //     --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true
 // (random interleaving spreads the machine's load over every model alike). Each nss row compares
 // with steady FastSim on the same mesh: the adaptive mesh with Steady (SteadyModel, mesh fitted to
-// the patch), the fixed mesh with SteadyFixedMesh (steady FastSim on nss's fixed mesh). Instruction
-// counts, which do not depend on the load: scripts/step_cost.sh.
+// the patch), the fixed mesh with SteadyFixedMesh (steady FastSim on nss's fixed mesh). The nss
+// rows run a uniform first-order chi; the *Shipped rows the shipped table (second order with spin).
+// Instruction counts, which do not depend on the load: scripts/step_cost.sh.
 #include <benchmark/benchmark.h>
 
 #include "step_inputs.hpp"
@@ -13,8 +14,9 @@ using namespace wheel_rail_contact;
 
 namespace {
 
-void run(benchmark::State& state, const char* model, const char* mesh, bool varyLoad) {
-  const auto m = bench::makeModel(model, mesh, static_cast<int>(state.range(0)));
+void run(benchmark::State& state, const char* model, const char* mesh, bool varyLoad,
+         bool shippedChi = false) {
+  const auto m = bench::makeModel(model, mesh, static_cast<int>(state.range(0)), shippedChi);
   StepInput in[256];
   for (int k = 0; k < 256; ++k) in[k] = bench::input(k, varyLoad);
   int k = 0;
@@ -41,6 +43,17 @@ void NssAdaptive(benchmark::State& s) {
 void NssAdaptiveConstantLoad(benchmark::State& s) {
   run(s, "nss", "adaptive", false);
 }
+// With the shipped chi table (what a user runs): with spin, kind 23's second-order F makes both
+// directions' filters second order, and the march carries s2.
+void NssFixedShipped(benchmark::State& s) {
+  run(s, "nss", "fixed", true, true);
+}
+void NssAdaptiveShipped(benchmark::State& s) {
+  run(s, "nss", "adaptive", true, true);
+}
+void NssAdaptiveConstantLoadShipped(benchmark::State& s) {
+  run(s, "nss", "adaptive", false, true);
+}
 
 }  // namespace
 
@@ -50,4 +63,7 @@ BENCHMARK(ShenLi)->Arg(10)->Arg(20)->Arg(30)->Arg(40);
 BENCHMARK(NssFixed)->Arg(10)->Arg(20)->Arg(30)->Arg(40);
 BENCHMARK(NssAdaptive)->Arg(10)->Arg(20)->Arg(30)->Arg(40);
 BENCHMARK(NssAdaptiveConstantLoad)->Arg(10)->Arg(20)->Arg(30)->Arg(40);
+BENCHMARK(NssFixedShipped)->Arg(10)->Arg(20)->Arg(30)->Arg(40);
+BENCHMARK(NssAdaptiveShipped)->Arg(10)->Arg(20)->Arg(30)->Arg(40);
+BENCHMARK(NssAdaptiveConstantLoadShipped)->Arg(10)->Arg(20)->Arg(30)->Arg(40);
 BENCHMARK_MAIN();
