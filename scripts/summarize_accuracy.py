@@ -21,6 +21,10 @@ for (ab, kind), pts in sorted(curves.items(), key=lambda kv: (float(kv[0][0]), k
     print(f"| {ab} | C{kind} | {max(p[1] for p in above):.3f} | {good_from:.2f} | "
           f"{max(p[2] for p in above):.3f} | {max(p[3] for p in above):.3f} |")
 
+import os
+
+if not os.path.exists(f"{data}/scenes.csv"):  # a --parts freq run
+    sys.exit(0)
 print()
 print("| scene | nss fixed | nss adaptive | shen-li | steady | ΔFx/(μΔFz) exact / nss adaptive |")
 print("| --- | --- | --- | --- | --- | --- |")
