@@ -37,7 +37,9 @@ struct StepOutput {
   double b = 0.0;                 ///< patch semi-axis along y [m]
   double adhesionFraction = 0.0;  ///< [-]
   StepStatus status = StepStatus::kOk;
-  std::string message;  ///< why, when status != kOk
+  /// Why, when status != kOk or an OK step has a caveat (clipped or coarse patch); "" if none.
+  /// Static text, never null: a step allocates nothing, not even for its message.
+  const char* message = "";
 };
 
 class ContactModel {
@@ -65,8 +67,8 @@ constexpr double kMaxInputMagnitude = 1e12;
 constexpr double kMinLoad = 1e-6;
 
 /// Checks shared by every model: finite fields, dt >= 0, magnitudes at most kMaxInputMagnitude.
-/// Returns an empty string if fine, else why.
-std::string checkStepInput(const StepInput& in);
+/// Returns "" if fine, else why (static text).
+const char* checkStepInput(const StepInput& in);
 
 /// The step rules every model shares (doc/conventions.md), applied before any physics: non-finite
 /// or out-of-range input or dt < 0 give kRejected; fz < kMinLoad (including fz <= 0) gives kNoLoad

@@ -144,7 +144,7 @@ std::string AutoModel::choices() const {
 }
 
 void AutoModel::choose(const StepInput& in) {
-  const bool moving = checkStepInput(in).empty() && in.V != 0.0 && in.dt > 0.0;
+  const bool moving = !*checkStepInput(in) && in.V != 0.0 && in.dt > 0.0;
   if (!moving) return;
   if (!(in.fz > 0.0)) {
     monitor_.reset();  // contact lost: the next contact starts a new record

@@ -26,7 +26,7 @@ const char* toString(StepStatus s) {
   return "unknown";
 }
 
-std::string checkStepInput(const StepInput& in) {
+const char* checkStepInput(const StepInput& in) {
   if (!std::isfinite(in.dt)) return "dt is not finite";
   if (!std::isfinite(in.V)) return "V is not finite";
   if (!std::isfinite(in.xi)) return "xi is not finite";
@@ -38,13 +38,13 @@ std::string checkStepInput(const StepInput& in) {
   // comes near it, so such input is out of range rather than a case to compute.
   for (double v : {in.dt, in.V, in.xi, in.eta, in.phi, in.fz})
     if (std::abs(v) > kMaxInputMagnitude) return "an input exceeds 1e12 in magnitude (SI units)";
-  return {};
+  return "";
 }
 
 bool screenStep(const StepInput& in, StepOutput* out) {
   *out = StepOutput();
   out->message = checkStepInput(in);
-  if (!out->message.empty()) {
+  if (*out->message) {
     out->status = StepStatus::kRejected;
     return true;
   }

@@ -33,7 +33,7 @@ void fillState(const StepResult& r, const std::string& model, State* m) {
   m->dt = r.dt;
   m->solver_time = r.solverTime;
   m->status = contactStateStatus(r.out.status);
-  m->message = r.out.message;
+  m->message = r.message;
 }
 
 /// A parameter value as the text setParameter() parses, so node and CLI share one rule.
@@ -210,14 +210,13 @@ void ContactNode::report(const StepResult& r) {
   if (r.timeJumpReset) ROS_WARN("%s: stamps jumped backwards: state reset", ns);
   switch (r.event) {
     case StepEvent::kNonFinite:
-      ROS_WARN_THROTTLE(1.0, "%s: creepage rejected (non-finite input): %s", ns,
-                        r.out.message.c_str());
+      ROS_WARN_THROTTLE(1.0, "%s: creepage rejected (non-finite input): %s", ns, r.message.c_str());
       return;
     case StepEvent::kOutOfOrder:
-      ROS_WARN_THROTTLE(1.0, "%s: creepage rejected (out of order): %s", ns, r.out.message.c_str());
+      ROS_WARN_THROTTLE(1.0, "%s: creepage rejected (out of order): %s", ns, r.message.c_str());
       return;
     case StepEvent::kDtTooLarge:
-      ROS_WARN_THROTTLE(1.0, "%s: creepage rejected: %s", ns, r.out.message.c_str());
+      ROS_WARN_THROTTLE(1.0, "%s: creepage rejected: %s", ns, r.message.c_str());
       return;
     case StepEvent::kNoLoadYet:
       ROS_WARN_THROTTLE(5.0, "%s: no normal_load received yet: zero forces", ns);
@@ -226,9 +225,9 @@ void ContactNode::report(const StepResult& r) {
       break;
   }
   if (r.out.status == StepStatus::kRejected)
-    ROS_WARN_THROTTLE(1.0, "%s: model refused the step: %s", ns, r.out.message.c_str());
-  else if (r.out.status == StepStatus::kOk && !r.out.message.empty())  // clipped or coarse patch
-    ROS_WARN_THROTTLE(5.0, "%s: %s", ns, r.out.message.c_str());
+    ROS_WARN_THROTTLE(1.0, "%s: model refused the step: %s", ns, r.message.c_str());
+  else if (r.out.status == StepStatus::kOk && !r.message.empty())  // clipped or coarse patch
+    ROS_WARN_THROTTLE(5.0, "%s: %s", ns, r.message.c_str());
   if (r.staleLoad)
     ROS_WARN_THROTTLE(5.0, "%s: the latest normal_load is %.3f s old (max_load_age)", ns,
                       r.loadAge);

@@ -96,8 +96,8 @@ StepResult ContactStepper::stepImpl(int64_t stampNs, const StepInput& input, boo
   ++counters_.creepages;
   StepResult r;
   StepInput in = input;
-  const std::string bad = checkStepInput(in);
-  if (!bad.empty()) {
+  const char* bad = checkStepInput(in);
+  if (*bad) {
     r.event = StepEvent::kNonFinite;
     r.out.status = StepStatus::kRejected;
     r.out.message = bad;
@@ -125,8 +125,8 @@ StepResult ContactStepper::stepImpl(int64_t stampNs, const StepInput& input, boo
       } else {
         r.event = StepEvent::kOutOfOrder;
         r.out.status = StepStatus::kRejected;
-        r.out.message = "stamp " + seconds(stampNs) + " is not after the previous one (" +
-                        seconds(lastStampNs_) + ")";
+        r.message = "stamp " + seconds(stampNs) + " is not after the previous one (" +
+                    seconds(lastStampNs_) + ")";
         ++counters_.outOfOrder;
         return finish(r);
       }
@@ -139,7 +139,7 @@ StepResult ContactStepper::stepImpl(int64_t stampNs, const StepInput& input, boo
     std::ostringstream m;
     m << "dt = " << r.dt << " s exceeds max_dt = " << options_.max_dt
       << " s; the time base restarts at this message";
-    r.out.message = m.str();
+    r.message = m.str();
     lastStampNs_ = stampNs;
     ++counters_.dtTooLarge;
     return finish(r);
@@ -177,6 +177,7 @@ StepResult ContactStepper::finish(StepResult r) {
     r.out.message = "model returned a non-finite result";
     ++counters_.rejectedByModel;
   }
+  if (r.message.empty()) r.message = r.out.message;
   switch (r.out.status) {
     case StepStatus::kOk:
       ++counters_.ok;

@@ -39,7 +39,10 @@ enum class StepEvent {
 };
 
 struct StepResult {
-  StepOutput out;           ///< forces and status, never non-finite
+  StepOutput out;  ///< forces and status, never non-finite
+  /// Why the step is not a plain OK step: out.message, or the stepper's own reason (stamps, dt),
+  /// which may carry numbers and so is built here rather than in the model.
+  std::string message;
   double dt = 0.0;          ///< time step used [s] (0 for the first step after start or reset)
   double solverTime = 0.0;  ///< wall time of model->step [s]
   StepEvent event = StepEvent::kStepped;

@@ -357,6 +357,7 @@ TEST(NssModel, FixedMeshFarAboveTheLoadSaysSo) {
     p.fz_max = ratio * p.fz0;
     NssModel m(p, kSomeChi);
     const StepOutput o = m.step({5e-5, 20.0, 1e-3, 0.0, 0.0, p.fz0});
-    EXPECT_EQ(o.message.find("fewer than 4 nodes") != std::string::npos, ratio > 2) << ratio;
+    EXPECT_EQ(std::string(o.message).find("fewer than 4 nodes") != std::string::npos, ratio > 2)
+        << ratio;
   }
 }

@@ -311,5 +311,5 @@ TEST(RollingBackwards, ExactModelRefusesWithAMessage) {
   const StepOutput o = m->step({0.0, -1.0, 1e-3, 0.0, 0.0, p.fz0});
   EXPECT_EQ(o.status, StepStatus::kRejected);
   EXPECT_EQ(o.fx, 0.0);
-  EXPECT_NE(o.message.find("V < 0"), std::string::npos) << o.message;
+  EXPECT_NE(std::string(o.message).find("V < 0"), std::string::npos) << o.message;
 }

@@ -29,7 +29,7 @@ inline std::string describe(const StepOutput& o) {
   char s[320];
   std::snprintf(
       s, sizeof s, "status=%s fx=%.17g fy=%.17g mz=%.17g fz=%.17g a=%.17g b=%.17g adh=%.17g (%s)",
-      toString(o.status), o.fx, o.fy, o.mz, o.fz, o.a, o.b, o.adhesionFraction, o.message.c_str());
+      toString(o.status), o.fx, o.fy, o.mz, o.fz, o.a, o.b, o.adhesionFraction, o.message);
   return s;
 }
 
