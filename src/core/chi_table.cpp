@@ -58,6 +58,64 @@ const char* kindName(int k) {
   return k == 0 ? "11" : k == 1 ? "22" : "23";
 }
 
+// What the header says about the columns.
+struct Layout {
+  bool second = false;  // chi4,chi5 right after chi3
+  int meshColumn = -1;  // fastsim_nx's field, if any
+};
+
+// One data row, checked: fields, finite numbers, kind, a/b > 0, a stable F.
+struct ParsedRow {
+  std::vector<std::string> f;  // the fields as written
+  int nx = 0, kind = 0;
+  double ab = 0.0;
+  SecondOrderChi chi;
+};
+
+ParsedRow parseRow(const std::string& path, long n, const std::string& line, const Layout& L) {
+  ParsedRow r;
+  std::stringstream ss(line);
+  for (std::string s; std::getline(ss, s, ',');) r.f.push_back(s);
+  const std::vector<std::string>& f = r.f;
+  const int chiFields = L.second ? 7 : 5;
+  const std::size_t needed = std::max(chiFields, L.meshColumn + 1);
+  if (f.size() < needed)  // more columns (fit errors) are allowed and ignored
+    fail(path, n,
+         "expected " + std::to_string(needed) + " or more fields (a_over_b,kind,chi1,chi2,chi3" +
+             (L.second ? ",chi4,chi5" : "") + (L.meshColumn > 0 ? ",...,fastsim_nx" : "") +
+             "), got " + std::to_string(f.size()));
+  double v[7] = {0, 0, 0, 0, 0, 0, 0};
+  for (int k : {0, 2, 3, 4, 5, 6}) {
+    if (k >= chiFields) break;
+    char* end = nullptr;
+    v[k] = std::strtod(f[k].c_str(), &end);
+    if (f[k].empty() || *end != '\0' || !std::isfinite(v[k]))
+      fail(path, n, "field " + std::to_string(k + 1) + " is not a finite number");
+  }
+  if (L.meshColumn > 0) {
+    const std::string& m = f[L.meshColumn];
+    char* end = nullptr;
+    const long nx = std::strtol(m.c_str(), &end, 10);
+    if (m.empty() || *end != '\0' || nx < 2 || nx > 100000)
+      fail(path, n, "fastsim_nx must be an integer >= 2, got '" + m + "'");
+    r.nx = static_cast<int>(nx);
+  }
+  r.kind = kindIndex(f[1]);
+  if (r.kind < 0) fail(path, n, "kind must be 11, 22 or 23, got '" + f[1] + "'");
+  r.ab = v[0];
+  if (!(r.ab > 0.0)) fail(path, n, "a_over_b must be > 0");
+  r.chi = {v[2], v[3], v[4], v[5], v[6]};
+  if (r.chi.chi4 == 0.0 && r.chi.chi5 == 0.0) {
+    if (!ChiParameters{r.chi.chi1, r.chi.chi2, r.chi.chi3}.valid())
+      fail(path, n, "chi3 must be > 0 (stable filter)");
+  } else if (!r.chi.valid()) {
+    fail(path, n,
+         "kind " + f[1] + " at a/b = " + f[0] +
+             ": second-order chi fail SecondOrderChi::valid() (unstable node for some step)");
+  }
+  return r;
+}
+
 }  // namespace
 
 ChiTable ChiTable::load(const std::string& path) {
@@ -66,9 +124,9 @@ ChiTable ChiTable::load(const std::string& path) {
   ChiTable t;
   std::string line;
   long n = 0;
-  bool header = false, second = false;             // second: the header names chi4,chi5 after chi3
-  int meshColumn = -1;                             // fastsim_nx's field, if any
-  std::vector<std::array<std::string, 3>> lastAB;  // per mesh and kind, as written
+  bool header = false;
+  Layout layout;
+  std::vector<std::array<std::string, 3>> lastAB;  // per mesh (as meshes_) and kind, as written
   while (std::getline(in, line)) {
     ++n;
     if (line.empty() || line[0] == '#') continue;
@@ -76,63 +134,28 @@ ChiTable ChiTable::load(const std::string& path) {
       if (line.rfind("a_over_b,kind,chi1,chi2,chi3", 0) != 0)
         fail(path, n, "expected header a_over_b,kind,chi1,chi2,chi3");
       header = true;
-      second = line.rfind("a_over_b,kind,chi1,chi2,chi3,chi4,chi5", 0) == 0;
-      meshColumn = columnOf(line, "fastsim_nx");
+      layout = {line.rfind("a_over_b,kind,chi1,chi2,chi3,chi4,chi5", 0) == 0,
+                columnOf(line, "fastsim_nx")};
       continue;
     }
-    std::stringstream ss(line);
-    std::vector<std::string> f;
-    for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
-    const std::size_t needed = std::max<std::size_t>(second ? 7 : 5, meshColumn + 1);
-    if (f.size() < needed)  // more columns (fit errors) are allowed and ignored
-      fail(path, n,
-           "expected " + std::to_string(needed) + " or more fields (a_over_b,kind,chi1,chi2,chi3" +
-               (second ? ",chi4,chi5" : "") + (meshColumn > 0 ? ",...,fastsim_nx" : "") +
-               "), got " + std::to_string(f.size()));
-    double v[7] = {0, 0, 0, 0, 0, 0, 0};
-    for (int k : {0, 2, 3, 4, 5, 6}) {
-      if (k >= (second ? 7 : 5)) break;
-      char* end = nullptr;
-      v[k] = std::strtod(f[k].c_str(), &end);
-      if (f[k].empty() || *end != '\0' || !std::isfinite(v[k]))
-        fail(path, n, "field " + std::to_string(k + 1) + " is not a finite number");
-    }
-    int nx = 0;
-    if (meshColumn > 0) {
-      char* end = nullptr;
-      const long m = std::strtol(f[meshColumn].c_str(), &end, 10);
-      if (f[meshColumn].empty() || *end != '\0' || m < 2 || m > 100000)
-        fail(path, n, "fastsim_nx must be an integer >= 2, got '" + f[meshColumn] + "'");
-      nx = static_cast<int>(m);
-    }
-    const int kind = kindIndex(f[1]);
-    if (kind < 0) fail(path, n, "kind must be 11, 22 or 23, got '" + f[1] + "'");
-    if (!(v[0] > 0.0)) fail(path, n, "a_over_b must be > 0");
-    const SecondOrderChi chi{v[2], v[3], v[4], v[5], v[6]};
-    if (chi.chi4 == 0.0 && chi.chi5 == 0.0) {
-      if (!ChiParameters{chi.chi1, chi.chi2, chi.chi3}.valid())
-        fail(path, n, "chi3 must be > 0 (stable filter)");
-    } else if (!chi.valid()) {
-      fail(path, n,
-           "kind " + f[1] + " at a/b = " + f[0] +
-               ": second-order chi fail SecondOrderChi::valid() (unstable node for some step)");
-    }
+    const ParsedRow r = parseRow(path, n, line, layout);
     auto mesh = std::find_if(t.meshes_.begin(), t.meshes_.end(),
-                             [nx](const Mesh& m) { return m.nx == nx; });
+                             [&r](const Mesh& m) { return m.nx == r.nx; });
     if (mesh == t.meshes_.end()) {
-      t.meshes_.push_back(Mesh{nx, {}});
+      t.meshes_.push_back(Mesh{r.nx, {}});
       lastAB.emplace_back();
       mesh = t.meshes_.end() - 1;
     }
-    auto& rows = mesh->rows[kind];
-    std::string& last = lastAB[mesh - t.meshes_.begin()][kind];
+    auto& rows = mesh->rows[r.kind];
+    std::string& last = lastAB[mesh - t.meshes_.begin()][r.kind];
     // Interpolation needs a/b increasing; a row out of order is more likely a slip than intended.
-    if (!rows.empty() && !(std::log(v[0]) > rows.back().logAB))
+    if (!rows.empty() && !(std::log(r.ab) > rows.back().logAB))
       fail(path, n,
-           "a_over_b must increase within kind " + f[1] +
-               (nx ? " at fastsim_nx " + f[meshColumn] : "") + ", got " + f[0] + " after " + last);
-    rows.push_back({std::log(v[0]), chi});
-    last = f[0];
+           "a_over_b must increase within kind " + r.f[1] +
+               (r.nx ? " at fastsim_nx " + std::to_string(r.nx) : "") + ", got " + r.f[0] +
+               " after " + last);
+    rows.push_back({std::log(r.ab), r.chi});
+    last = r.f[0];
   }
   if (in.bad()) fail(path, n, "read error (a directory?)");
   if (!header) fail(path, n, "empty: no header a_over_b,kind,chi1,chi2,chi3");
