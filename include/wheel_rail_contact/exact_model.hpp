@@ -11,6 +11,8 @@
 /// sub-step's load (a, b scale as (fz/fz0)^(1/3)), solved again whenever the load has moved by
 /// more than 0.5 % and scaled to the load in between. Status rules as SteadyModel; the first step
 /// after start, reset or loss of contact starts from zero traction and returns zero force.
+/// V < 0 rolls forwards in the mirror x -> -x, the history mirrored at each reversal, as the
+/// FastSim models do (rolling_direction.hpp).
 #pragma once
 
 #include "wheel_rail_contact/contact_model.hpp"
@@ -33,12 +35,17 @@ class ExactModel : public ContactModel {
 
  private:
   void subStep(const StepInput& in);
+  /// The forward-rolling input of this step; mirrors the history when the direction changes.
+  StepInput faceTravel(const StepInput& in);
+  /// A march-frame output in the contact frame.
+  StepOutput contactFrame(StepOutput out) const;
   ContactParameters p_;
   ReferencePatch ref_;
   HalfspaceSolver solver_;
   double fzMax_;
   StepInput prev_;
   bool started_ = false;
+  bool mirrored_ = false;           // the history is in the mirror frame (rolling backwards)
   double carry_ = 0.0;              // distance rolled since the last sub-step [m]
   double loadedFz_ = -1.0;          // load of the last normal solve [N]
   Eigen::VectorXd normalPressure_;  // its pressure [Pa]

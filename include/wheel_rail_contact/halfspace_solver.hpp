@@ -77,6 +77,9 @@ class HalfspaceSolver {
   void setHertzPressure(double a, double b, double fz);
   /// Zero traction history: the next transient or shift step starts from rest.
   void clearHistory();
+  /// The traction history reflected x -> -x (element ix swaps with mx-1-ix; tau_x changes sign):
+  /// rolling backwards as forwards in the mirror (rolling_direction.hpp).
+  void mirrorHistoryAlongX();
   /// One solve; transient and shift use the history and replace it with the result.
   /// dq: shift distance for kShift [m] (ignored otherwise: dq = dx).
   const HalfspaceSolution& solve(RollingMode mode, const Creepages& w, double mu, double dq = 0.0);

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "wheel_rail_contact/halfspace_normal.hpp"
+#include "wheel_rail_contact/rolling_direction.hpp"
 
 namespace wheel_rail_contact {
 
@@ -37,6 +38,7 @@ ExactModel::ExactModel(const ContactParameters& p)
 void ExactModel::reset() {
   solver_.clearHistory();
   started_ = false;
+  mirrored_ = false;
   carry_ = 0.0;
   subSteps_ = 0;
   last_ = StepOutput();
@@ -62,32 +64,49 @@ void ExactModel::subStep(const StepInput& in) {
   ++subSteps_;
 }
 
-StepOutput ExactModel::step(const StepInput& in) {
+StepInput ExactModel::faceTravel(const StepInput& in) {
+  const bool backwards = in.V < 0.0;
+  if (in.V != 0.0 && backwards != mirrored_) {
+    // As the FastSim models: the traction standing in the material is carried into the other
+    // direction's frame. The previous input (what the sub-steps interpolate from) is re-expressed
+    // there with V = 0, the speed passing through zero within this step; the remainder below one
+    // element restarts (at most one element of travel).
+    solver_.mirrorHistoryAlongX();
+    prev_ = mirroredInput(prev_);
+    prev_.V = 0.0;
+    carry_ = 0.0;
+    mirrored_ = backwards;
+  }
+  return mirrored_ ? mirroredInput(in) : in;
+}
+
+StepOutput ExactModel::contactFrame(StepOutput out) const {
+  if (mirrored_) mirrorForces(&out);
+  return out;
+}
+
+StepOutput ExactModel::step(const StepInput& given) {
   StepOutput out;
   subSteps_ = 0;
-  if (screenStep(in, &out)) {
+  if (screenStep(given, &out)) {
     if (out.status == StepStatus::kNoLoad) {
       reset();
       last_ = out;
     }
     return out;
   }
-  if (in.V < 0.0) {
-    out.status = StepStatus::kRejected;
-    out.message = "rolling backwards (V < 0) is not modelled by the exact model";
-    return out;
-  }
-  if (in.fz > fzMax_ * (1.0 + 1e-12)) {
+  if (given.fz > fzMax_ * (1.0 + 1e-12)) {
     out.status = StepStatus::kRejected;
     out.message = "fz above fz_max: the fixed grid does not cover the patch";
     return out;
   }
+  const StepInput in = faceTravel(given);  // rolls forwards, in the mirror while V < 0
   if (in.V == 0.0 && started_) {
     prev_ = in;  // the next step's travel starts from rest
     out = last_;
     out.status = StepStatus::kStandstill;
     out.message = "V = 0: no travel, forces held";
-    return out;
+    return contactFrame(out);
   }
   const HertzEllipse h = ref_.at(in.fz);
   if (!started_) {  // from rest: no distance rolled yet, no traction
@@ -135,12 +154,12 @@ StepOutput ExactModel::step(const StepInput& in) {
   out.fz = in.fz;
   out.a = h.a;
   out.b = h.b;
-  last_ = out;
+  last_ = out;        // in the march's frame
   if (in.V == 0.0) {  // the first step at rest
     out.status = StepStatus::kStandstill;
     out.message = "V = 0: no travel, forces held";
   }
-  return out;
+  return contactFrame(out);
 }
 
 }  // namespace wheel_rail_contact

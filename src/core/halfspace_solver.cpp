@@ -86,6 +86,16 @@ void HalfspaceSolver::clearHistory() {
   histY_.setZero();
 }
 
+void HalfspaceSolver::mirrorHistoryAlongX() {
+  const HalfspaceGrid& g = grid();
+  for (int ix = 0; ix < g.mx / 2; ++ix)
+    for (int iy = 0; iy < g.my; ++iy) {
+      std::swap(histX_[g.index(ix, iy)], histX_[g.index(g.mx - 1 - ix, iy)]);
+      std::swap(histY_[g.index(ix, iy)], histY_[g.index(g.mx - 1 - ix, iy)]);
+    }
+  histX_ = -histX_;
+}
+
 void HalfspaceSolver::buildSystem(bool steady) {
   const HalfspaceGrid& g = grid();
   const int n = static_cast<int>(elems_.size());

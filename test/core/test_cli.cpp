@@ -109,9 +109,9 @@ TEST(ContactCli, BadScenarioExitsNonZeroNamingLineAndField) {
 }
 
 TEST(ContactCli, RefusedRowsAreWrittenWithStatusNotNaN) {
-  // The exact model refuses rolling backwards (the FastSim models mirror it).
+  // The exact model refuses a load above fz_max (its fixed grid must cover the patch).
   const std::string f =
-      writeTemp("neg.csv", "t,V,xi,eta,phi,fz\n0,-20,1e-3,0,0,8e4\n1,20,1e-3,0,0,0\n");
+      writeTemp("big.csv", "t,V,xi,eta,phi,fz\n0,20,1e-3,0,0,1e6\n1,20,1e-3,0,0,0\n");
   const Result r = cli({"run", "--scenario", f, "--model", "exact", "--nx", "8", "--ny", "8"});
   EXPECT_EQ(r.code, 0);
   const auto rows = parseCsv(r.out);
@@ -120,17 +120,21 @@ TEST(ContactCli, RefusedRowsAreWrittenWithStatusNotNaN) {
   EXPECT_EQ(rows[2][8], "no load");
   EXPECT_EQ(std::stod(rows[1][1]), 0.0);
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
-  EXPECT_NE(r.err.find("V < 0"), std::string::npos);
+  EXPECT_NE(r.err.find("fz above fz_max"), std::string::npos) << r.err;
 }
 
 TEST(ContactCli, BackwardsRowsRollBackwards) {
-  const std::string f = writeTemp("back.csv", "t,V,xi,eta,phi,fz\n0,-20,1e-3,0,0,8e4\n");
-  const Result r = cli({"run", "--scenario", f});
-  EXPECT_EQ(r.code, 0);
-  const auto rows = parseCsv(r.out);
-  ASSERT_EQ(rows.size(), 2u);
-  EXPECT_EQ(rows[1][8], "ok");
-  EXPECT_GT(std::stod(rows[1][1]), 0.0);  // V xi < 0: the force on the wheel is positive
+  // Every model, the exact one included (its first row, from rest, has rolled nothing yet).
+  const std::string f =
+      writeTemp("back.csv", "t,V,xi,eta,phi,fz\n0,-20,1e-3,0,0,8e4\n0.001,-20,1e-3,0,0,8e4\n");
+  for (const char* model : {"steady", "shen-li", "nss", "exact"}) {
+    const Result r = cli({"run", "--scenario", f, "--model", model, "--nx", "8", "--ny", "8"});
+    EXPECT_EQ(r.code, 0) << model;
+    const auto rows = parseCsv(r.out);
+    ASSERT_EQ(rows.size(), 3u) << model;
+    EXPECT_EQ(rows[2][8], "ok") << model;
+    EXPECT_GT(std::stod(rows[2][1]), 0.0) << model;  // V xi < 0: the force on the wheel is positive
+  }
 }
 
 TEST(ContactCli, ExecutableRunsTheShippedDemoScenario) {

@@ -45,7 +45,7 @@ TEST(ExactModel, StatusRules) {
   EXPECT_EQ(m.subSteps(), 0);
   o = m.step({1e-3, 20.0, 1e-3, 0, 0, 8e4});  // 10 mm rolled (trapezoid from rest)
   EXPECT_EQ(m.subSteps(), static_cast<int>(std::floor(0.01 / (2.2 * 6e-3 / 16))));
-  EXPECT_EQ(m.step({1e-3, -1.0, 0, 0, 0, 8e4}).status, StepStatus::kRejected);
+  EXPECT_EQ(m.step({1e-3, -1.0, 0, 0, 0, 8e4}).status, StepStatus::kOk);  // backwards: mirrored
   EXPECT_EQ(m.step({1e-3, NAN, 0, 0, 0, 8e4}).status, StepStatus::kRejected);
   EXPECT_EQ(m.step({1e-3, 20.0, 0, 0, 0, 2e5}).status, StepStatus::kRejected);  // above fz_max
   o = m.step({1e-3, 20.0, 1e-3, 0, 0, 0.0});
