@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Prints the accuracy tables of the README from accuracy_report's CSVs (doc/data)."""
 import csv
+import os
 import sys
 from collections import defaultdict
 
@@ -20,8 +21,6 @@ for (ab, kind), pts in sorted(curves.items(), key=lambda kv: (float(kv[0][0]), k
                     default=float("nan"))
     print(f"| {ab} | C{kind} | {max(p[1] for p in above):.3f} | {good_from:.2f} | "
           f"{max(p[2] for p in above):.3f} | {max(p[3] for p in above):.3f} |")
-
-import os
 
 if not os.path.exists(f"{data}/scenes.csv"):  # a --parts freq run
     sys.exit(0)
