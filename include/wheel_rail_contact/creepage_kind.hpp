@@ -10,6 +10,9 @@ enum class CreepageKind { kXi, kEta, kPhi };
 
 /// "xi", "eta", "phi".
 const char* toString(CreepageKind k);
+/// The coefficient's indices, "11", "22", "23": the kind column of a chi table and of the
+/// accuracy CSVs.
+const char* coefficientCode(CreepageKind k);
 
 /// Parses "xi", "eta" or "phi"; throws std::invalid_argument naming the text otherwise.
 CreepageKind parseCreepageKind(const std::string& text);

@@ -20,9 +20,8 @@ namespace {
 }
 
 int kindIndex(const std::string& s) {
-  if (s == "11") return 0;
-  if (s == "22") return 1;
-  if (s == "23") return 2;
+  for (int k = 0; k < 3; ++k)
+    if (s == coefficientCode(static_cast<CreepageKind>(k))) return k;
   return -1;
 }
 
@@ -52,10 +51,6 @@ int columnOf(const std::string& header, const std::string& name) {
   for (std::string s; std::getline(ss, s, ','); ++k)
     if (k > 4 && s == name) return k;
   return -1;
-}
-
-const char* kindName(int k) {
-  return k == 0 ? "11" : k == 1 ? "22" : "23";
 }
 
 // What the header says about the columns.
@@ -164,7 +159,7 @@ ChiTable ChiTable::load(const std::string& path) {
     for (int k = 0; k < 3; ++k)
       if (m.rows[k].empty())
         fail(path, n,
-             std::string("no rows for kind ") + kindName(k) +
+             std::string("no rows for kind ") + coefficientCode(static_cast<CreepageKind>(k)) +
                  (m.nx ? " at fastsim_nx " + std::to_string(m.nx) : ""));
   std::sort(t.meshes_.begin(), t.meshes_.end(),
             [](const Mesh& a, const Mesh& b) { return a.nx < b.nx; });

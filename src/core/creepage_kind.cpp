@@ -16,6 +16,18 @@ const char* toString(CreepageKind k) {
   return "unknown";
 }
 
+const char* coefficientCode(CreepageKind k) {
+  switch (k) {
+    case CreepageKind::kXi:
+      return "11";
+    case CreepageKind::kEta:
+      return "22";
+    case CreepageKind::kPhi:
+      return "23";
+  }
+  return "unknown";
+}
+
 CreepageKind parseCreepageKind(const std::string& text) {
   if (text == "xi") return CreepageKind::kXi;
   if (text == "eta") return CreepageKind::kEta;

@@ -39,7 +39,6 @@ struct Options {
   std::string exactFrom;       // folder of an earlier run's scene_*.csv; empty = solve
 };
 
-const char* kKindName[3] = {"11", "22", "23"};
 const CreepageKind kKinds[3] = {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi};
 
 void frequencyErrors(const Options& o, const ChiTable& table) {
@@ -60,21 +59,22 @@ void frequencyErrors(const Options& o, const ChiTable& table) {
         const auto nss = fastsimSecondOrderCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny, chi, l);
         const auto sl = fastsimNonSteadyCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny, {}, l);
         char line[256];
-        std::snprintf(line, sizeof line, "%g,%s,%.5g,%.5f,%.5f,%.5f\n", ab, kKindName[k], l,
-                      std::abs(nss / cf - re), std::abs(sl / cf - re), std::abs(1.0 - re));
+        std::snprintf(line, sizeof line, "%g,%s,%.5g,%.5f,%.5f,%.5f\n", ab,
+                      coefficientCode(kKinds[k]), l, std::abs(nss / cf - re),
+                      std::abs(sl / cf - re), std::abs(1.0 - re));
         errs << line;
         if (ab != 1.0) continue;
         const std::pair<const char*, std::complex<double>> rows[] = {
             {"exact", re * ce}, {"nss", nss}, {"shen-li", sl}, {"steady", cf}};
         for (const auto& r : rows) {
           const double steady = std::string(r.first) == "exact" ? ce : cf;
-          std::snprintf(line, sizeof line, "%s,%.5g,%s,%.6g,%.6g,%.6g,%.6g\n", kKindName[k], l,
-                        r.first, r.second.real(), r.second.imag(), r.second.real() / steady,
-                        r.second.imag() / steady);
+          std::snprintf(line, sizeof line, "%s,%.5g,%s,%.6g,%.6g,%.6g,%.6g\n",
+                        coefficientCode(kKinds[k]), l, r.first, r.second.real(), r.second.imag(),
+                        r.second.real() / steady, r.second.imag() / steady);
           fig << line;
         }
       }
-      std::cerr << "freq a/b " << ab << " kind " << kKindName[k] << " done\n";
+      std::cerr << "freq a/b " << ab << " kind " << coefficientCode(kKinds[k]) << " done\n";
     }
   }
 }

@@ -130,7 +130,6 @@ int run(const Options& o) {
   // Rows gathered per mesh (the exact curve is computed once for all meshes), written mesh by mesh.
   std::vector<std::string> tableRows(o.meshes.size()), spinRows(o.meshes.size());
   const CreepageKind kinds[3] = {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi};
-  const char* names[3] = {"11", "22", "23"};
   for (double ab : ratios) {
     for (int q = 0; q < 3; ++q) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -141,8 +140,8 @@ int run(const Options& o) {
         const std::complex<double> c = exact.at(l);
         curve.push_back({l, c / steady});
         char line[256];
-        std::snprintf(line, sizeof line, "%g,%s,%.6g,%.9g,%.9g,%.9g\n", ab, names[q], l, c.real(),
-                      c.imag(), steady);
+        std::snprintf(line, sizeof line, "%g,%s,%.6g,%.9g,%.9g,%.9g\n", ab,
+                      coefficientCode(kinds[q]), l, c.real(), c.imag(), steady);
         curves << line;
       }
       const bool second = kinds[q] == CreepageKind::kPhi && (spin.is_open() || o.secondOrderSpin);
@@ -153,8 +152,8 @@ int run(const Options& o) {
         std::string line;
         if (!(second && o.secondOrderSpin)) {  // else the second-order fit below is the row
           const ChiFit f = fitChi(kinds[q], ab, nu, n, n, curve);
-          line = row(ab, names[q], SecondOrderChi::fromFirstOrder(f.chi), o.secondOrderSpin, n,
-                     f.meanErrorLog, f.meanErrorLinear, f.maxError, &shenLi);
+          line = row(ab, coefficientCode(kinds[q]), SecondOrderChi::fromFirstOrder(f.chi),
+                     o.secondOrderSpin, n, f.meanErrorLog, f.meanErrorLinear, f.maxError, &shenLi);
         }
         if (second) {
           const SecondOrderFit f2 = fitSecondOrderChi(kinds[q], ab, nu, n, n, curve);
@@ -165,7 +164,8 @@ int run(const Options& o) {
                        &shenLi);
         }
         tableRows[m] += line;
-        std::cerr << "a/b " << ab << " kind " << names[q] << " mesh " << n << ": " << line;
+        std::cerr << "a/b " << ab << " kind " << coefficientCode(kinds[q]) << " mesh " << n << ": "
+                  << line;
       }
       const double secs =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
