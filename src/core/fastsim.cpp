@@ -142,36 +142,69 @@ CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& f) {
   return sums.forces();
 }
 
+namespace {
+
+// One strip of the steady march: its drive and running traction and sums.
+struct SteadyStrip {
+  double dx, aj, sx, gy, gphi;
+  int k0;
+  double tx = 0.0, ty = 0.0;
+  StripSums sums = {};
+  [[gnu::always_inline]] void node(int i, double h, const double* xn, const FieldPointers& out) {
+    const int k = k0 + i;
+    const UpstreamStep step(i, dx, aj, h);
+    tx -= step.h * sx;
+    ty -= step.h * (gy + gphi * step.xMid);
+    sums.node(k, xn[k], out.bound[k], &tx, &ty, out);
+  }
+};
+
+}  // namespace
+
 CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                           TractionField* f) {
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3;
   const FieldPointers out(f);
   const double* const xn = mesh.xNorms().data();
-  const int nx = mesh.nx();
+  const int nx = mesh.nx(), ny = mesh.ny();
   ForceSums sums;
-  for (int j = 0; j < mesh.ny(); ++j) {
-    const double dx = mesh.stripStep(j), aj = mesh.stripHalfLength(j);
-    const double sx = gx - gphi * mesh.stripY(j);
-    const StripEntry entry = f->entry[j];
-    const int k0 = mesh.index(0, j);
-    double tx = 0.0, ty = 0.0;
-    StripSums strip;
-    auto node = [&](int i, double h) {
-      const int k = k0 + i;
-      const UpstreamStep step(i, dx, aj, h);
-      tx -= step.h * sx;
-      ty -= step.h * (gy + gphi * step.xMid);
-      strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
-    };
-    // The loaded nodes are [enter, leave) (the patch is symmetric in x); the first steps from the
-    // patch's leading edge. Outside the patch (a mesh larger than it) the bound is zero: whatever
-    // the march would bring saturates at zero there, so those nodes are not marched.
-    const int enter = entry.first, leave = nx - entry.first;
-    if (enter < leave) node(enter, entry.h);
-    for (int i = enter + 1; i < leave; ++i) node(i, dx);
-    for (int i = 0; i < std::min(enter, nx); ++i) out.unloaded(k0 + i);
-    for (int i = std::max(leave, enter); i < nx; ++i) out.unloaded(k0 + i);
-    sums.addStrip(mesh, j, strip, entry, out.tx, out.ty);
+  auto strip = [&](int j) __attribute__((always_inline)) {
+    return SteadyStrip{
+        mesh.stripStep(j), mesh.stripHalfLength(j), gx - gphi * mesh.stripY(j), gy, gphi,
+        mesh.index(0, j)};
+  };
+  auto finish = [&](int j, const SteadyStrip& s) {
+    const StripEntry& e = f->entry[j];
+    for (int i = 0; i < std::min(e.first, nx); ++i) out.unloaded(s.k0 + i);
+    for (int i = std::max(nx - e.first, e.first); i < nx; ++i) out.unloaded(s.k0 + i);
+    sums.addStrip(mesh, j, s.sums, e, out.tx, out.ty);
+  };
+  int j = 0;
+  // Two strips at a time: their marches are independent chains, so one fills the other's latency.
+  for (; j + 1 < ny; j += 2) {
+    SteadyStrip A = strip(j), B = strip(j + 1);
+    const StripEntry ea = f->entry[j], eb = f->entry[j + 1];
+    int ia = ea.first, ib = eb.first;
+    const int la = nx - ea.first, lb = nx - eb.first;
+    if (ia < la) A.node(ia++, ea.h, xn, out);
+    if (ib < lb) B.node(ib++, eb.h, xn, out);
+    const int n = std::max(0, std::min(la - ia, lb - ib));
+    for (int s = 0; s < n; ++s) {
+      A.node(ia + s, A.dx, xn, out);
+      B.node(ib + s, B.dx, xn, out);
+    }
+    for (ia += n; ia < la; ++ia) A.node(ia, A.dx, xn, out);
+    for (ib += n; ib < lb; ++ib) B.node(ib, B.dx, xn, out);
+    finish(j, A);
+    finish(j + 1, B);
+  }
+  if (j < ny) {
+    SteadyStrip A = strip(j);
+    const StripEntry ea = f->entry[j];
+    const int la = nx - ea.first;
+    if (ea.first < la) A.node(ea.first, ea.h, xn, out);
+    for (int i = ea.first + 1; i < la; ++i) A.node(i, A.dx, xn, out);
+    finish(j, A);
   }
   return sums.forces();
 }

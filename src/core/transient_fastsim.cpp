@@ -90,12 +90,15 @@ struct InPlace {
   // Read where the march writes: taken from the same state as the writes' pointer, so that the
   // compiler sees one pointer (one induction variable, not two).
   void writesTo(const TransientState& s) { history = s.history.data(); }
-  void strip(int) {}
-  History at(int k, int) const {
-    const double* p = history + kPerNode * k;
+  // Strip j's node 0 (of `nodes` per strip): node i of the strip is `strip` + kPerNode i.
+  const double* strip(int j, int nodes) const { return history + kPerNode * nodes * j; }
+  History at(const double* strip, int i) const {
+    const double* p = strip + kPerNode * i;
     return {pairAt(p + kTraction), pairAt(p + kState)};
   }
-  Pair second(int k, int) const { return pairAt(history + kPerNode * k + kSecondState); }
+  Pair second(const double* strip, int i) const {
+    return pairAt(strip + kPerNode * i + kSecondState);
+  }
 };
 
 // The history of the previous patch, carried along the strips (AlongStripMap) node by node as the
@@ -107,24 +110,27 @@ struct AlongStrips {
   const double* weights;
   std::ptrdiff_t nodes;
   const double* history;
-  // The old strip's first node (old and new patch share the layout): per node the march then
-  // only adds the map's offset.
-  const double* stripHistory = nullptr;
   AlongStrips(const AlongStripMap& map, const TransientState& s)
       : offsets(map.historyOffsets()),
         weights(map.spreadWeights()),
         nodes(map.nodes()),
         history(s.history.data()) {}
   void writesTo(const TransientState&) {}  // reads `previous`, never the state written
-  void strip(int j) { stripHistory = history + kPerNode * nodes * j; }
+  // The old strip j's first node (old and new patch share the layout): per node the march then
+  // only adds the map's offset.
+  const double* strip(int j, int) const { return history + kPerNode * nodes * j; }
   // As AlongStripMap::read, w0 v0 + w1 v1, for both directions at once: the pair at `offset` of
   // old nodes index(i) and index(i) + 1 of the strip.
-  Pair carried(int offset, int i) const {
-    const double* p = stripHistory + offsets[i] + offset;
+  [[gnu::always_inline]] Pair carried(const double* strip, int offset, int i) const {
+    const double* p = strip + offsets[i] + offset;
     return pairAt(weights + 4 * i) * pairAt(p) + pairAt(weights + 4 * i + 2) * pairAt(p + kPerNode);
   }
-  History at(int, int i) const { return {carried(kTraction, i), carried(kState, i)}; }
-  Pair second(int, int i) const { return carried(kSecondState, i); }
+  [[gnu::always_inline]] History at(const double* strip, int i) const {
+    return {carried(strip, kTraction, i), carried(strip, kState, i)};
+  }
+  [[gnu::always_inline]] Pair second(const double* strip, int i) const {
+    return carried(strip, kSecondState, i);
+  }
 };
 
 // The filter states' update at a node from its final traction t and history (old, s, s2):
@@ -150,12 +156,12 @@ struct StateUpdate {
     }
   }
   template <class Source>
-  void operator()(const Source& history, int k, int i, const Pair& t, const Pair& old,
-                  const Pair& s) const {
+  [[gnu::always_inline]] void operator()(const Source& history, const double* strip, int k, int i,
+                                         const Pair& t, const Pair& old, const Pair& s) const {
     Pair next = rate * t - rateOld * old - poleOld * s;  // TimeTerm::nextState
     if constexpr (kSecond) {
       // Read before the store below: in place, s2 of node k is its own history.
-      const Pair s2 = history.second(k, i);
+      const Pair s2 = history.second(strip, i);
       next += r * s2;
       storePair(written + kPerNode * k + kSecondState, rate2 * t - rate2Old * old - pole2Old * s);
     }
@@ -164,6 +170,48 @@ struct StateUpdate {
     storePair(p + kTraction, t);
   }
 };
+
+// One strip of the march: where its history starts, its running traction and sums, and its two
+// steps (from the patch's leading edge to the first loaded node, and between nodes).
+template <bool kSecond, class Source>
+struct StripMarch {
+  const double* history;  // Source::strip
+  PackedStep entry, full;
+  int first, enter, leave;  // the strip's node 0; its loaded nodes [enter, leave)
+  double tx = 0.0, ty = 0.0;
+  StripSums sums = {};
+  [[gnu::always_inline]] void node(int k, const PackedStep& m, const Source& source,
+                                   const double* xn, const FieldPointers& out,
+                                   const StateUpdate<kSecond>& update) {
+    const int i = k - first;
+    const History o = source.at(history, i);
+    const Pair &old = o.t, &s = o.s;
+    // The upstream traction enters last: it is the only operand on the march's serial chain.
+    const Pair guess = m.memory * old - m.lag * s - m.push;  // PackedStep's history
+    tx = guess(0) + m.decayX * tx;
+    ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
+    sums.node(k, xn[k], out.bound[k], &tx, &ty, out);
+    update(source, history, k, i, Pair(tx, ty), old, s);
+  }
+};
+
+// A strip's nodes outside the patch (a fixed mesh larger than it): the bound is zero there, so
+// whatever the march would bring saturates at zero; only the filter state moves. A free function
+// of the strip's values: were it a member, the strip's address would escape and its running sums
+// would live in memory.
+template <bool kSecond, class Source>
+void unloadedNodes(const double* history, int first, int enter, int leave, int nx,
+                   const Source& source, const FieldPointers& out,
+                   const StateUpdate<kSecond>& update) {
+  auto one = [&](int k) {
+    const History o = source.at(history, k - first);
+    update(source, history, k, k - first, Pair(0.0, 0.0), o.t, o.s);
+    out.unloaded(k);
+  };
+  const int end = first + nx;
+  for (int k = first; k < std::min(enter, end); ++k) one(k);
+  for (int k = std::max(leave, enter); k < end; ++k) one(k);
+}
 
 template <bool kSecond, class Source>
 CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c, double V,
@@ -177,42 +225,51 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
   const double* const xn = mesh.xNorms().data();
   const FieldPointers out(f);
+  const int nx = mesh.nx(), ny = mesh.ny();
   ForceSums sums;
-  for (int j = 0; j < mesh.ny(); ++j) {
-    const double dx = mesh.stripStep(j), driveX = gx - gphi * mesh.stripY(j);
-    double tx = 0.0, ty = 0.0;
-    StripSums strip;
-    history.strip(j);
-    const int first = mesh.index(0, j), end = first + mesh.nx();
-    // The upstream traction enters last: it is the only operand on the march's serial chain.
-    auto node = [&](int k, const PackedStep& m) {
-      const History o = history.at(k, k - first);
-      const Pair &old = o.t, &s = o.s;
-      const Pair guess = m.memory * old - m.lag * s - m.push;  // PackedStep's history
-      tx = guess(0) + m.decayX * tx;
-      ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
-      strip.node(k, xn[k], out.bound[k], &tx, &ty, out);
-      update(history, k, k - first, Pair(tx, ty), old, s);
-    };
-    // The loaded nodes are [enter, leave) (the patch is symmetric in x).
-    const StripEntry entry = f->entry[j];
-    const int enter = first + entry.first, leave = end - entry.first;
-    // Outside the patch (a fixed mesh larger than it) the bound is zero: whatever the march would
-    // bring, the traction saturates at zero there; only the filter state moves. These nodes do not
-    // touch the loaded ones, so they go first: fewer values then live across the loaded march.
-    auto unloaded = [&](int k) {
-      const History o = history.at(k, k - first);
-      update(history, k, k - first, Pair(0.0, 0.0), o.t, o.s);
-      out.unloaded(k);
-    };
-    for (int k = first; k < std::min(enter, end); ++k) unloaded(k);
-    for (int k = std::max(leave, enter); k < end; ++k) unloaded(k);
+  using Strip = StripMarch<kSecond, Source>;
+  // Strip j's march; its nodes outside the patch (which do not touch the loaded ones) go first:
+  // fewer values then live across the loaded march.
+  auto strip = [&](int j) __attribute__((always_inline)) {
+    const double driveX = gx - gphi * mesh.stripY(j);
+    const StripEntry e = f->entry[j];
+    const int first = mesh.index(0, j), enter = first + e.first, leave = first + nx - e.first;
+    const double* const strip = history.strip(j, nx);
+    unloadedNodes(strip, first, enter, leave, nx, history, out, update);
+    return Strip{strip,
+                 PackedStep(beta, X.lagPerLength, r, e.h, driveX, gy, gphi, a),
+                 PackedStep(beta, X.lagPerLength, r, mesh.stripStep(j), driveX, gy, gphi, a),
+                 first,
+                 enter,
+                 leave};
+  };
+  auto finish = [&](int j, const Strip& s) {
+    sums.addStrip(mesh, j, s.sums, f->entry[j], out.tx, out.ty);
+  };
+  int j = 0;
+  // Two strips at a time: their marches are independent serial chains, so each fills the other's
+  // latency. Each strip's nodes still go in order: the result is that of one strip at a time.
+  for (; j + 1 < ny; j += 2) {
+    Strip A = strip(j), B = strip(j + 1);
+    int ka = A.enter, kb = B.enter;
     // The first loaded node steps from the patch's leading edge, where the traction is zero.
-    if (enter < leave)
-      node(enter, PackedStep(beta, X.lagPerLength, r, entry.h, driveX, gy, gphi, a));
-    const PackedStep full(beta, X.lagPerLength, r, dx, driveX, gy, gphi, a);
-    for (int k = enter + 1; k < leave; ++k) node(k, full);
-    sums.addStrip(mesh, j, strip, entry, out.tx, out.ty);
+    if (ka < A.leave) A.node(ka++, A.entry, history, xn, out, update);
+    if (kb < B.leave) B.node(kb++, B.entry, history, xn, out, update);
+    const int n = std::max(0, std::min(A.leave - ka, B.leave - kb));
+    for (int s = 0; s < n; ++s) {
+      A.node(ka + s, A.full, history, xn, out, update);
+      B.node(kb + s, B.full, history, xn, out, update);
+    }
+    for (ka += n; ka < A.leave; ++ka) A.node(ka, A.full, history, xn, out, update);
+    for (kb += n; kb < B.leave; ++kb) B.node(kb, B.full, history, xn, out, update);
+    finish(j, A);
+    finish(j + 1, B);
+  }
+  for (; j < ny; ++j) {
+    Strip A = strip(j);
+    if (A.enter < A.leave) A.node(A.enter, A.entry, history, xn, out, update);
+    for (int k = A.enter + 1; k < A.leave; ++k) A.node(k, A.full, history, xn, out, update);
+    finish(j, A);
   }
   return sums.forces();
 }
@@ -272,13 +329,13 @@ void AlongStripMap::set(double ratio) {
 
 void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int strips,
                       TransientState* out) {
-  AlongStrips source(map, in);
+  const AlongStrips source(map, in);
   for (int j = 0; j < strips; ++j) {
-    source.strip(j);
+    const double* const strip = source.strip(j, map.nodes());
     for (int i = 0; i < map.nodes(); ++i) {
-      const History h = source.at(0, i);
+      const History h = source.at(strip, i);
       const int k = j * map.nodes() + i;
-      out->history.col(k) << h.t, h.s, source.second(0, i);
+      out->history.col(k) << h.t, h.s, source.second(strip, i);
     }
   }
 }
