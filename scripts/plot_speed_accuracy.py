@@ -63,7 +63,7 @@ def panel(ax, table, column, title):
             zorder=0, label="Pareto front")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("cost per step [ns] (median)")
+    ax.set_xlabel("cost per step [ns] (least of the passes)")
     ax.set_ylabel(f"{title} error [% of exact peak force]")
     ax.set_title(f"{title} over the scenes")
     ax.grid(True, which="both", alpha=0.3)
