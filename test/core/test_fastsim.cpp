@@ -151,3 +151,27 @@ TEST(SteadyModel, StatusRules) {
   EXPECT_EQ(o.status, StepStatus::kNoLoad);
   EXPECT_EQ(o.fx, 0.0);
 }
+
+TEST(SteadyFastSim, EveryStripMarchesAsIfAloneWhateverItsPartner) {
+  // The march runs strips j and j + 1 together (and an odd last strip alone). Under a longitudinal
+  // creepage the patch is symmetric in y, so strip j and strip ny - 1 - j must carry the same
+  // traction, though they sit in different places of the pairs (7 strips: 0 with 1, ..., 6
+  // alone). On a mesh larger than the patch the strips' loaded ranges differ as well.
+  const Patch p;
+  const Flexibilities L = kalkerFlexibilities(p.a, p.b, p.G, kalkerCoefficients(p.a / p.b, p.nu));
+  for (const double k : {1.0, std::cbrt(1.5)}) {
+    const PatchMesh mesh(9, 7, k * p.a, k * p.b);
+    TractionField f;
+    f.resize(mesh.size());
+    parabolicBound(mesh, p.a, p.b, p.fz, p.mu, &f);
+    steadyFastSim(mesh, L, {2e-3, 0.0, 0.0}, &f);  // partial slip: both branches of a node
+    const double scale = f.tx.abs().maxCoeff();
+    ASSERT_GT(scale, 0.0);
+    for (int j = 0; j < mesh.ny(); ++j)
+      for (int i = 0; i < mesh.nx(); ++i) {
+        const int a = mesh.index(i, j), b = mesh.index(i, mesh.ny() - 1 - j);
+        EXPECT_NEAR(f.tx(a), f.tx(b), 1e-12 * scale) << k << " strip " << j << " node " << i;
+        EXPECT_EQ(f.slip(a), f.slip(b)) << k << " strip " << j << " node " << i;
+      }
+  }
+}

@@ -158,3 +158,46 @@ TEST(AlongStripMap, FusedStepEqualsCarryThenStepBitForBit) {
     }
   }
 }
+
+TEST(TransientFastSim, EveryStripMarchesAsIfAloneWhateverItsPartner) {
+  // As for steady FastSim (test_fastsim.cpp): strips j and ny - 1 - j sit in different places of
+  // the march's strip pairs, yet under a longitudinal creepage on a patch symmetric in y they must
+  // keep the same traction and filter state, step after step, in place and carried, with a first-
+  // and a second-order filter, on a mesh fitted to the patch and on one larger than it.
+  const double a = 6e-3, b = 4e-3, fz = 8e4;
+  const Flexibilities L = kalkerFlexibilities(a, b, 8.2e10, kalkerCoefficients(a / b, 0.28));
+  for (const bool second : {false, true})
+    for (const double k : {1.0, std::cbrt(1.5)}) {
+      const PatchMesh mesh(9, 7, k * a, k * b);
+      const FilterZ z =
+          second ? discretise(SecondOrderChi{0.744200, 1.776235, 0.511910, 0.107313, 0.021463}, a,
+                              20.0, 5e-5)
+                 : discretise(ChiParameters{0.4, 1.1, 0.6}, a, 20.0, 5e-5);
+      TractionField f;
+      f.resize(mesh.size());
+      parabolicBound(mesh, a, b, fz, 0.3, &f);
+      TransientState state, previous;
+      state.resize(mesh.size());
+      AlongStripMap map(mesh.nx());
+      map.set(1.0);
+      for (int step = 0; step < 30; ++step) {
+        const Creepages c{2e-3 * (1.0 + std::sin(0.3 * step)), 0.0, 0.0};
+        if (step % 3 == 2) {  // a carried step (the adaptive mesh's path), the patch unchanged
+          previous = state;
+          transientFastSim(mesh, L, c, 20.0, 5e-5, z, z, 1.0, map, previous, &state, &f);
+        } else {
+          transientFastSim(mesh, L, c, 20.0, 5e-5, z, z, 1.0, &state, &f);
+        }
+      }
+      const double scale = state.tx().abs().maxCoeff(), rate = state.sx().abs().maxCoeff();
+      ASSERT_GT(scale, 0.0);
+      ASSERT_GT(rate, 0.0);
+      for (int j = 0; j < mesh.ny(); ++j)
+        for (int i = 0; i < mesh.nx(); ++i) {
+          const int p = mesh.index(i, j), q = mesh.index(i, mesh.ny() - 1 - j);
+          EXPECT_NEAR(state.tx()(p), state.tx()(q), 1e-12 * scale) << second << k << j << i;
+          EXPECT_NEAR(state.sx()(p), state.sx()(q), 1e-12 * rate) << second << k << j << i;
+          EXPECT_EQ(f.slip(p), f.slip(q)) << second << k << j << i;
+        }
+    }
+}
