@@ -195,22 +195,30 @@ struct StripMarch {
   }
 };
 
-// A strip's nodes outside the patch (a fixed mesh larger than it): the bound is zero there, so
-// whatever the march would bring saturates at zero; only the filter state moves. A free function
-// of the strip's values: were it a member, the strip's address would escape and its running sums
-// would live in memory.
+// Every strip's nodes outside the patch (a fixed mesh larger than it), in one pass before the
+// march: the bound is zero there, so whatever the march would bring saturates at zero; only the
+// filter state moves. The constants and pointers are copied into locals first: read through
+// references, they were reloaded after every store (a double or bool store may alias them).
 template <bool kSecond, class Source>
-void unloadedNodes(const double* history, int first, int enter, int leave, int nx,
-                   const Source& source, const FieldPointers& out,
-                   const StateUpdate<kSecond>& update) {
-  auto one = [&](int k) {
-    const History o = source.at(history, k - first);
-    update(source, history, k, k - first, Pair(0.0, 0.0), o.t, o.s);
-    out.unloaded(k);
+void unloadedNodes(const PatchMesh& mesh, const std::vector<StripEntry>& entries,
+                   const Source& source, const FieldPointers& field,
+                   const StateUpdate<kSecond>& updateRef) {
+  const StateUpdate<kSecond> update = updateRef;
+  const FieldPointers out = field;
+  const int nx = mesh.nx();
+  auto nodes = [&](const double* strip, int first, int from, int to) {
+    for (int i = from; i < to; ++i) {
+      const History o = source.at(strip, i);
+      update(source, strip, first + i, i, Pair(0.0, 0.0), o.t, o.s);
+      out.unloaded(first + i);
+    }
   };
-  const int end = first + nx;
-  for (int k = first; k < std::min(enter, end); ++k) one(k);
-  for (int k = std::max(leave, enter); k < end; ++k) one(k);
+  for (int j = 0; j < mesh.ny(); ++j) {
+    const int first = mesh.index(0, j), enter = std::min(entries[j].first, nx);
+    const double* const strip = source.strip(j, nx);
+    nodes(strip, first, 0, enter);
+    nodes(strip, first, std::max(nx - enter, enter), nx);
+  }
 }
 
 template <bool kSecond, class Source>
@@ -228,14 +236,15 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const int nx = mesh.nx(), ny = mesh.ny();
   ForceSums sums;
   using Strip = StripMarch<kSecond, Source>;
-  // Strip j's march; its nodes outside the patch (which do not touch the loaded ones) go first:
-  // fewer values then live across the loaded march.
+  // The nodes outside the patch do not touch the loaded ones: they go first, in a pass of their
+  // own.
+  unloadedNodes(mesh, f->entry, history, out, update);
+  // Strip j's march.
   auto strip = [&](int j) __attribute__((always_inline)) {
     const double driveX = gx - gphi * mesh.stripY(j);
     const StripEntry e = f->entry[j];
     const int first = mesh.index(0, j), enter = first + e.first, leave = first + nx - e.first;
     const double* const strip = history.strip(j, nx);
-    unloadedNodes(strip, first, enter, leave, nx, history, out, update);
     return Strip{strip,
                  PackedStep(beta, X.lagPerLength, r, e.h, driveX, gy, gphi, a),
                  PackedStep(beta, X.lagPerLength, r, mesh.stripStep(j), driveX, gy, gphi, a),
