@@ -86,6 +86,7 @@ constexpr int kTraction = 0, kState = 2, kSecondState = 4, kPerNode = TransientS
 
 // The history in place: node k of the state the march also writes.
 struct InPlace {
+  static constexpr bool kMapped = false;
   const double* history = nullptr;
   // Read where the march writes: taken from the same state as the writes' pointer, so that the
   // compiler sees one pointer (one induction variable, not two).
@@ -106,7 +107,8 @@ struct InPlace {
 // pointers, held in registers: through references they were reloaded after every store of the
 // march's slip flags (a bool store may alias anything).
 struct AlongStrips {
-  const std::ptrdiff_t* offsets;  // AlongStripMap::historyOffsets
+  static constexpr bool kMapped = true;  // every strip reads through the same map
+  const std::ptrdiff_t* offsets;         // AlongStripMap::historyOffsets
   const double* weights;
   std::ptrdiff_t nodes;
   const double* history;
@@ -130,6 +132,19 @@ struct AlongStrips {
   }
   [[gnu::always_inline]] Pair second(const double* strip, int i) const {
     return carried(strip, kSecondState, i);
+  }
+  // Node i of two strips, the map's offset and weights read once for both (the slip flags'
+  // stores between two reads would have the compiler read them again).
+  [[gnu::always_inline]] void atBoth(const double* a, const double* b, int i, History* ha,
+                                     History* hb) const {
+    const std::ptrdiff_t o = offsets[i];
+    const Pair w0 = pairAt(weights + 4 * i), w1 = pairAt(weights + 4 * i + 2);
+    auto read = [&](const double* strip, int offset) __attribute__((always_inline))->Pair {
+      const double* p = strip + o + offset;
+      return w0 * pairAt(p) + w1 * pairAt(p + kPerNode);
+    };
+    *ha = {read(a, kTraction), read(a, kState)};
+    *hb = {read(b, kTraction), read(b, kState)};
   }
 };
 
@@ -183,8 +198,13 @@ struct StripMarch {
   [[gnu::always_inline]] void node(int k, const PackedStep& m, const Source& source,
                                    const double* xn, const FieldPointers& out,
                                    const StateUpdate<kSecond>& update) {
+    step(k, m, source.at(history, k - first), source, xn, out, update);
+  }
+  // Node k from its history o (read by the caller).
+  [[gnu::always_inline]] void step(int k, const PackedStep& m, const History& o,
+                                   const Source& source, const double* xn, const FieldPointers& out,
+                                   const StateUpdate<kSecond>& update) {
     const int i = k - first;
-    const History o = source.at(history, i);
     const Pair &old = o.t, &s = o.s;
     // The upstream traction enters last: it is the only operand on the march's serial chain.
     const Pair guess = m.memory * old - m.lag * s - m.push;  // PackedStep's history
@@ -265,9 +285,27 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     if (ka < A.leave) A.node(ka++, A.entry, history, xn, out, update);
     if (kb < B.leave) B.node(kb++, B.entry, history, xn, out, update);
     const int n = std::max(0, std::min(A.leave - ka, B.leave - kb));
-    for (int s = 0; s < n; ++s) {
-      A.node(ka + s, A.full, history, xn, out, update);
-      B.node(kb + s, B.full, history, xn, out, update);
+    if constexpr (Source::kMapped) {
+      // On the adaptive mesh both strips march the same nodes of their strips: read the map once.
+      const int i = ka - A.first;
+      if (i == kb - B.first) {
+        for (int s = 0; s < n; ++s) {
+          History ha, hb;
+          history.atBoth(A.history, B.history, i + s, &ha, &hb);
+          A.step(ka + s, A.full, ha, history, xn, out, update);
+          B.step(kb + s, B.full, hb, history, xn, out, update);
+        }
+      } else {
+        for (int s = 0; s < n; ++s) {
+          A.node(ka + s, A.full, history, xn, out, update);
+          B.node(kb + s, B.full, history, xn, out, update);
+        }
+      }
+    } else {
+      for (int s = 0; s < n; ++s) {
+        A.node(ka + s, A.full, history, xn, out, update);
+        B.node(kb + s, B.full, history, xn, out, update);
+      }
     }
     for (ka += n; ka < A.leave; ++ka) A.node(ka, A.full, history, xn, out, update);
     for (kb += n; kb < B.leave; ++kb) B.node(kb, B.full, history, xn, out, update);
