@@ -75,9 +75,10 @@ void storePair(double* p, const Pair& v) {
   to = v;
 }
 
-// A node's history as the march reads it: the traction and the filter state, (x, y) pairs.
+// A node's history as the march reads it: the traction and the filter states, (x, y) pairs (s2
+// read only by the second-order march).
 struct History {
-  Pair t, s;
+  Pair t, s, s2;
 };
 
 // Where TransientState keeps node k: its traction at history + 6k, its filter state 2 further, its
@@ -93,12 +94,10 @@ struct InPlace {
   void writesTo(const TransientState& s) { history = s.history.data(); }
   // Strip j's node 0 (of `nodes` per strip): node i of the strip is `strip` + kPerNode i.
   const double* strip(int j, int nodes) const { return history + kPerNode * nodes * j; }
+  template <bool kSecond>
   History at(const double* strip, int i) const {
     const double* p = strip + kPerNode * i;
-    return {pairAt(p + kTraction), pairAt(p + kState)};
-  }
-  Pair second(const double* strip, int i) const {
-    return pairAt(strip + kPerNode * i + kSecondState);
+    return {pairAt(p + kTraction), pairAt(p + kState), kSecond ? pairAt(p + kSecondState) : Pair()};
   }
 };
 
@@ -127,14 +126,14 @@ struct AlongStrips {
     const double* p = strip + offsets[i] + offset;
     return pairAt(weights + 4 * i) * pairAt(p) + pairAt(weights + 4 * i + 2) * pairAt(p + kPerNode);
   }
+  template <bool kSecond>
   [[gnu::always_inline]] History at(const double* strip, int i) const {
-    return {carried(strip, kTraction, i), carried(strip, kState, i)};
-  }
-  [[gnu::always_inline]] Pair second(const double* strip, int i) const {
-    return carried(strip, kSecondState, i);
+    return {carried(strip, kTraction, i), carried(strip, kState, i),
+            kSecond ? carried(strip, kSecondState, i) : Pair()};
   }
   // Node i of two strips, the map's offset and weights read once for both (the slip flags'
   // stores between two reads would have the compiler read them again).
+  template <bool kSecond>
   [[gnu::always_inline]] void atBoth(const double* a, const double* b, int i, History* ha,
                                      History* hb) const {
     const std::ptrdiff_t o = offsets[i];
@@ -143,8 +142,8 @@ struct AlongStrips {
       const double* p = strip + o + offset;
       return w0 * pairAt(p) + w1 * pairAt(p + kPerNode);
     };
-    *ha = {read(a, kTraction), read(a, kState)};
-    *hb = {read(b, kTraction), read(b, kState)};
+    *ha = {read(a, kTraction), read(a, kState), kSecond ? read(a, kSecondState) : Pair()};
+    *hb = {read(b, kTraction), read(b, kState), kSecond ? read(b, kSecondState) : Pair()};
   }
 };
 
@@ -170,14 +169,12 @@ struct StateUpdate {
       pole2Old = Pair(zx.a2, zy.a2) * r;
     }
   }
-  template <class Source>
-  [[gnu::always_inline]] void operator()(const Source& history, const double* strip, int k, int i,
-                                         const Pair& t, const Pair& old, const Pair& s) const {
+  // o: the node's history, read before these stores (in place, they overwrite it).
+  [[gnu::always_inline]] void operator()(int k, const Pair& t, const History& o) const {
+    const Pair &old = o.t, &s = o.s;
     Pair next = rate * t - rateOld * old - poleOld * s;  // TimeTerm::nextState
     if constexpr (kSecond) {
-      // Read before the store below: in place, s2 of node k is its own history.
-      const Pair s2 = history.second(strip, i);
-      next += r * s2;
+      next += r * o.s2;
       storePair(written + kPerNode * k + kSecondState, rate2 * t - rate2Old * old - pole2Old * s);
     }
     double* const p = written + kPerNode * k;
@@ -198,20 +195,18 @@ struct StripMarch {
   [[gnu::always_inline]] void node(int k, const PackedStep& m, const Source& source,
                                    const double* xn, const FieldPointers& out,
                                    const StateUpdate<kSecond>& update) {
-    step(k, m, source.at(history, k - first), source, xn, out, update);
+    step(k, m, source.template at<kSecond>(history, k - first), xn, out, update);
   }
   // Node k from its history o (read by the caller).
-  [[gnu::always_inline]] void step(int k, const PackedStep& m, const History& o,
-                                   const Source& source, const double* xn, const FieldPointers& out,
-                                   const StateUpdate<kSecond>& update) {
-    const int i = k - first;
+  [[gnu::always_inline]] void step(int k, const PackedStep& m, const History& o, const double* xn,
+                                   const FieldPointers& out, const StateUpdate<kSecond>& update) {
     const Pair &old = o.t, &s = o.s;
     // The upstream traction enters last: it is the only operand on the march's serial chain.
     const Pair guess = m.memory * old - m.lag * s - m.push;  // PackedStep's history
     tx = guess(0) + m.decayX * tx;
     ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
     sums.node(k, xn[k], out.bound[k], &tx, &ty, out);
-    update(source, history, k, i, Pair(tx, ty), old, s);
+    update(k, Pair(tx, ty), o);
   }
 };
 
@@ -228,8 +223,7 @@ void unloadedNodes(const PatchMesh& mesh, const std::vector<StripEntry>& entries
   const int nx = mesh.nx();
   auto nodes = [&](const double* strip, int first, int from, int to) {
     for (int i = from; i < to; ++i) {
-      const History o = source.at(strip, i);
-      update(source, strip, first + i, i, Pair(0.0, 0.0), o.t, o.s);
+      update(first + i, Pair(0.0, 0.0), source.template at<kSecond>(strip, i));
       out.unloaded(first + i);
     }
   };
@@ -291,9 +285,9 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       if (i == kb - B.first) {
         for (int s = 0; s < n; ++s) {
           History ha, hb;
-          history.atBoth(A.history, B.history, i + s, &ha, &hb);
-          A.step(ka + s, A.full, ha, history, xn, out, update);
-          B.step(kb + s, B.full, hb, history, xn, out, update);
+          history.template atBoth<kSecond>(A.history, B.history, i + s, &ha, &hb);
+          A.step(ka + s, A.full, ha, xn, out, update);
+          B.step(kb + s, B.full, hb, xn, out, update);
         }
       } else {
         for (int s = 0; s < n; ++s) {
@@ -380,9 +374,9 @@ void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int st
   for (int j = 0; j < strips; ++j) {
     const double* const strip = source.strip(j, map.nodes());
     for (int i = 0; i < map.nodes(); ++i) {
-      const History h = source.at(strip, i);
+      const History h = source.at<true>(strip, i);
       const int k = j * map.nodes() + i;
-      out->history.col(k) << h.t, h.s, source.second(strip, i);
+      out->history.col(k) << h.t, h.s, h.s2;
     }
   }
 }
