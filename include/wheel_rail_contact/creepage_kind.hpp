@@ -8,6 +8,10 @@ namespace wheel_rail_contact {
 /// kXi: longitudinal xi -> C11 (Fx); kEta: lateral eta -> C22 (Fy); kPhi: spin phi -> C23 (Fy).
 enum class CreepageKind { kXi, kEta, kPhi };
 
+/// Every kind, in the order of the enum (and of the chi table's rows).
+inline constexpr CreepageKind kCreepageKinds[] = {CreepageKind::kXi, CreepageKind::kEta,
+                                                  CreepageKind::kPhi};
+
 /// "xi", "eta", "phi".
 const char* toString(CreepageKind k);
 /// The coefficient's indices, "11", "22", "23": the kind column of a chi table and of the

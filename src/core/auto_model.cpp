@@ -104,7 +104,7 @@ double nssRelaxationLength(const ContactParameters& p, const ChiTable& chi) {
   const double ab = p.a0 / p.b0, lambdaOverA = 50.0;
   double worst = 0.0;
   const ChiTable at10 = chi.forMesh(10);
-  for (const CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
+  for (const CreepageKind k : kCreepageKinds) {
     const std::complex<double> c =
         fastsimSecondOrderCoefficient(k, ab, p.nu, 10, 10, at10.secondOrderAt(k, ab), lambdaOverA);
     worst = std::max(worst, std::abs(1.0 - c / fastsimSteadyCoefficient(k, ab, p.nu, 10, 10)));

@@ -39,8 +39,6 @@ struct Options {
   std::string exactFrom;       // folder of an earlier run's scene_*.csv; empty = solve
 };
 
-const CreepageKind kKinds[3] = {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi};
-
 void frequencyErrors(const Options& o, const ChiTable& table) {
   std::ofstream errs = tools::writeFile(o.out + "/freq_errors.csv"),
                 fig = tools::writeFile(o.out + "/freq_ab1.csv");
@@ -50,17 +48,18 @@ void frequencyErrors(const Options& o, const ChiTable& table) {
   for (int q = 0; q <= 32; ++q) lambdas.push_back(std::pow(10.0, -0.30103 + q * 2.30103 / 32));
   for (double ab : {0.5, 1.0, 2.0}) {
     for (int k = 0; k < 3; ++k) {
-      const NonSteadyCoefficients exact(kKinds[k], ab, 0.28, o.grid, o.grid);
+      const NonSteadyCoefficients exact(kCreepageKinds[k], ab, 0.28, o.grid, o.grid);
       const double ce = exact.steady();
-      const double cf = fastsimSteadyCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny);
-      const SecondOrderChi chi = table.secondOrderAt(kKinds[k], ab);  // either order
+      const double cf = fastsimSteadyCoefficient(kCreepageKinds[k], ab, 0.28, o.nx, o.ny);
+      const SecondOrderChi chi = table.secondOrderAt(kCreepageKinds[k], ab);  // either order
       for (double l : lambdas) {
         const std::complex<double> re = exact.at(l) / ce;
-        const auto nss = fastsimSecondOrderCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny, chi, l);
-        const auto sl = fastsimNonSteadyCoefficient(kKinds[k], ab, 0.28, o.nx, o.ny, {}, l);
+        const auto nss =
+            fastsimSecondOrderCoefficient(kCreepageKinds[k], ab, 0.28, o.nx, o.ny, chi, l);
+        const auto sl = fastsimNonSteadyCoefficient(kCreepageKinds[k], ab, 0.28, o.nx, o.ny, {}, l);
         char line[256];
         std::snprintf(line, sizeof line, "%g,%s,%.5g,%.5f,%.5f,%.5f\n", ab,
-                      coefficientCode(kKinds[k]), l, std::abs(nss / cf - re),
+                      coefficientCode(kCreepageKinds[k]), l, std::abs(nss / cf - re),
                       std::abs(sl / cf - re), std::abs(1.0 - re));
         errs << line;
         if (ab != 1.0) continue;
@@ -69,12 +68,12 @@ void frequencyErrors(const Options& o, const ChiTable& table) {
         for (const auto& r : rows) {
           const double steady = std::string(r.first) == "exact" ? ce : cf;
           std::snprintf(line, sizeof line, "%s,%.5g,%s,%.6g,%.6g,%.6g,%.6g\n",
-                        coefficientCode(kKinds[k]), l, r.first, r.second.real(), r.second.imag(),
-                        r.second.real() / steady, r.second.imag() / steady);
+                        coefficientCode(kCreepageKinds[k]), l, r.first, r.second.real(),
+                        r.second.imag(), r.second.real() / steady, r.second.imag() / steady);
           fig << line;
         }
       }
-      std::cerr << "freq a/b " << ab << " kind " << coefficientCode(kKinds[k]) << " done\n";
+      std::cerr << "freq a/b " << ab << " kind " << coefficientCode(kCreepageKinds[k]) << " done\n";
     }
   }
 }

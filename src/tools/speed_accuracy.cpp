@@ -62,7 +62,6 @@ struct Scene {
 };
 
 const double kLambdas[] = {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0};  // lambda/a of the sweep
-const CreepageKind kKinds[] = {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi};
 
 std::vector<std::string> split(const std::string& text, char sep) {
   std::vector<std::string> out;
@@ -83,7 +82,7 @@ double loadStep(const Options& o) {
 
 std::vector<Scene> harmonicScenes(const Options& o) {
   std::vector<Scene> out;
-  for (CreepageKind kind : kKinds) {
+  for (CreepageKind kind : kCreepageKinds) {
     // The sweep's patch is circular and nu = 0.28, as harmonicScene's material.
     const NonSteadyCoefficients exact(kind, 1.0, 0.28, o.grid, o.grid);
     for (double l : kLambdas) {

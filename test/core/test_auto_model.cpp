@@ -158,7 +158,7 @@ TEST(AutoModel, ResetGivesFreshStartOutputs) {
 // longest wave (where it is cheaper than NSS-FastSim) and NSS-FastSim on the shorter ones.
 TEST(AutoModel, MeetsItsToleranceOnWavesTheChartDidNotSee) {
   constexpr int kGrid = 16;
-  for (const CreepageKind kind : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
+  for (const CreepageKind kind : kCreepageKinds) {
     const NonSteadyCoefficients exact(kind, 1.0, 0.28, kGrid, kGrid);
     for (const double tolerance : {0.1, 0.05})
       for (const double lambda : {30.0, 70.0, 300.0}) {

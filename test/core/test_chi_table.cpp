@@ -45,8 +45,7 @@ TEST(ChiTable, ShippedTableLoadsAndIsStable) {
   for (int nx : shipped.meshes()) {
     const ChiTable t = shipped.forMesh(nx);
     for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
-      for (CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi})
-        EXPECT_GT(t.at(k, ab).chi3, 0.0) << nx;
+      for (CreepageKind k : kCreepageKinds) EXPECT_GT(t.at(k, ab).chi3, 0.0) << nx;
     // Kind 23 is second order, and so is every a/b between its rows (NssModel refuses an
     // unstable interpolated F): a fine sweep in ln(a/b) over the table and beyond.
     for (double x = std::log(0.1); x <= std::log(10.0); x += 0.01) {

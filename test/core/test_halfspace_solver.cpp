@@ -28,7 +28,7 @@ TEST(HalfspaceSolver, SteadyAdhesionEqualsTheFoldedCoefficients) {
   HalfspaceSolver s(HalfspaceGrid::covering(a, b, 20, 20), kG, kNu);
   s.setHertzPressure(a, b, 1e4);
   const double c = 1e-7;
-  for (CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
+  for (CreepageKind k : kCreepageKinds) {
     const Creepages w{k == CreepageKind::kXi ? c : 0.0, k == CreepageKind::kEta ? c : 0.0,
                       k == CreepageKind::kPhi ? c : 0.0};
     const HalfspaceSolution& r = s.solve(RollingMode::kSteady, w, 1e9);

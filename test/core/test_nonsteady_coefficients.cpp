@@ -38,7 +38,7 @@ TEST(NonSteadyCoefficients, SteadyReproducesKalkersTableAt40x40) {
   // it (how the whole elements cover the ellipse). Required: within 3 %.
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0}) {
     const CreepCoefficients c = exactSteadyCoefficients(ab, 0.28, 40, 40);
-    for (CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
+    for (CreepageKind k : kCreepageKinds) {
       const double v = k == CreepageKind::kXi ? c.c11 : k == CreepageKind::kEta ? c.c22 : c.c23;
       EXPECT_NEAR(v, kalker(k, ab), 0.03 * kalker(k, ab)) << "a/b " << ab << " " << toString(k);
     }
@@ -81,7 +81,7 @@ TEST(NonSteadyCoefficients, ReproducesContactC11Curve) {
 }
 
 TEST(NonSteadyCoefficients, LongWavesTendToSteadyShortWavesLag) {
-  for (CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
+  for (CreepageKind k : kCreepageKinds) {
     const NonSteadyCoefficients c(k, 0.5, 0.28, 16, 16);
     EXPECT_NEAR(c.at(1e5).real(), c.steady(), 1e-3 * c.steady()) << toString(k);
     EXPECT_LT(std::abs(c.at(2.0)), 0.5 * c.steady()) << toString(k);
@@ -97,7 +97,7 @@ TEST(NonSteadyCoefficients, FrequencyDomainEqualsTimeDomainRun) {
   // whole periods after the start-up has decayed (e^-20), equals the frequency-domain answer to
   // 1e-6 of C_steady. lambda = 30 dx so that periods hold whole steps.
   const int m = 12;
-  for (CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
+  for (CreepageKind k : kCreepageKinds) {
     const double a = 1.0, b = 1.0 / 1.5, G = 1.0, amp = 1e-6;
     HalfspaceSolver s(HalfspaceGrid::covering(a, b, m, m), G, 0.28);
     s.setHertzPressure(a, b, 1.0);

@@ -67,7 +67,7 @@ TEST(NssAccuracy, EveryShippedMeshFrom10x10MeetsTheTargetWithItsOwnChi) {
   // (5x5 only against the 30x30 exact grid the table was fitted on: C23 0.033-0.048 there, 0.072
   // against this test's 20x20). a/b = 1 here; the three a/b at 20x20 above.
   for (int n : {10, 30, 40})
-    for (CreepageKind k : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
+    for (CreepageKind k : kCreepageKinds) {
       const CurveErrors e = errors(k, 1.0, 2.0, n);
       EXPECT_LE(e.maxNss, 0.05) << toString(k) << " mesh " << n;  // issue target
       EXPECT_LT(e.meanNss, 0.2 * e.meanShenLi) << toString(k) << " mesh " << n;

@@ -252,7 +252,7 @@ TEST(NssModel, FrequencyResponseTendsToSteadyAndLags) {
   EXPECT_NEAR(steady, kalkerCoefficients(1.0, 0.28).c11, 0.005 * steady);
   const auto slow = fastsimNonSteadyCoefficient(CreepageKind::kXi, 1.0, 0.28, 20, 20, shenLi, 1e4);
   EXPECT_NEAR(slow.real(), steady, 1e-3 * steady);
-  for (CreepageKind kind : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi}) {
+  for (CreepageKind kind : kCreepageKinds) {
     const auto c = fastsimNonSteadyCoefficient(kind, 1.0, 0.28, 20, 20, shenLi, 5.0);
     EXPECT_LT(c.imag(), 0.0);
     EXPECT_LT(std::abs(c), fastsimSteadyCoefficient(kind, 1.0, 0.28, 20, 20));

@@ -35,7 +35,7 @@ TEST(SpeedAccuracy, ScoreOfAHistoryAgainstItselfIsZero) {
 // against its mean: a phase of pi dx / lambda = 0.022 rad at lambda/a = 20) and in the slip of a
 // finite mu (F ~ 1e-3 mu Fz). A wrong sign gives 200 %, a wrong norm or a lost factor tens of %.
 TEST(SpeedAccuracy, ExactModelMatchesItsFrequencyResponseOnALongWave) {
-  for (CreepageKind kind : {CreepageKind::kXi, CreepageKind::kEta, CreepageKind::kPhi})
+  for (CreepageKind kind : kCreepageKinds)
     EXPECT_LT(error(harmonicScene(kind, 20.0, kStep), "exact", kGrid), 0.04) << toString(kind);
 }
 
