@@ -47,20 +47,18 @@ void frequencyErrors(const Options& o, const ChiTable& table) {
   std::vector<double> lambdas;
   for (int q = 0; q <= 32; ++q) lambdas.push_back(std::pow(10.0, -0.30103 + q * 2.30103 / 32));
   for (double ab : {0.5, 1.0, 2.0}) {
-    for (int k = 0; k < 3; ++k) {
-      const NonSteadyCoefficients exact(kCreepageKinds[k], ab, 0.28, o.grid, o.grid);
+    for (const CreepageKind kind : kCreepageKinds) {
+      const NonSteadyCoefficients exact(kind, ab, 0.28, o.grid, o.grid);
       const double ce = exact.steady();
-      const double cf = fastsimSteadyCoefficient(kCreepageKinds[k], ab, 0.28, o.nx, o.ny);
-      const SecondOrderChi chi = table.secondOrderAt(kCreepageKinds[k], ab);  // either order
+      const double cf = fastsimSteadyCoefficient(kind, ab, 0.28, o.nx, o.ny);
+      const SecondOrderChi chi = table.secondOrderAt(kind, ab);  // either order
       for (double l : lambdas) {
         const std::complex<double> re = exact.at(l) / ce;
-        const auto nss =
-            fastsimSecondOrderCoefficient(kCreepageKinds[k], ab, 0.28, o.nx, o.ny, chi, l);
-        const auto sl = fastsimNonSteadyCoefficient(kCreepageKinds[k], ab, 0.28, o.nx, o.ny, {}, l);
+        const auto nss = fastsimSecondOrderCoefficient(kind, ab, 0.28, o.nx, o.ny, chi, l);
+        const auto sl = fastsimNonSteadyCoefficient(kind, ab, 0.28, o.nx, o.ny, {}, l);
         char line[256];
-        std::snprintf(line, sizeof line, "%g,%s,%.5g,%.5f,%.5f,%.5f\n", ab,
-                      coefficientCode(kCreepageKinds[k]), l, std::abs(nss / cf - re),
-                      std::abs(sl / cf - re), std::abs(1.0 - re));
+        std::snprintf(line, sizeof line, "%g,%s,%.5g,%.5f,%.5f,%.5f\n", ab, coefficientCode(kind),
+                      l, std::abs(nss / cf - re), std::abs(sl / cf - re), std::abs(1.0 - re));
         errs << line;
         if (ab != 1.0) continue;
         const std::pair<const char*, std::complex<double>> rows[] = {
@@ -68,12 +66,12 @@ void frequencyErrors(const Options& o, const ChiTable& table) {
         for (const auto& r : rows) {
           const double steady = std::string(r.first) == "exact" ? ce : cf;
           std::snprintf(line, sizeof line, "%s,%.5g,%s,%.6g,%.6g,%.6g,%.6g\n",
-                        coefficientCode(kCreepageKinds[k]), l, r.first, r.second.real(),
-                        r.second.imag(), r.second.real() / steady, r.second.imag() / steady);
+                        coefficientCode(kind), l, r.first, r.second.real(), r.second.imag(),
+                        r.second.real() / steady, r.second.imag() / steady);
           fig << line;
         }
       }
-      std::cerr << "freq a/b " << ab << " kind " << coefficientCode(kCreepageKinds[k]) << " done\n";
+      std::cerr << "freq a/b " << ab << " kind " << coefficientCode(kind) << " done\n";
     }
   }
 }

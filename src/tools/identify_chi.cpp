@@ -130,33 +130,31 @@ int run(const Options& o) {
   // Rows gathered per mesh (the exact curve is computed once for all meshes), written mesh by mesh.
   std::vector<std::string> tableRows(o.meshes.size()), spinRows(o.meshes.size());
   for (double ab : ratios) {
-    for (int q = 0; q < 3; ++q) {
+    for (const CreepageKind kind : kCreepageKinds) {
       const auto t0 = std::chrono::steady_clock::now();
-      const NonSteadyCoefficients exact(kCreepageKinds[q], ab, nu, grid, grid);
+      const NonSteadyCoefficients exact(kind, ab, nu, grid, grid);
       const double steady = exact.steady();
       std::vector<FrequencyPoint> curve;
       for (double l : lambdas) {
         const std::complex<double> c = exact.at(l);
         curve.push_back({l, c / steady});
         char line[256];
-        std::snprintf(line, sizeof line, "%g,%s,%.6g,%.9g,%.9g,%.9g\n", ab,
-                      coefficientCode(kCreepageKinds[q]), l, c.real(), c.imag(), steady);
+        std::snprintf(line, sizeof line, "%g,%s,%.6g,%.9g,%.9g,%.9g\n", ab, coefficientCode(kind),
+                      l, c.real(), c.imag(), steady);
         curves << line;
       }
-      const bool second =
-          kCreepageKinds[q] == CreepageKind::kPhi && (spin.is_open() || o.secondOrderSpin);
+      const bool second = kind == CreepageKind::kPhi && (spin.is_open() || o.secondOrderSpin);
       for (std::size_t m = 0; m < o.meshes.size(); ++m) {
         const int n = o.meshes[m];
-        const double shenLi =
-            evaluateChi(kCreepageKinds[q], ab, nu, n, n, ChiParameters{}, curve).meanErrorLog;
+        const double shenLi = evaluateChi(kind, ab, nu, n, n, ChiParameters{}, curve).meanErrorLog;
         std::string line;
         if (!(second && o.secondOrderSpin)) {  // else the second-order fit below is the row
-          const ChiFit f = fitChi(kCreepageKinds[q], ab, nu, n, n, curve);
-          line = row(ab, coefficientCode(kCreepageKinds[q]), SecondOrderChi::fromFirstOrder(f.chi),
+          const ChiFit f = fitChi(kind, ab, nu, n, n, curve);
+          line = row(ab, coefficientCode(kind), SecondOrderChi::fromFirstOrder(f.chi),
                      o.secondOrderSpin, n, f.meanErrorLog, f.meanErrorLinear, f.maxError, &shenLi);
         }
         if (second) {
-          const SecondOrderFit f2 = fitSecondOrderChi(kCreepageKinds[q], ab, nu, n, n, curve);
+          const SecondOrderFit f2 = fitSecondOrderChi(kind, ab, nu, n, n, curve);
           spinRows[m] += row(ab, "23", f2.chi, true, n, f2.meanErrorLog, f2.meanErrorLinear,
                              f2.maxError, nullptr);
           if (o.secondOrderSpin)
@@ -164,8 +162,8 @@ int run(const Options& o) {
                        &shenLi);
         }
         tableRows[m] += line;
-        std::cerr << "a/b " << ab << " kind " << coefficientCode(kCreepageKinds[q]) << " mesh " << n
-                  << ": " << line;
+        std::cerr << "a/b " << ab << " kind " << coefficientCode(kind) << " mesh " << n << ": "
+                  << line;
       }
       const double secs =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
