@@ -99,6 +99,12 @@ struct InPlace {
     const double* p = strip + kPerNode * i;
     return {pairAt(p + kTraction), pairAt(p + kState), kSecond ? pairAt(p + kSecondState) : Pair()};
   }
+  // Node i of two strips (AlongStrips's interface; the march only takes it for a mapped source).
+  template <bool kSecond>
+  void atBoth(const double* a, const double* b, int i, History* ha, History* hb) const {
+    *ha = at<kSecond>(a, i);
+    *hb = at<kSecond>(b, i);
+  }
 };
 
 // The history of the previous patch, carried along the strips (AlongStripMap) node by node as the
@@ -279,21 +285,14 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     if (ka < A.leave) A.node(ka++, A.entry, history, xn, out, update);
     if (kb < B.leave) B.node(kb++, B.entry, history, xn, out, update);
     const int n = std::max(0, std::min(A.leave - ka, B.leave - kb));
-    if constexpr (Source::kMapped) {
+    const int i = ka - A.first;
+    if (Source::kMapped && i == kb - B.first) {
       // On the adaptive mesh both strips march the same nodes of their strips: read the map once.
-      const int i = ka - A.first;
-      if (i == kb - B.first) {
-        for (int s = 0; s < n; ++s) {
-          History ha, hb;
-          history.template atBoth<kSecond>(A.history, B.history, i + s, &ha, &hb);
-          A.step(ka + s, A.full, ha, xn, out, update);
-          B.step(kb + s, B.full, hb, xn, out, update);
-        }
-      } else {
-        for (int s = 0; s < n; ++s) {
-          A.node(ka + s, A.full, history, xn, out, update);
-          B.node(kb + s, B.full, history, xn, out, update);
-        }
+      for (int s = 0; s < n; ++s) {
+        History ha, hb;
+        history.template atBoth<kSecond>(A.history, B.history, i + s, &ha, &hb);
+        A.step(ka + s, A.full, ha, xn, out, update);
+        B.step(kb + s, B.full, hb, xn, out, update);
       }
     } else {
       for (int s = 0; s < n; ++s) {
