@@ -153,35 +153,46 @@ struct AlongStrips {
   }
 };
 
+// A second-order F's own constants: empty for first order, so the first-order march neither sets
+// them up nor copies them.
+template <bool kSecond>
+struct SecondStateUpdate {
+  SecondStateUpdate(const FilterZ&, const FilterZ&, double, double) {}
+};
+template <>
+struct SecondStateUpdate<true> {
+  Pair rate2, rate2Old, pole2Old;
+  double r;
+  SecondStateUpdate(const FilterZ& zx, const FilterZ& zy, double dt, double r)
+      : rate2(Pair(zx.b2 - zx.a2 * zx.b0, zy.b2 - zy.a2 * zy.b0) / dt),
+        rate2Old(rate2 * r),
+        pole2Old(Pair(zx.a2, zy.a2) * r),
+        r(r) {}
+};
+
 // The filter states' update at a node from its final traction t and history (old, s, s2):
-// TimeTerm's algebra for both directions. First order: s only; second order: s and s2 (its
-// constants are set up only then, so the first-order step pays nothing for them). Writes the node's
-// new history: t and the states.
+// TimeTerm's algebra for both directions. First order: s only; second order: s and s2. Writes the
+// node's new history: t and the states.
 template <bool kSecond>
 struct StateUpdate {
-  Pair rate, rateOld, poleOld, rate2, rate2Old, pole2Old;
-  double r;
+  Pair rate, rateOld, poleOld;
   double* written;  // the new history (TransientState::history)
+  SecondStateUpdate<kSecond> second;
   StateUpdate(const TimeTerm& X, const TimeTerm& Y, const FilterZ& zx, const FilterZ& zy, double dt,
               double r, TransientState* st)
       : rate(X.rate, Y.rate),
         rateOld(X.rateOld, Y.rateOld),
         poleOld(X.poleOld, Y.poleOld),
-        r(r),
-        written(st->history.data()) {
-    if constexpr (kSecond) {
-      rate2 = Pair(zx.b2 - zx.a2 * zx.b0, zy.b2 - zy.a2 * zy.b0) / dt;
-      rate2Old = rate2 * r;
-      pole2Old = Pair(zx.a2, zy.a2) * r;
-    }
-  }
+        written(st->history.data()),
+        second(zx, zy, dt, r) {}
   // o: the node's history, read before these stores (in place, they overwrite it).
   [[gnu::always_inline]] void operator()(int k, const Pair& t, const History& o) const {
     const Pair &old = o.t, &s = o.s;
     Pair next = rate * t - rateOld * old - poleOld * s;  // TimeTerm::nextState
     if constexpr (kSecond) {
-      next += r * o.s2;
-      storePair(written + kPerNode * k + kSecondState, rate2 * t - rate2Old * old - pole2Old * s);
+      next += second.r * o.s2;
+      storePair(written + kPerNode * k + kSecondState,
+                second.rate2 * t - second.rate2Old * old - second.pole2Old * s);
     }
     double* const p = written + kPerNode * k;
     storePair(p + kState, next);
