@@ -18,6 +18,7 @@
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/halfspace_solver.hpp"
 #include "wheel_rail_contact/hertz.hpp"
+#include "wheel_rail_contact/rolling_direction.hpp"
 
 namespace wheel_rail_contact {
 
@@ -35,8 +36,6 @@ class ExactModel : public ContactModel {
 
  private:
   void subStep(const StepInput& in);
-  /// The forward-rolling input of this step; mirrors the history when the direction changes.
-  StepInput faceTravel(const StepInput& in);
   /// A march-frame output in the contact frame.
   StepOutput contactFrame(StepOutput out) const;
   ContactParameters p_;
@@ -45,7 +44,7 @@ class ExactModel : public ContactModel {
   double fzMax_;
   StepInput prev_;
   bool started_ = false;
-  bool mirrored_ = false;           // the history is in the mirror frame (rolling backwards)
+  RollingFrame frame_;              // the mirror while rolling backwards
   double carry_ = 0.0;              // distance rolled since the last sub-step [m]
   double loadedFz_ = -1.0;          // load of the last normal solve [N]
   Eigen::VectorXd normalPressure_;  // its pressure [Pa]

@@ -10,6 +10,7 @@
 #include "wheel_rail_contact/chi_table.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/hertz.hpp"
+#include "wheel_rail_contact/rolling_direction.hpp"
 #include "wheel_rail_contact/second_order_flexibility.hpp"
 #include "wheel_rail_contact/transient_fastsim.hpp"
 
@@ -38,7 +39,6 @@ class NssModel : public ContactModel {
   const TractionField& traction() const { return field_; }
 
  private:
-  StepInput faceTravel(const StepInput& in);
   /// Screens `given` and turns it into the forward-rolling `in` at patch `h`; false when the step
   /// ends there (`out` filled).
   bool screen(const StepInput& given, StepInput* in, HertzEllipse* h, StepOutput* out);
@@ -78,7 +78,7 @@ class NssModel : public ContactModel {
   StepOutput last_;
   double lastA_ = 0.0;        // a of the step that left the history (0: none yet) [m]
   double lastSpeed_ = 0.0;    // |V| of the step that left the filter state (0: none yet) [m/s]
-  bool mirrored_ = false;     // the history is in the mirror frame (rolling backwards)
+  RollingFrame frame_;        // the mirror while rolling backwards
   bool secondOrder_ = false;  // the last step marched s2: state_.s2x/s2y (remapped_'s) may be != 0
   bool handingOn_ = false;    // this step marches s2 only to hand it on into s1 (spin stopped)
 };

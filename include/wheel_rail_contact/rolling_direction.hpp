@@ -27,4 +27,30 @@ void mirrorForces(StepOutput* out);
 void mirrorAlongX(const PatchMesh& mesh, TransientState* state);
 void mirrorAlongX(const PatchMesh& mesh, TractionField* field);
 
+/// The frame a model's history is in: the mirror while rolling backwards. face() turns a step's
+/// input into the forward-rolling one, first calling `reverse` (which mirrors the model's history)
+/// when the direction changes; V = 0 keeps the frame.
+class RollingFrame {
+ public:
+  template <class Reverse>
+  StepInput face(const StepInput& in, Reverse&& reverse) {
+    const bool backwards = in.V < 0.0;
+    if (in.V != 0.0 && backwards != mirrored_) {
+      reverse();
+      mirrored_ = backwards;
+    }
+    return inFrame(in);
+  }
+  /// `in` as the frame sees it, the frame kept (a side calculation at the current direction).
+  StepInput inFrame(const StepInput& in) const { return mirrored_ ? mirroredInput(in) : in; }
+  /// Forces of the frame back in the contact frame.
+  void toContact(StepOutput* out) const {
+    if (mirrored_) mirrorForces(out);
+  }
+  void reset() { mirrored_ = false; }
+
+ private:
+  bool mirrored_ = false;
+};
+
 }  // namespace wheel_rail_contact

@@ -38,7 +38,7 @@ ExactModel::ExactModel(const ContactParameters& p)
 void ExactModel::reset() {
   solver_.clearHistory();
   started_ = false;
-  mirrored_ = false;
+  frame_.reset();
   carry_ = 0.0;
   subSteps_ = 0;
   last_ = StepOutput();
@@ -64,24 +64,8 @@ void ExactModel::subStep(const StepInput& in) {
   ++subSteps_;
 }
 
-StepInput ExactModel::faceTravel(const StepInput& in) {
-  const bool backwards = in.V < 0.0;
-  if (in.V != 0.0 && backwards != mirrored_) {
-    // As the FastSim models: the traction standing in the material is carried into the other
-    // direction's frame. The previous input (what the sub-steps interpolate from) is re-expressed
-    // there with V = 0, the speed passing through zero within this step; the remainder below one
-    // element restarts (at most one element of travel).
-    solver_.mirrorHistoryAlongX();
-    prev_ = mirroredInput(prev_);
-    prev_.V = 0.0;
-    carry_ = 0.0;
-    mirrored_ = backwards;
-  }
-  return mirrored_ ? mirroredInput(in) : in;
-}
-
 StepOutput ExactModel::contactFrame(StepOutput out) const {
-  if (mirrored_) mirrorForces(&out);
+  frame_.toContact(&out);
   return out;
 }
 
@@ -100,7 +84,17 @@ StepOutput ExactModel::step(const StepInput& given) {
     out.message = "fz above fz_max: the fixed grid does not cover the patch";
     return out;
   }
-  const StepInput in = faceTravel(given);  // rolls forwards, in the mirror while V < 0
+  // Rolls forwards, in the mirror while V < 0. At a reversal, as the FastSim models: the traction
+  // standing in the material is carried into the other direction's frame. The previous input
+  // (what the sub-steps interpolate from) is re-expressed there with V = 0, the speed passing
+  // through zero within this step; the remainder below one element restarts (at most one element
+  // of travel).
+  const StepInput in = frame_.face(given, [this] {
+    solver_.mirrorHistoryAlongX();
+    prev_ = mirroredInput(prev_);
+    prev_.V = 0.0;
+    carry_ = 0.0;
+  });
   if (in.V == 0.0 && started_) {
     prev_ = in;  // the next step's travel starts from rest
     out = last_;

@@ -58,7 +58,7 @@ void NssModel::reset() {
   last_ = StepOutput();
   lastA_ = 0.0;
   lastSpeed_ = 0.0;
-  mirrored_ = false;
+  frame_.reset();
   if (adaptive_) mesh_.scale(ref_.a0, ref_.b0);
 }
 
@@ -172,18 +172,6 @@ CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool m
   return f;
 }
 
-StepInput NssModel::faceTravel(const StepInput& in) {
-  const bool backwards = in.V < 0.0;
-  if (backwards != mirrored_) {
-    // At a reversal the traction standing in the material stays where it is: carry it into the
-    // other direction's frame rather than clear it (a braked wheel that reverses keeps its grip).
-    mirrorAlongX(mesh_, &state_);
-    mirrorAlongX(mesh_, &field_);
-    mirrored_ = backwards;
-  }
-  return backwards ? mirroredInput(in) : in;
-}
-
 bool NssModel::screen(const StepInput& given, StepInput* in, HertzEllipse* h, StepOutput* out) {
   if (screenStep(given, out)) {
     if (out->status == StepStatus::kNoLoad) reset();  // loss of contact clears the history
@@ -193,14 +181,20 @@ bool NssModel::screen(const StepInput& given, StepInput* in, HertzEllipse* h, St
     *out = hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");
     return false;
   }
-  *in = faceTravel(given);  // V < 0: the mirror image rolls forwards
+  // V < 0: the mirror image rolls forwards. At a reversal the traction standing in the material
+  // stays where it is: carry it into the other direction's frame rather than clear it (a braked
+  // wheel that reverses keeps its grip).
+  *in = frame_.face(given, [this] {
+    mirrorAlongX(mesh_, &state_);
+    mirrorAlongX(mesh_, &field_);
+  });
   *h = ref_.at(in->fz);
   return true;
 }
 
 StepOutput NssModel::finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h) {
   StepOutput out = stepOutput(f, in.fz, h.a, h.b);
-  if (mirrored_) mirrorForces(&out);
+  frame_.toContact(&out);
   if (!adaptive_) {
     if (h.a > mesh_.a() * (1 + 1e-12))
       out.message = "fz exceeds fz_max: the patch is clipped to the fixed mesh";
@@ -239,14 +233,14 @@ StepOutput NssModel::settle(const StepInput& given) {
 }
 
 StepOutput NssModel::steadyAlongside(const StepInput& given) {
-  const StepInput in = mirrored_ ? mirroredInput(given) : given;
+  const StepInput in = frame_.inFrame(given);
   const HertzEllipse h = ref_.at(in.fz);
   scratch_.bound = field_.bound;
   scratch_.entry = field_.entry;
   const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_),
                                       {in.xi, in.eta, in.phi}, &scratch_);
   StepOutput out = stepOutput(f, in.fz, h.a, h.b);
-  if (mirrored_) mirrorForces(&out);
+  frame_.toContact(&out);
   return out;
 }
 
