@@ -65,7 +65,7 @@ def freq_figure():
 def history(name):
     out = defaultdict(lambda: ([], [], [], []))
     for r in rows(f"scene_{name}.csv"):
-        key = r["model"] if r["model"] in ("exact", "shen-li", "steady") else f"nss {r['mesh']}"
+        key = r["model"] if r["model"] in ("exact", "steady") else f"{r['model']} {r['mesh']}"
         t, fz, fx, fy = out[key]
         t.append(float(r["t"]))
         fz.append(float(r["fz"]))
@@ -78,7 +78,7 @@ def combined_figure(n):
     h = history(f"combined{n}")
     fig, ax = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
     for key, (t, _, fx, fy) in h.items():
-        if key == "nss adaptive":
+        if key.endswith("adaptive"):  # at constant load the same as fixed
             continue
         c, ls = STYLE[key.split()[0]]
         ax[0].plot(t, [math.hypot(a, b) for a, b in zip(fx, fy)], color=c, ls=ls, label=key)
@@ -117,6 +117,8 @@ def load_figures():
         h = history(f"load_xi{xi}_l15")
         fig, ax = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
         for key, (t, fz, fx, _) in h.items():
+            if key == "shen-li adaptive":  # in the table only: one shen-li line, as in the paper
+                continue
             c, ls = STYLE[key.split()[0]]
             ax[0].plot(t, fx, color=c, ls=ls, label=key)
         t, fz = h["exact"][0], h["exact"][1]
