@@ -18,28 +18,58 @@ namespace wheel_rail_contact {
 /// Column k is node k: its traction and filter states side by side, so the march reads and writes a
 /// node's history as (x, y) pairs through one pointer (six arrays cost a pointer and two half
 /// loads or stores each per node). The rows are read and written by name through tx() ... s2y().
-struct TransientState {
+/// Outside a fixed mesh's patch, with a first-order F, a node's traction is zero and its filter
+/// state only decays, s <- d s with the same d at every such node; so the march holds those states
+/// as s / D (D the product of every d since) and touches only the nodes that cross the patch's
+/// edge. The named rows settle() first: every reader sees the state itself.
+class TransientState {
+ public:
   /// Rows tx, ty: traction at the previous step [Pa]; sx, sy: filter state (transposed direct form
   /// II) [Pa/s]; s2x, s2y: the second filter state of a second-order F [Pa/s] (a traction rate
   /// like s: in transposed direct form II every state is a combination of past rates g and h),
   /// zero while the filter is first order: the first-order march neither reads nor writes it.
   static constexpr int kRows = 6;
-  Eigen::Array<double, kRows, Eigen::Dynamic> history;
   void resize(int n);
   void clear();
-  auto tx() { return history.row(0); }
-  auto ty() { return history.row(1); }
-  auto sx() { return history.row(2); }
-  auto sy() { return history.row(3); }
-  auto s2x() { return history.row(4); }
-  auto s2y() { return history.row(5); }
-  auto secondState() { return history.bottomRows<2>(); }  ///< rows s2x, s2y
-  auto tx() const { return history.row(0); }
-  auto ty() const { return history.row(1); }
-  auto sx() const { return history.row(2); }
-  auto sy() const { return history.row(3); }
-  auto s2x() const { return history.row(4); }
-  auto s2y() const { return history.row(5); }
+  /// Restores the states held decayed. Const: it changes how the state is stored, not the state.
+  void settle() const {
+    if (decaying_) restoreDecayed();
+  }
+  /// Multiplies sx, sy (with `second` also s2x, s2y) by r; no settling needed (D is unchanged).
+  void scaleStates(double r, bool second);
+  auto tx() { return settled().row(0); }
+  auto ty() { return settled().row(1); }
+  auto sx() { return settled().row(2); }
+  auto sy() { return settled().row(3); }
+  auto s2x() { return history_.row(4); }  // never held decayed
+  auto s2y() { return history_.row(5); }
+  auto secondState() { return history_.bottomRows<2>(); }  ///< rows s2x, s2y
+  auto tx() const { return settledRows().row(0); }
+  auto ty() const { return settledRows().row(1); }
+  auto sx() const { return settledRows().row(2); }
+  auto sy() const { return settledRows().row(3); }
+  auto s2x() const { return history_.row(4); }
+  auto s2y() const { return history_.row(5); }
+
+ private:
+  friend struct TransientStorage;  // the marches' access to the storage (transient_fastsim.cpp)
+  using Rows = Eigen::Array<double, kRows, Eigen::Dynamic>;
+  Rows& settled() {
+    settle();
+    return history_;
+  }
+  const Rows& settledRows() const {
+    settle();
+    return history_;
+  }
+  void restoreDecayed() const;
+  mutable Rows history_;
+  // While decaying_: strip j's nodes outside the patch of entry ends_[j] (StripEntry::first, strips
+  // of nx_ nodes) hold sx, sy over decay_. from_: per strip, where the march's outside pass starts.
+  mutable bool decaying_ = false;
+  mutable Eigen::Array2d decay_{1.0, 1.0};
+  std::vector<int> ends_, from_;
+  int nx_ = 0;
 };
 
 /// One step of length dt > 0 at speed V > 0. Marches each strip from the patch's leading edge

@@ -99,12 +99,8 @@ void NssModel::keepRatePerTravel(double speed) {
   // travel (V = 1e-9 m/s drove the force to saturation).
   if (lastSpeed_ > 0.0 && speed != lastSpeed_) {
     const double r = speed / lastSpeed_;
-    state_.sx() *= r;
-    state_.sy() *= r;
     // s2 is a rate too (transposed direct form II: a combination of past g and h) [Pa/s].
-    if (secondOrder_) {
-      state_.secondState() *= r;
-    }
+    state_.scaleStates(r, secondOrder_);
   }
   lastSpeed_ = speed;
 }

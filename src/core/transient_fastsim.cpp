@@ -5,13 +5,75 @@
 
 namespace wheel_rail_contact {
 
+namespace {
+
+// The nodes i of a strip of nx outside the patch for exactly one of the entries e0, e1
+// (StripEntry::first): node i is outside for e when i < e or i >= nx - e, taken as one range at
+// each end split at the strip's middle m, so that no node is in both. With e0 = 0: those outside
+// for e1.
+template <class Visit>
+void acrossEdge(int nx, int e0, int e1, Visit&& visit) {
+  const int m = (nx + 1) / 2, lo = std::min(e0, e1), hi = std::max(e0, e1);
+  for (int i = std::min(lo, m); i < std::min(hi, m); ++i) visit(i);
+  for (int i = std::max(nx - hi, m); i < std::max(nx - lo, m); ++i) visit(i);
+}
+
+}  // namespace
+
 void TransientState::resize(int n) {
-  history.setZero(kRows, n);
+  history_.setZero(kRows, n);
+  ends_.reserve(n);  // a strip count is at most n: the march's books never allocate
+  from_.reserve(n);
+  decaying_ = false;
+  decay_.setOnes();
 }
 
 void TransientState::clear() {
-  history.setZero();
+  history_.setZero();
+  decaying_ = false;
+  decay_.setOnes();
 }
+
+void TransientState::restoreDecayed() const {
+  for (std::size_t j = 0; j < ends_.size(); ++j)
+    acrossEdge(nx_, 0, ends_[j], [&](int i) { history_.col(j * nx_ + i).segment<2>(2) *= decay_; });
+  decaying_ = false;
+  decay_.setOnes();
+}
+
+void TransientState::scaleStates(double r, bool second) {
+  history_.middleRows<2>(2) *= r;
+  if (second) history_.bottomRows<2>() *= r;
+}
+
+// The marches' access to TransientState's storage.
+struct TransientStorage {
+  // As stored: outside the patch sx, sy may be held decayed (only the in-place first-order march
+  // keeps those books; it reads no such node).
+  static double* stored(TransientState* s) { return s->history_.data(); }
+  static const double* stored(const TransientState& s) { return s.history_.data(); }
+  // The state itself, for a march that reads every node.
+  static const double* settled(const TransientState& s) { return s.settledRows().data(); }
+  static auto column(TransientState* s, int k) { return s->history_.col(k); }
+  static auto settledColumn(const TransientState& s, int k) { return s.settledRows().col(k); }
+  // Per strip, where the outside pass of the march starts (0: every outside node).
+  static const int* outsideFrom(const TransientState& s) { return s.from_.data(); }
+  // Every outside node taken in full by the march, nothing held.
+  static void eager(int strips, TransientState* s) {
+    s->settle();
+    s->from_.assign(strips, 0);
+  }
+  // A march that writes every node of s holds nothing decayed.
+  static void writtenInFull(int strips, TransientState* s) {
+    s->decaying_ = false;
+    s->decay_.setOnes();
+    s->from_.assign(strips, 0);
+  }
+  static bool lazyBefore(const PatchMesh& mesh, const std::vector<StripEntry>& entries,
+                         const Eigen::Array2d& d, TransientState* st, TractionField* f);
+  static void lazyAfter(const PatchMesh& mesh, const std::vector<StripEntry>& entries,
+                        const Eigen::Array2d& d, TransientState* st);
+};
 
 namespace {
 
@@ -91,7 +153,7 @@ struct InPlace {
   const double* history = nullptr;
   // Read where the march writes: taken from the same state as the writes' pointer, so that the
   // compiler sees one pointer (one induction variable, not two).
-  void writesTo(const TransientState& s) { history = s.history.data(); }
+  void writesTo(const TransientState& s) { history = TransientStorage::stored(s); }
   // Strip j's node 0 (of `nodes` per strip): node i of the strip is `strip` + kPerNode i.
   const double* strip(int j, int nodes) const { return history + kPerNode * nodes * j; }
   template <bool kSecond>
@@ -121,7 +183,7 @@ struct AlongStrips {
       : offsets(map.historyOffsets()),
         weights(map.spreadWeights()),
         nodes(map.nodes()),
-        history(s.history.data()) {}
+        history(TransientStorage::settled(s)) {}
   void writesTo(const TransientState&) {}  // reads `previous`, never the state written
   // The old strip j's first node (old and new patch share the layout): per node the march then
   // only adds the map's offset.
@@ -183,7 +245,7 @@ struct StateUpdate {
       : rate(X.rate, Y.rate),
         rateOld(X.rateOld, Y.rateOld),
         poleOld(X.poleOld, Y.poleOld),
-        written(st->history.data()),
+        written(TransientStorage::stored(st)),
         second(zx, zy, dt, r) {}
   // o: the node's history, read before these stores (in place, they overwrite it).
   [[gnu::always_inline]] void operator()(int k, const Pair& t, const History& o) const {
@@ -231,9 +293,11 @@ struct StripMarch {
 // march: the bound is zero there, so whatever the march would bring saturates at zero; only the
 // filter state moves. The constants and pointers are copied into locals first: read through
 // references, they were reloaded after every store (a double or bool store may alias them).
+// outsideFrom[j]: strip j's outside nodes before it at either end are not taken (held decayed, see
+// TransientStorage::lazyBefore); 0 takes them all.
 template <bool kSecond, class Source>
 void unloadedNodes(const PatchMesh& mesh, const std::vector<StripEntry>& entries,
-                   const Source& source, const FieldPointers& field,
+                   const int* outsideFrom, const Source& source, const FieldPointers& field,
                    const StateUpdate<kSecond>& updateRef) {
   const StateUpdate<kSecond> update = updateRef;
   const FieldPointers out = field;
@@ -247,8 +311,8 @@ void unloadedNodes(const PatchMesh& mesh, const std::vector<StripEntry>& entries
   for (int j = 0; j < mesh.ny(); ++j) {
     const int first = mesh.index(0, j), enter = std::min(entries[j].first, nx);
     const double* const strip = source.strip(j, nx);
-    nodes(strip, first, 0, enter);
-    nodes(strip, first, std::max(nx - enter, enter), nx);
+    nodes(strip, first, outsideFrom[j], std::min(enter, nx - outsideFrom[j]));
+    nodes(strip, first, std::max(nx - enter, enter), nx - outsideFrom[j]);
   }
 }
 
@@ -269,7 +333,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   using Strip = StripMarch<kSecond, Source>;
   // The nodes outside the patch do not touch the loaded ones: they go first, in a pass of their
   // own.
-  unloadedNodes(mesh, f->entry, history, out, update);
+  unloadedNodes(mesh, f->entry, TransientStorage::outsideFrom(*st), history, out, update);
   // Strip j's march.
   auto strip = [&](int j) __attribute__((always_inline)) {
     const double driveX = gx - gphi * mesh.stripY(j);
@@ -327,13 +391,75 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
 
 }  // namespace
 
+// Before the in-place first-order march: whether the nodes outside the patch go lazily this step
+// (d: the decay of their states per step, -poleOld). A node entering the patch is restored (s =
+// held D); one staying outside only gets its field written; one leaving it is left to the march's
+// outside pass (from_), which takes the full update. A d not safely inside (1e-3, 1e3) in size
+// (shen-li's F = 1 has d = 0), or a D leaving (1e-100, 1e100), settles: the march then takes every
+// outside node in full.
+bool TransientStorage::lazyBefore(const PatchMesh& mesh, const std::vector<StripEntry>& entries,
+                                  const Eigen::Array2d& d, TransientState* st, TractionField* f) {
+  const int nx = mesh.nx(), ny = mesh.ny();
+  const bool lazy = (d.abs() > 1e-3).all() && (d.abs() < 1e3).all();
+  const Pair next = st->decay_ * d;
+  if (!lazy || !((next.abs() > 1e-100).all() && (next.abs() < 1e100).all()) || st->nx_ != nx ||
+      static_cast<int>(st->ends_.size()) != ny) {
+    eager(ny, st);
+    if (!lazy) return false;
+  }
+  if (!st->decaying_) st->ends_.assign(ny, 0);
+  if (static_cast<int>(st->from_.size()) != ny) st->from_.assign(ny, 0);
+  const Pair held = st->decay_;
+  double* const history = stored(st);
+  const FieldPointers out(f);
+  for (int j = 0; j < ny; ++j) {
+    const int first = mesh.index(0, j), e0 = st->ends_[j], e1 = std::min(entries[j].first, nx);
+    if (e1 < e0)
+      acrossEdge(nx, e0, e1, [&](int i) {
+        double* const p = history + kPerNode * (first + i) + kState;
+        storePair(p, pairAt(p) * held);
+      });
+    acrossEdge(nx, 0, std::min(e0, e1), [&](int i) { out.unloaded(first + i); });
+    st->from_[j] = std::min(e0, e1);
+  }
+  return true;
+}
+
+// After it: the nodes that left the patch, updated by the march, are held over the new D.
+void TransientStorage::lazyAfter(const PatchMesh& mesh, const std::vector<StripEntry>& entries,
+                                 const Eigen::Array2d& d, TransientState* st) {
+  const int nx = mesh.nx(), ny = mesh.ny();
+  const Pair D = st->decay_ * d;  // decay_ is 1 when nothing was held
+  double* const history = stored(st);
+  for (int j = 0; j < ny; ++j) {
+    const int first = mesh.index(0, j), e0 = st->ends_[j], e1 = std::min(entries[j].first, nx);
+    if (e1 > e0)
+      acrossEdge(nx, e0, e1, [&](int i) {
+        double* const p = history + kPerNode * (first + i) + kState;
+        storePair(p, pairAt(p) / D);
+      });
+    st->ends_[j] = e1;
+  }
+  st->nx_ = nx;
+  st->decay_ = D;
+  st->decaying_ = true;
+}
+
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                              double V, double dt, const FilterZ& zx, const FilterZ& zy,
                              double historyScale, TransientState* st, TractionField* f,
                              bool marchSecond) {
-  if (marchSecond || zx.secondOrder() || zy.secondOrder())
+  if (marchSecond || zx.secondOrder() || zy.secondOrder()) {
+    TransientStorage::eager(mesh.ny(), st);  // the second-order march reads every node as it is
     return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
-  return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
+  }
+  // Outside the patch the traction is zero and s <- -poleOld s, i.e. d = -a1 r (TimeTerm).
+  const Pair d(-zx.a1 * historyScale, -zy.a1 * historyScale);
+  const bool lazy = TransientStorage::lazyBefore(mesh, f->entry, d, st, f);
+  const CreepForces forces =
+      march<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
+  if (lazy) TransientStorage::lazyAfter(mesh, f->entry, d, st);
+  return forces;
 }
 
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
@@ -341,7 +467,8 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
                              double historyScale, const AlongStripMap& map,
                              const TransientState& previous, TransientState* st, TractionField* f,
                              bool marchSecond) {
-  const AlongStrips carried(map, previous);
+  TransientStorage::writtenInFull(mesh.ny(), st);
+  const AlongStrips carried(map, previous);  // reads `previous` settled
   if (marchSecond || zx.secondOrder() || zy.secondOrder())
     return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
   return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
@@ -386,14 +513,15 @@ void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int st
     for (int i = 0; i < map.nodes(); ++i) {
       const History h = source.at<true>(strip, i);
       const int k = j * map.nodes() + i;
-      out->history.col(k) << h.t, h.s, h.s2;
+      TransientStorage::column(out, k) << h.t, h.s, h.s2;
     }
   }
+  TransientStorage::writtenInFull(strips, out);
 }
 
 CreepForces holdTraction(const PatchMesh& mesh, TransientState* st, TractionField* f) {
   for (int k = 0; k < mesh.size(); ++k) {
-    auto traction = st->history.col(k).head<2>();
+    auto traction = TransientStorage::column(st, k).head<2>();  // never held decayed
     const double t = std::hypot(traction(0), traction(1)), g = f->bound(k);
     if (t > g) {
       traction *= g / t;
@@ -468,7 +596,8 @@ void remapState(const PatchMesh& from, const TransientState& in, const PatchMesh
         const AlongStrip at(r0 + i * dr, oldNx);
         const int k = to.index(i, j), k0 = base + at.i0, k1 = base + std::min(at.i0 + 1, oldNx - 1);
         const double w0 = w * at.w0, w1 = w * at.w1;
-        out->history.col(k) += w0 * in.history.col(k0) + w1 * in.history.col(k1);
+        TransientStorage::column(out, k) += w0 * TransientStorage::settledColumn(in, k0) +
+                                            w1 * TransientStorage::settledColumn(in, k1);
       }
     }
   }

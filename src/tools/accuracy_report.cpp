@@ -121,9 +121,11 @@ void sceneErrors(const Options& o) {
   std::ofstream table = tools::writeFile(o.out + "/scenes.csv");
   table << "scene,model,mesh,rms_over_peak,rms_over_mu_fz0,dfx_over_mu_dfz,exact_dfx_over_mu_dfz,"
            "mean_over_peak,rms_about_mean_over_peak\n";
-  const std::pair<const char*, const char*> models[] = {
-      {"nss", "fixed"}, {"nss", "adaptive"}, {"shen-li", "fixed"}, {"shen-li", "adaptive"},
-      {"steady", "fixed"}};
+  const std::pair<const char*, const char*> models[] = {{"nss", "fixed"},
+                                                        {"nss", "adaptive"},
+                                                        {"shen-li", "fixed"},
+                                                        {"shen-li", "adaptive"},
+                                                        {"steady", "fixed"}};
   for (const PaperScene& s : scenes) {
     ContactParameters p = s.params;
     const std::vector<StepOutput> exact = exactHistory(o, s);
