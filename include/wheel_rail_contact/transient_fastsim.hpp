@@ -69,6 +69,7 @@ class TransientState {
   mutable bool decaying_ = false;
   mutable Eigen::Array2d decay_{1.0, 1.0};
   std::vector<int> ends_, from_;
+  bool fromZero_ = false;  // from_ holds zeros for every strip
   int nx_ = 0;
 };
 

@@ -58,16 +58,22 @@ struct TransientStorage {
   static auto settledColumn(const TransientState& s, int k) { return s.settledRows().col(k); }
   // Per strip, where the outside pass of the march starts (0: every outside node).
   static const int* outsideFrom(const TransientState& s) { return s.from_.data(); }
+  // The march's outside pass takes every outside node.
+  static void fromZero(int strips, TransientState* s) {
+    if (s->fromZero_ && static_cast<int>(s->from_.size()) == strips) return;
+    s->from_.assign(strips, 0);
+    s->fromZero_ = true;
+  }
   // Every outside node taken in full by the march, nothing held.
   static void eager(int strips, TransientState* s) {
     s->settle();
-    s->from_.assign(strips, 0);
+    fromZero(strips, s);
   }
   // A march that writes every node of s holds nothing decayed.
   static void writtenInFull(int strips, TransientState* s) {
     s->decaying_ = false;
     s->decay_.setOnes();
-    s->from_.assign(strips, 0);
+    fromZero(strips, s);
   }
   static bool lazyBefore(const PatchMesh& mesh, const std::vector<StripEntry>& entries,
                          const Eigen::Array2d& d, TransientState* st, TractionField* f);
@@ -400,6 +406,13 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
 bool TransientStorage::lazyBefore(const PatchMesh& mesh, const std::vector<StripEntry>& entries,
                                   const Eigen::Array2d& d, TransientState* st, TractionField* f) {
   const int nx = mesh.nx(), ny = mesh.ny();
+  // Nothing held and nothing outside (a mesh fitted to the patch): no books to keep.
+  bool outside = st->decaying_;
+  for (int j = 0; j < ny && !outside; ++j) outside = entries[j].first > 0;
+  if (!outside) {
+    fromZero(ny, st);
+    return false;
+  }
   const bool lazy = (d.abs() > 1e-3).all() && (d.abs() < 1e3).all();
   const Pair next = st->decay_ * d;
   if (!lazy || !((next.abs() > 1e-100).all() && (next.abs() < 1e100).all()) || st->nx_ != nx ||
@@ -409,6 +422,7 @@ bool TransientStorage::lazyBefore(const PatchMesh& mesh, const std::vector<Strip
   }
   if (!st->decaying_) st->ends_.assign(ny, 0);
   if (static_cast<int>(st->from_.size()) != ny) st->from_.assign(ny, 0);
+  st->fromZero_ = false;
   const Pair held = st->decay_;
   double* const history = stored(st);
   const FieldPointers out(f);
