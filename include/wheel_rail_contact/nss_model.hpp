@@ -7,6 +7,8 @@
 /// contact_model.hpp.
 #pragma once
 
+#include <vector>
+
 #include "wheel_rail_contact/chi_table.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/hertz.hpp"
@@ -47,6 +49,9 @@ class NssModel : public ContactModel {
   bool patchMoves(const HertzEllipse& h);
   void settlePatch();
   CreepForces advance(const StepInput& in, const HertzEllipse& h, bool moves);
+  /// Fixed mesh: the nodes the patch's trailing edge has covered since the last bound take the
+  /// traction of the node upstream; then remembers where the patch begins on each strip.
+  void coverTrailingNodes();
   double historyScale(double a) const;
   void keepRatePerTravel(double speed);
   void updateWeights(const Creepages& c, double a, double b);
@@ -73,6 +78,7 @@ class NssModel : public ContactModel {
   TransientState state_, remapped_;  // the history; the next one while the patch moves
   AlongStripMap carry_;  // the history's path from the previous patch to this one (adaptive)
   TractionField field_, scratch_;
+  std::vector<int> firstBefore_;  // fixed mesh: StripEntry::first per strip at the last bound
   FilterZ zx_, zy_;
   double wx_[2], wy_[2];  // eq. 15 weights, kept while both vanish
   StepOutput last_;

@@ -35,6 +35,8 @@ class TransientState {
   void settle() const {
     if (decaying_) restoreDecayed();
   }
+  /// Node `to` takes node `from`'s traction (rows tx, ty, never held decayed: no settling).
+  void copyTraction(int from, int to) { history_.col(to).head<2>() = history_.col(from).head<2>(); }
   /// Multiplies sx, sy (with `second` also s2x, s2y) by r; no settling needed (D is unchanged).
   void scaleStates(double r, bool second);
   auto tx() { return settled().row(0); }

@@ -53,13 +53,30 @@ StripEntry stripEntry(int nx, double ry, double c, double dx) {
   return e;
 }
 
+// The mean of u^2 over the part of the strip an end node stands for: from the patch's edge
+// (u = U = L + 2w + 1, or the mesh's edge if the patch is clipped) to half an element inwards of
+// the node (u = L - 1), or over the whole strip [-U, U] when one node (L = 0) stands for it:
+// (U^3 - lo^3) / (3 (U - lo)). The end node's bound is the shape's mean there, ry - c^2 times this:
+// saturated at it, the node carries the bound's own integral over its part wherever the edge falls
+// between nodes. At the node's own shape it carried h (h + dx/2) of the (h + dx/2)^2 / 2 that a
+// bound rising linearly from the edge holds, so the trailing slip zone's force swung with the load
+// by up to 3 % of the force at xi = 0.01 on 20x20.
+double endMeanU2(double L, const StripEntry& e) {
+  const double U = L + 2.0 * e.w + 1.0, lo = L > 0.0 ? L - 1.0 : -U;
+  return (U * U + U * lo + lo * lo) * (1.0 / 3.0);
+}
+
 // The quadrature of that shape over the strip's loaded nodes, u = L, L - 2, ..., -L
-// (L = nx - 1 - 2 first), the two end nodes weighted 1 + w: (L + 1) ry - c^2 L (L + 1) (L + 2) / 3
-// + 2 w (ry - c^2 L^2).
-double stripShapeSum(int nx, double ry, double c, const StripEntry& e) {
+// (L = nx - 1 - 2 first), the two end nodes weighted 1 + w at their mean *endShape: the interior
+// nodes' sum (L - 1) ry - c^2 (L - 2) (L - 1) L / 3 and the end parts' exact integral.
+double stripShapeSum(int nx, double ry, double c, const StripEntry& e, double* endShape) {
+  *endShape = 0.0;
   if (e.first >= nx) return 0.0;
   const double L = nx - 1.0 - 2.0 * e.first, c2 = c * c;
-  return (L + 1.0) * ry - c2 * L * (L + 1.0) * (L + 2.0) / 3.0 + 2.0 * e.w * (ry - c2 * L * L);
+  *endShape = ry - c2 * endMeanU2(L, e);
+  if (L == 0.0) return (1.0 + 2.0 * e.w) * *endShape;
+  const double inner = L < 2.0 ? 0.0 : (L - 1.0) * ry - c2 * (L - 2.0) * (L - 1.0) * L / 3.0;
+  return inner + 2.0 * (1.0 + e.w) * *endShape;
 }
 
 }  // namespace
@@ -80,19 +97,23 @@ void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double
   // the march's sums weight them); then the bound, scale (ry - (ka x/a_mesh)^2) clipped at zero.
   const int nx = mesh.nx(), ny = mesh.ny();
   const double ka = mesh.a() / a, kb = mesh.b() / b;
+  double* const out = bound->data();
   double sum = 0.0;
   for (int j = 0; j < ny; ++j) {
     const double yn = mesh.yNorm(j) * kb, ry = 1.0 - yn * yn, c = ka * mesh.halfNorm(j) / nx;
     entry[j] = stripEntry(nx, ry, c, mesh.stripStep(j));
-    sum += stripShapeSum(nx, ry, c, entry[j]) * mesh.nodeArea(j);
+    double endShape;
+    sum += stripShapeSum(nx, ry, c, entry[j], &endShape) * mesh.nodeArea(j);
+    out[mesh.index(0, j)] = endShape;  // parked until the scale is known
   }
   const double scale = (sum > 0.0) ? mu * fz / sum : 0.0, perXn2 = scale * ka * ka;
   const double* const xn = mesh.xNorms().data();
-  double* const out = bound->data();
   for (int j = 0; j < ny; ++j) {
-    const int k0 = mesh.index(0, j);
+    const int k0 = mesh.index(0, j), first = entry[j].first;
     const double yn = mesh.yNorm(j) * kb, top = scale * (1.0 - yn * yn);
+    const double end = std::max(scale * out[k0], 0.0);
     for (int k = k0; k < k0 + nx; ++k) out[k] = std::max(top - perXn2 * xn[k] * xn[k], 0.0);
+    if (first < nx) out[k0 + first] = out[k0 + nx - 1 - first] = end;
   }
 }
 

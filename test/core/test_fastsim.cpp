@@ -67,6 +67,39 @@ TEST(SteadyFastSim, PatchSmallerThanTheMeshKeepsTheLinearCoefficient) {
   }
 }
 
+TEST(SteadyFastSim, PatchSmallerThanTheMeshKeepsItsForceInPartialSlip) {
+  // Partial slip on a fixed mesh sized for 1.25 fz0 (the paper's varying-load scenes, load 0.75
+  // to 1.25 fz0, xi = 0.01: a thin slip zone at the trailing edge, where the bound falls to zero).
+  // Wherever the patch's edge falls between nodes, each end node must carry the bound's integral
+  // over the part it stands for: saturated at the bound at the node itself, the trailing zone's
+  // force swung with the load, from 3.2 % below the fitted mesh's force to 0.8 % above it; now
+  // -1.5 % to +1.1 % (the patch covers 17 to 20 nodes; the fitted mesh's own error at 17 nodes
+  // is +1 % against 20). Tolerance 2 %.
+  Patch p;
+  p.a = p.b = 0.02;
+  p.G = 1e6;
+  p.mu = 0.4013;
+  const double fz0 = 470.5, k = std::cbrt(1.25);
+  const PatchMesh big(20, 20, k * p.a, k * p.b);
+  for (int q = 0; q <= 25; ++q) {
+    p.fz = fz0 * (0.75 + 0.02 * q);
+    const double s = std::cbrt(p.fz / fz0);
+    Patch now = p;
+    now.a = s * p.a;
+    now.b = s * p.b;
+    const PatchMesh fitted(20, 20, now.a, now.b);
+    const Flexibilities L = kalkerFlexibilities(now.a, now.b, p.G, kalkerCoefficients(1.0, p.nu));
+    TractionField f, g;
+    f.resize(big.size());
+    g.resize(fitted.size());
+    parabolicBound(big, now.a, now.b, p.fz, p.mu, &f);
+    parabolicBound(fitted, now.a, now.b, p.fz, p.mu, &g);
+    const double onBig = steadyFastSim(big, L, {0.01, 0, 0}, &f).fx,
+                 onFitted = steadyFastSim(fitted, L, {0.01, 0, 0}, &g).fx;
+    EXPECT_NEAR(onBig / onFitted, 1.0, 0.02) << p.fz;
+  }
+}
+
 TEST(SteadyFastSim, LargeCreepageSaturatesAtMuFz) {
   const Patch p;
   for (const Creepages c : {Creepages{0.5, 0, 0}, Creepages{0, -0.5, 0}, Creepages{0.3, 0.4, 0}}) {

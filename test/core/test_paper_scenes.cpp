@@ -61,9 +61,10 @@ TEST(PaperScenes, CombinedCreepages) {
 }
 
 TEST(PaperScenes, VaryingLoad) {
-  // On the fixed mesh under this varying load nss and shen-li tie at xi >= 0.01 (near full slip the
-  // time term acts only in the small adhesion zone): nss errs up to 2 % above shen-li against this
-  // 20x20 reference (xi = 0.05; 0.1 % against a 30x30 one), 5 % below at xi = 0.002. Before the
+  // On the fixed mesh under this varying load nss and shen-li tie at xi >= 0.05 (near full slip the
+  // time term acts only in the small adhesion zone): nss errs up to 0.8 % above shen-li against
+  // this 20x20 reference (xi = 0.05; 1.9 % below against a 30x30 one), 5 % below at xi = 0.01 and
+  // 10 % below at xi = 0.002. Before the
   // fixed mesh integrated from the patch's leading edge, its 11 % too stiff linear coefficient
   // offset the 20x20 reference's own 5 % and made nss look 3-38 % better.
   for (double xi : {0.002, 0.01, 0.05})
@@ -87,5 +88,10 @@ TEST(PaperScenes, VaryingLoadFollowsTheLoad) {
       EXPECT_LT(errors(s, "nss", exact, "adaptive").rmsAboutMeanOverPeak,
                 0.8 * errors(s, "shen-li", exact, "adaptive").rmsAboutMeanOverPeak)
           << s.name;
+      // The fastest load change in near-full adhesion crosses the fixed mesh's nodes most often:
+      // a node the trailing edge newly covers must take its upstream node's history (NssModel::
+      // coverTrailingNodes). Measured: 3.28 % of the peak; 4.19 % when it kept the zero it had
+      // outside the patch.
+      if (xi == 0.002 && l == 5.0) EXPECT_LT(error(s, "nss", exact), 0.037) << s.name;
     }
 }
