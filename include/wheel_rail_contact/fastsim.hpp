@@ -67,7 +67,9 @@ struct TractionField {
 /// (a, b) on `mesh` (which may be larger than the ellipse), scaled so that the mesh's own
 /// quadrature integrates it to exactly fz: saturated FastSim then gives exactly mu*fz. Writes mu*p
 /// to field->bound and where the patch begins on each strip to field->entry (sized mesh.ny()
-/// here: allocates only on a first call or a new mesh layout).
+/// here: allocates only on a first call or a new mesh layout). On a mesh larger than the patch a
+/// strip's end nodes get mu*p's mean over the part of the strip they stand for (StripEntry), not
+/// its value at the node: saturated there, they carry the bound's integral wherever the edge falls.
 void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
                     TractionField* field);
 

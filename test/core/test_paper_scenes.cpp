@@ -64,9 +64,9 @@ TEST(PaperScenes, VaryingLoad) {
   // On the fixed mesh under this varying load nss and shen-li tie at xi >= 0.05 (near full slip the
   // time term acts only in the small adhesion zone): nss errs up to 0.8 % above shen-li against
   // this 20x20 reference (xi = 0.05; 1.9 % below against a 30x30 one), 5 % below at xi = 0.01 and
-  // 10 % below at xi = 0.002. Before the
-  // fixed mesh integrated from the patch's leading edge, its 11 % too stiff linear coefficient
-  // offset the 20x20 reference's own 5 % and made nss look 3-38 % better.
+  // 10 % below at xi = 0.002. Before the fixed mesh integrated from the patch's leading edge, its
+  // 11 % too stiff linear coefficient offset the 20x20 reference's own 5 % and made nss look 3-38 %
+  // better.
   for (double xi : {0.002, 0.01, 0.05})
     check(varyingLoadScene(xi, 15.0, 3, 2.2 * 0.02 * 1.08 / 20), 1.03);
 }
