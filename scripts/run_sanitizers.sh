@@ -104,11 +104,12 @@ if [ "${WRC_SANITIZE_ROSTESTS:-1}" = "1" ]; then
     [[ "$launch" == *nodelet* ]] && continue
     # rostest fails when a test fails; a node's own sanitizer report lands in its ROS log, which is
     # appended to the run's log so that check_log sees it.
-    # The stress test's 60 s of sim time take 8-10 min sanitized, against its 10 min limit: 20 s
-    # here (the full run is in the plain suite). ASan's quarantine holds freed memory on purpose,
-    # so RSS growth is no leak signal here; the plain run checks it to 2 MB.
+    # Sanitized, the stress test runs at 0.03-0.04x real time (8 nodes at 2 kHz on 2 cores), against
+    # its 10 min limit: 20 s of sim time took 599 s in CI on c9a55b3 and timed out; 10 s here
+    # (232 s measured; the full 60 s run is in the plain suite). ASan's quarantine holds freed
+    # memory on purpose, so RSS growth is no leak signal here; the plain run checks it to 2 MB.
     extra=()
-    [[ "$launch" == *stress* ]] && extra=(duration:=20 rss_tolerance_kb:=1048576)
+    [[ "$launch" == *stress* ]] && extra=(duration:=10 rss_tolerance_kb:=1048576)
     run_one "asan_rostest_$(basename "$launch" .test)" rostest_with_logs "$launch" "${extra[@]}"
   done
 fi

@@ -59,3 +59,23 @@ TEST(BuildScripts, MakeRetryDoesNotRetryACompileError) {
   EXPECT_NE(status, 0);
   EXPECT_EQ(calls, 1);
 }
+
+TEST(BuildScripts, JunitOfAFailedRunStaysReadableWithAColouredLog) {
+  // A sanitized rostest's log carries rosconsole's colour codes (ESC [ 0 m): written into the
+  // failure text as they were, they made sanitizers.xml unreadable XML, and CI counted an
+  // unreadable file instead of the failed test.
+  const std::string dir = ::testing::TempDir() + "write_junit";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/run.log") << "\x1b[33m[ WARN] stamp rejected\x1b[0m\x01\nFAILED\n";
+  ASSERT_EQ(shell("/usr/bin/python3 " + std::string(WRC_SOURCE_DIR) + "/scripts/write_junit.py s " +
+                  dir + "/out.xml 'run|3|exit code 1|" + dir + "/run.log' 'ok|1|passed|'"),
+            0);
+  EXPECT_EQ(shell("/usr/bin/python3 -c \"import xml.etree.ElementTree as E; "
+                  "r = E.parse('" +
+                  dir +
+                  "/out.xml').getroot(); "
+                  "f = r.find('testcase/failure'); "
+                  "assert len(r) == 2 and 'stamp rejected' in f.text and 'FAILED' in f.text\""),
+            0);
+}
