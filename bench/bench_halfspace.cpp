@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "wheel_rail_contact/halfspace_solver.hpp"
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/exact/halfspace_solver.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -7,10 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "wheel_rail_contact/chi_table.hpp"
 #include "wheel_rail_contact/contact_parameters.hpp"
-#include "wheel_rail_contact/fastsim_frequency.hpp"
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/fastsim/chi_table.hpp"
+#include "wheel_rail_contact/fastsim/fastsim_frequency.hpp"
 
 namespace wheel_rail_contact {
 

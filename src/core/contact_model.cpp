@@ -3,10 +3,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "wheel_rail_contact/auto_model.hpp"
-#include "wheel_rail_contact/exact_model.hpp"
-#include "wheel_rail_contact/nss_model.hpp"
-#include "wheel_rail_contact/steady_model.hpp"
+#include "wheel_rail_contact/models/auto_model.hpp"
+#include "wheel_rail_contact/models/exact_model.hpp"
+#include "wheel_rail_contact/models/nss_model.hpp"
+#include "wheel_rail_contact/models/steady_model.hpp"
 
 namespace wheel_rail_contact {
 

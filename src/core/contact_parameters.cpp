@@ -5,7 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "wheel_rail_contact/kalker_coefficients.hpp"
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 namespace wheel_rail_contact {
 

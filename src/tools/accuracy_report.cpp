@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "tool_args.hpp"
-#include "wheel_rail_contact/chi_table.hpp"
-#include "wheel_rail_contact/fastsim_frequency.hpp"
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
-#include "wheel_rail_contact/paper_scenes.hpp"
+#include "validation/paper_scenes.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/fastsim/chi_table.hpp"
+#include "wheel_rail_contact/fastsim/fastsim_frequency.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "tool_args.hpp"
-#include "wheel_rail_contact/chi_fit.hpp"
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
+#include "validation/chi_fit.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
 
 using namespace wheel_rail_contact;
 

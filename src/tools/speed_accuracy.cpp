@@ -34,9 +34,9 @@
 #include <vector>
 
 #include "tool_args.hpp"
-#include "wheel_rail_contact/auto_model.hpp"
-#include "wheel_rail_contact/harmonic_scenes.hpp"
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
+#include "validation/harmonic_scenes.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/models/auto_model.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -35,8 +35,8 @@
 
 #include "tool_args.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/kalker_coefficients.hpp"
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 using namespace wheel_rail_contact;
 

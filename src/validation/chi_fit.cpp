@@ -1,10 +1,10 @@
-#include "wheel_rail_contact/chi_fit.hpp"
+#include "validation/chi_fit.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-#include "wheel_rail_contact/fastsim_frequency.hpp"
+#include "wheel_rail_contact/fastsim/fastsim_frequency.hpp"
 
 namespace wheel_rail_contact {
 

@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/harmonic_scenes.hpp"
+#include "validation/harmonic_scenes.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -8,8 +8,8 @@
 #include <complex>
 #include <vector>
 
-#include "wheel_rail_contact/creepage_kind.hpp"
-#include "wheel_rail_contact/paper_scenes.hpp"
+#include "validation/paper_scenes.hpp"
+#include "wheel_rail_contact/fastsim/creepage_kind.hpp"
 
 namespace wheel_rail_contact {
 

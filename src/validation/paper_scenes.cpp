@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/paper_scenes.hpp"
+#include "validation/paper_scenes.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 
 #include "../../src/cli/cli.hpp"
 #include "csv_rows.hpp"
-#include "wheel_rail_contact/kalker_coefficients.hpp"
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 using namespace wheel_rail_contact;
 

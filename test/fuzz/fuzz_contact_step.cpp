@@ -20,8 +20,8 @@
 
 #include "fuzz_checks.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/nss_model.hpp"
-#include "wheel_rail_contact/steady_model.hpp"
+#include "wheel_rail_contact/models/nss_model.hpp"
+#include "wheel_rail_contact/models/steady_model.hpp"
 
 using namespace wheel_rail_contact;
 using namespace wheel_rail_contact::fuzz;

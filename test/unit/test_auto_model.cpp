@@ -5,10 +5,10 @@
 #include <cmath>
 #include <vector>
 
-#include "wheel_rail_contact/auto_model.hpp"
-#include "wheel_rail_contact/harmonic_scenes.hpp"
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
-#include "wheel_rail_contact/steady_model.hpp"
+#include "validation/harmonic_scenes.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/models/auto_model.hpp"
+#include "wheel_rail_contact/models/steady_model.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "wheel_rail_contact/chi_table.hpp"
+#include "wheel_rail_contact/fastsim/chi_table.hpp"
 
 using namespace wheel_rail_contact;
 

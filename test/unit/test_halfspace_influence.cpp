@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "wheel_rail_contact/halfspace_influence.hpp"
+#include "wheel_rail_contact/exact/halfspace_influence.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "wheel_rail_contact/halfspace_normal.hpp"
-#include "wheel_rail_contact/hertz.hpp"
+#include "wheel_rail_contact/exact/halfspace_normal.hpp"
+#include "wheel_rail_contact/geometry/hertz.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/exact_model.hpp"
-#include "wheel_rail_contact/fastsim.hpp"
-#include "wheel_rail_contact/nss_model.hpp"
+#include "wheel_rail_contact/fastsim/fastsim.hpp"
+#include "wheel_rail_contact/models/exact_model.hpp"
+#include "wheel_rail_contact/models/nss_model.hpp"
 
 using namespace wheel_rail_contact;
 

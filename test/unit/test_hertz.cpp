@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "wheel_rail_contact/hertz.hpp"
+#include "wheel_rail_contact/geometry/hertz.hpp"
 
 using namespace wheel_rail_contact;
 

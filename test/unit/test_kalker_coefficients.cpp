@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "wheel_rail_contact/kalker_coefficients.hpp"
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 using namespace wheel_rail_contact;
 

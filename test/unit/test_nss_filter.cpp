@@ -3,8 +3,8 @@
 #include <cmath>
 #include <complex>
 
-#include "wheel_rail_contact/nss_filter.hpp"
-#include "wheel_rail_contact/second_order_flexibility.hpp"
+#include "wheel_rail_contact/fastsim/nss_filter.hpp"
+#include "wheel_rail_contact/fastsim/second_order_flexibility.hpp"
 
 using namespace wheel_rail_contact;
 

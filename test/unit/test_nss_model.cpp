@@ -4,9 +4,9 @@
 #include <fstream>
 #include <vector>
 
-#include "wheel_rail_contact/fastsim_frequency.hpp"
-#include "wheel_rail_contact/nss_model.hpp"
-#include "wheel_rail_contact/steady_model.hpp"
+#include "wheel_rail_contact/fastsim/fastsim_frequency.hpp"
+#include "wheel_rail_contact/models/nss_model.hpp"
+#include "wheel_rail_contact/models/steady_model.hpp"
 
 using namespace wheel_rail_contact;
 

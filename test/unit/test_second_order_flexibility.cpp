@@ -9,10 +9,10 @@
 #include <random>
 #include <vector>
 
-#include "wheel_rail_contact/chi_fit.hpp"
-#include "wheel_rail_contact/fastsim_frequency.hpp"
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
-#include "wheel_rail_contact/second_order_flexibility.hpp"
+#include "validation/chi_fit.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/fastsim/fastsim_frequency.hpp"
+#include "wheel_rail_contact/fastsim/second_order_flexibility.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "wheel_rail_contact/kalker_coefficients.hpp"
-#include "wheel_rail_contact/rolling_direction.hpp"
-#include "wheel_rail_contact/second_order_flexibility.hpp"
-#include "wheel_rail_contact/transient_fastsim.hpp"
+#include "wheel_rail_contact/fastsim/second_order_flexibility.hpp"
+#include "wheel_rail_contact/fastsim/transient_fastsim.hpp"
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
+#include "wheel_rail_contact/models/rolling_direction.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <vector>
 
-#include "wheel_rail_contact/chi_fit.hpp"
-#include "wheel_rail_contact/fastsim_frequency.hpp"
+#include "validation/chi_fit.hpp"
+#include "wheel_rail_contact/fastsim/fastsim_frequency.hpp"
 
 using namespace wheel_rail_contact;
 

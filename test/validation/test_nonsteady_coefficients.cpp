@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "csv_rows.hpp"
-#include "wheel_rail_contact/halfspace_solver.hpp"
-#include "wheel_rail_contact/kalker_coefficients.hpp"
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/exact/halfspace_solver.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 using namespace wheel_rail_contact;
 

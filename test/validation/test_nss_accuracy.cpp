@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "wheel_rail_contact/chi_table.hpp"
-#include "wheel_rail_contact/fastsim_frequency.hpp"
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/fastsim/chi_table.hpp"
+#include "wheel_rail_contact/fastsim/fastsim_frequency.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -9,7 +9,7 @@
 
 #include <memory>
 
-#include "wheel_rail_contact/paper_scenes.hpp"
+#include "validation/paper_scenes.hpp"
 
 using namespace wheel_rail_contact;
 

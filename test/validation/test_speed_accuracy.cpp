@@ -4,8 +4,8 @@
 // grid: on a short wave nss is far closer to the exact response than steady FastSim.
 #include <gtest/gtest.h>
 
-#include "wheel_rail_contact/harmonic_scenes.hpp"
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
+#include "validation/harmonic_scenes.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
 
 using namespace wheel_rail_contact;
 

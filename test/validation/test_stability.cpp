@@ -9,8 +9,8 @@
 #include <string>
 
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/fastsim.hpp"
-#include "wheel_rail_contact/kalker_coefficients.hpp"
+#include "wheel_rail_contact/fastsim/fastsim.hpp"
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 using namespace wheel_rail_contact;
 

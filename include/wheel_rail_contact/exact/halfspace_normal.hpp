@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "wheel_rail_contact/halfspace_influence.hpp"
+#include "wheel_rail_contact/exact/halfspace_influence.hpp"
 
 namespace wheel_rail_contact {
 

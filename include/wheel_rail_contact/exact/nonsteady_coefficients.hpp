@@ -13,8 +13,8 @@
 
 #include <Eigen/Core>
 
-#include "wheel_rail_contact/creepage_kind.hpp"
-#include "wheel_rail_contact/kalker_coefficients.hpp"
+#include "wheel_rail_contact/fastsim/creepage_kind.hpp"
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 namespace wheel_rail_contact {
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "wheel_rail_contact/creepage_kind.hpp"
-#include "wheel_rail_contact/nss_filter.hpp"
-#include "wheel_rail_contact/second_order_flexibility.hpp"
+#include "wheel_rail_contact/fastsim/creepage_kind.hpp"
+#include "wheel_rail_contact/fastsim/nss_filter.hpp"
+#include "wheel_rail_contact/fastsim/second_order_flexibility.hpp"
 
 namespace wheel_rail_contact {
 

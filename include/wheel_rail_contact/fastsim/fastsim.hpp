@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/kalker_coefficients.hpp"
-#include "wheel_rail_contact/patch_mesh.hpp"
+#include "wheel_rail_contact/fastsim/patch_mesh.hpp"
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 namespace wheel_rail_contact {
 

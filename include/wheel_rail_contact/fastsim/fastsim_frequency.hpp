@@ -8,9 +8,9 @@
 
 #include <complex>
 
-#include "wheel_rail_contact/chi_table.hpp"
-#include "wheel_rail_contact/nss_filter.hpp"
-#include "wheel_rail_contact/second_order_flexibility.hpp"
+#include "wheel_rail_contact/fastsim/chi_table.hpp"
+#include "wheel_rail_contact/fastsim/nss_filter.hpp"
+#include "wheel_rail_contact/fastsim/second_order_flexibility.hpp"
 
 namespace wheel_rail_contact {
 

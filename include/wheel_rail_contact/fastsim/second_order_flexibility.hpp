@@ -8,7 +8,7 @@
 
 #include <complex>
 
-#include "wheel_rail_contact/nss_filter.hpp"
+#include "wheel_rail_contact/fastsim/nss_filter.hpp"
 
 namespace wheel_rail_contact {
 

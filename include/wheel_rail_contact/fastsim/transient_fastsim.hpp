@@ -9,8 +9,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "wheel_rail_contact/fastsim.hpp"
-#include "wheel_rail_contact/nss_filter.hpp"
+#include "wheel_rail_contact/fastsim/fastsim.hpp"
+#include "wheel_rail_contact/fastsim/nss_filter.hpp"
 
 namespace wheel_rail_contact {
 

@@ -16,9 +16,9 @@
 #pragma once
 
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/halfspace_solver.hpp"
-#include "wheel_rail_contact/hertz.hpp"
-#include "wheel_rail_contact/rolling_direction.hpp"
+#include "wheel_rail_contact/exact/halfspace_solver.hpp"
+#include "wheel_rail_contact/geometry/hertz.hpp"
+#include "wheel_rail_contact/models/rolling_direction.hpp"
 
 namespace wheel_rail_contact {
 

@@ -11,8 +11,8 @@
 #pragma once
 
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/fastsim.hpp"
-#include "wheel_rail_contact/transient_fastsim.hpp"
+#include "wheel_rail_contact/fastsim/fastsim.hpp"
+#include "wheel_rail_contact/fastsim/transient_fastsim.hpp"
 
 namespace wheel_rail_contact {
 

@@ -3,8 +3,8 @@
 #pragma once
 
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/fastsim.hpp"
-#include "wheel_rail_contact/hertz.hpp"
+#include "wheel_rail_contact/fastsim/fastsim.hpp"
+#include "wheel_rail_contact/geometry/hertz.hpp"
 
 namespace wheel_rail_contact {
 

@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/halfspace_normal.hpp"
+#include "wheel_rail_contact/exact/halfspace_normal.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "wheel_rail_contact/hertz.hpp"
+#include "wheel_rail_contact/geometry/hertz.hpp"
 
 namespace wheel_rail_contact {
 

@@ -1,13 +1,13 @@
-#include "wheel_rail_contact/nonsteady_coefficients.hpp"
+#include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
 #include <stdexcept>
 
-#include "wheel_rail_contact/halfspace_influence.hpp"
-#include "wheel_rail_contact/halfspace_normal.hpp"
-#include "wheel_rail_contact/halfspace_solver.hpp"
+#include "wheel_rail_contact/exact/halfspace_influence.hpp"
+#include "wheel_rail_contact/exact/halfspace_normal.hpp"
+#include "wheel_rail_contact/exact/halfspace_solver.hpp"
 
 namespace wheel_rail_contact {
 

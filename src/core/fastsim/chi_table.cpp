@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/chi_table.hpp"
+#include "wheel_rail_contact/fastsim/chi_table.hpp"
 
 #include <algorithm>
 #include <array>

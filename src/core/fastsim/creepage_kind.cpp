@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/creepage_kind.hpp"
+#include "wheel_rail_contact/fastsim/creepage_kind.hpp"
 
 #include <stdexcept>
 

@@ -1,9 +1,9 @@
-#include "wheel_rail_contact/fastsim_frequency.hpp"
+#include "wheel_rail_contact/fastsim/fastsim_frequency.hpp"
 
 #include <cmath>
 #include <limits>
 
-#include "wheel_rail_contact/fastsim.hpp"
+#include "wheel_rail_contact/fastsim/fastsim.hpp"
 
 namespace wheel_rail_contact {
 

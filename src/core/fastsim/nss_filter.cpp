@@ -1,8 +1,8 @@
-#include "wheel_rail_contact/nss_filter.hpp"
+#include "wheel_rail_contact/fastsim/nss_filter.hpp"
 
 #include <cmath>
 
-#include "wheel_rail_contact/second_order_flexibility.hpp"
+#include "wheel_rail_contact/fastsim/second_order_flexibility.hpp"
 
 namespace wheel_rail_contact {
 

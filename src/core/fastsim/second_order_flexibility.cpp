@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/second_order_flexibility.hpp"
+#include "wheel_rail_contact/fastsim/second_order_flexibility.hpp"
 
 #include <cmath>
 #include <limits>

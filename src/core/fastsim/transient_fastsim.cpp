@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/transient_fastsim.hpp"
+#include "wheel_rail_contact/fastsim/transient_fastsim.hpp"
 
 #include <algorithm>
 #include <cmath>

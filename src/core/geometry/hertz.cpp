@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/hertz.hpp"
+#include "wheel_rail_contact/geometry/hertz.hpp"
 
 #include <cmath>
 #include <stdexcept>

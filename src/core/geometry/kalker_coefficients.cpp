@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/kalker_coefficients.hpp"
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -1,11 +1,11 @@
-#include "wheel_rail_contact/nss_model.hpp"
+#include "wheel_rail_contact/models/nss_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "wheel_rail_contact/rolling_direction.hpp"
+#include "wheel_rail_contact/models/rolling_direction.hpp"
 
 namespace wheel_rail_contact {
 

@@ -1,6 +1,6 @@
-#include "wheel_rail_contact/steady_model.hpp"
+#include "wheel_rail_contact/models/steady_model.hpp"
 
-#include "wheel_rail_contact/rolling_direction.hpp"
+#include "wheel_rail_contact/models/rolling_direction.hpp"
 
 namespace wheel_rail_contact {
 
