@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "wheel_rail_contact/models/nss_model.hpp"
-#include "wheel_rail_contact/models/steady_model.hpp"
+#include "core/models/nss_model.hpp"
+#include "core/models/steady_model.hpp"
 
 namespace wheel_rail_contact {
 namespace bench {

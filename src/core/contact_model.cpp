@@ -3,10 +3,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "wheel_rail_contact/models/auto_model.hpp"
-#include "wheel_rail_contact/models/exact_model.hpp"
-#include "wheel_rail_contact/models/nss_model.hpp"
-#include "wheel_rail_contact/models/steady_model.hpp"
+#include "core/models/auto_model.hpp"
+#include "core/models/exact_model.hpp"
+#include "core/models/nss_model.hpp"
+#include "core/models/steady_model.hpp"
 
 namespace wheel_rail_contact {
 

@@ -33,10 +33,10 @@
 #include <string>
 #include <vector>
 
+#include "core/models/auto_model.hpp"
 #include "tool_args.hpp"
 #include "validation/harmonic_scenes.hpp"
 #include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
-#include "wheel_rail_contact/models/auto_model.hpp"
 
 using namespace wheel_rail_contact;
 

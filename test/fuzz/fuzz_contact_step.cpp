@@ -18,10 +18,10 @@
 #include <memory>
 #include <stdexcept>
 
+#include "core/models/nss_model.hpp"
+#include "core/models/steady_model.hpp"
 #include "fuzz_checks.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/models/nss_model.hpp"
-#include "wheel_rail_contact/models/steady_model.hpp"
 
 using namespace wheel_rail_contact;
 using namespace wheel_rail_contact::fuzz;

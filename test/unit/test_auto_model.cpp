@@ -5,10 +5,10 @@
 #include <cmath>
 #include <vector>
 
+#include "core/models/auto_model.hpp"
+#include "core/models/steady_model.hpp"
 #include "validation/harmonic_scenes.hpp"
 #include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
-#include "wheel_rail_contact/models/auto_model.hpp"
-#include "wheel_rail_contact/models/steady_model.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "../../src/cli/cli.hpp"
+#include "core/models/exact_model.hpp"
 #include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
-#include "wheel_rail_contact/models/exact_model.hpp"
 
 using namespace wheel_rail_contact;
 

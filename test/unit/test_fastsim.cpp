@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "wheel_rail_contact/fastsim/fastsim.hpp"
-#include "wheel_rail_contact/models/steady_model.hpp"
+#include "core/fastsim/fastsim.hpp"
+#include "core/models/steady_model.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "wheel_rail_contact/exact/halfspace_influence.hpp"
+#include "core/exact/halfspace_influence.hpp"
 
 using namespace wheel_rail_contact;
 

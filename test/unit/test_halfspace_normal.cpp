@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "wheel_rail_contact/exact/halfspace_normal.hpp"
+#include "core/exact/halfspace_normal.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
 
 using namespace wheel_rail_contact;

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <vector>
 
-#include "wheel_rail_contact/exact/halfspace_normal.hpp"
-#include "wheel_rail_contact/exact/halfspace_solver.hpp"
+#include "core/exact/halfspace_normal.hpp"
+#include "core/exact/halfspace_solver.hpp"
 #include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
 
 using namespace wheel_rail_contact;

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
+#include "core/fastsim/fastsim.hpp"
+#include "core/models/exact_model.hpp"
+#include "core/models/nss_model.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/fastsim/fastsim.hpp"
-#include "wheel_rail_contact/models/exact_model.hpp"
-#include "wheel_rail_contact/models/nss_model.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -4,9 +4,9 @@
 #include <fstream>
 #include <vector>
 
+#include "core/models/nss_model.hpp"
+#include "core/models/steady_model.hpp"
 #include "wheel_rail_contact/fastsim/fastsim_frequency.hpp"
-#include "wheel_rail_contact/models/nss_model.hpp"
-#include "wheel_rail_contact/models/steady_model.hpp"
 
 using namespace wheel_rail_contact;
 

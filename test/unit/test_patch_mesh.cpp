@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "wheel_rail_contact/fastsim/patch_mesh.hpp"
+#include "core/fastsim/patch_mesh.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/fastsim/transient_fastsim.hpp"
+#include "core/models/rolling_direction.hpp"
 #include "wheel_rail_contact/fastsim/second_order_flexibility.hpp"
-#include "wheel_rail_contact/fastsim/transient_fastsim.hpp"
 #include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
-#include "wheel_rail_contact/models/rolling_direction.hpp"
 
 using namespace wheel_rail_contact;
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "core/exact/halfspace_solver.hpp"
 #include "csv_rows.hpp"
-#include "wheel_rail_contact/exact/halfspace_solver.hpp"
 #include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
 #include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 

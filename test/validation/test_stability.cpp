@@ -8,8 +8,8 @@
 #include <memory>
 #include <string>
 
+#include "core/fastsim/fastsim.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/fastsim/fastsim.hpp"
 #include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 using namespace wheel_rail_contact;

@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/exact/halfspace_influence.hpp"
+#include "core/exact/halfspace_influence.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/exact/halfspace_normal.hpp"
+#include "core/exact/halfspace_normal.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "wheel_rail_contact/exact/halfspace_influence.hpp"
+#include "core/exact/halfspace_influence.hpp"
 
 namespace wheel_rail_contact {
 

@@ -1,11 +1,11 @@
-#include "wheel_rail_contact/exact/halfspace_solver.hpp"
+#include "core/exact/halfspace_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include "wheel_rail_contact/exact/halfspace_normal.hpp"
+#include "core/exact/halfspace_normal.hpp"
 
 namespace wheel_rail_contact {
 

@@ -19,8 +19,8 @@
 #include <Eigen/QR>
 #include <vector>
 
-#include "wheel_rail_contact/exact/halfspace_influence.hpp"
-#include "wheel_rail_contact/fastsim/fastsim.hpp"
+#include "core/exact/halfspace_influence.hpp"
+#include "core/fastsim/fastsim.hpp"
 
 namespace wheel_rail_contact {
 

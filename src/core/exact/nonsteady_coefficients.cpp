@@ -5,9 +5,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "wheel_rail_contact/exact/halfspace_influence.hpp"
-#include "wheel_rail_contact/exact/halfspace_normal.hpp"
-#include "wheel_rail_contact/exact/halfspace_solver.hpp"
+#include "core/exact/halfspace_influence.hpp"
+#include "core/exact/halfspace_normal.hpp"
+#include "core/exact/halfspace_solver.hpp"
 
 namespace wheel_rail_contact {
 

@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/fastsim/fastsim.hpp"
+#include "core/fastsim/fastsim.hpp"
 
 #include <algorithm>
 #include <cmath>

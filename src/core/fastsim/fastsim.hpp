@@ -8,8 +8,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/fastsim/patch_mesh.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/fastsim/patch_mesh.hpp"
 #include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 namespace wheel_rail_contact {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "wheel_rail_contact/fastsim/fastsim.hpp"
+#include "core/fastsim/fastsim.hpp"
 
 namespace wheel_rail_contact {
 

@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/fastsim/patch_mesh.hpp"
+#include "core/fastsim/patch_mesh.hpp"
 
 #include <algorithm>
 #include <cmath>

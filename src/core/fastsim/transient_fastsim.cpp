@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/fastsim/transient_fastsim.hpp"
+#include "core/fastsim/transient_fastsim.hpp"
 
 #include <algorithm>
 #include <cmath>

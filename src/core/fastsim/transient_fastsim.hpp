@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "wheel_rail_contact/fastsim/fastsim.hpp"
+#include "core/fastsim/fastsim.hpp"
 #include "wheel_rail_contact/fastsim/nss_filter.hpp"
 
 namespace wheel_rail_contact {

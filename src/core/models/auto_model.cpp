@@ -1,11 +1,11 @@
-#include "wheel_rail_contact/models/auto_model.hpp"
+#include "core/models/auto_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "core/models/steady_model.hpp"
 #include "wheel_rail_contact/fastsim/fastsim_frequency.hpp"
-#include "wheel_rail_contact/models/steady_model.hpp"
 
 namespace wheel_rail_contact {
 

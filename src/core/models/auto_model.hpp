@@ -5,8 +5,8 @@
 /// Units as in contact_model.hpp; lengths m, travelled distance q m.
 #pragma once
 
+#include "core/models/nss_model.hpp"
 #include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
-#include "wheel_rail_contact/models/nss_model.hpp"
 
 namespace wheel_rail_contact {
 

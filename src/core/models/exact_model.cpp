@@ -1,10 +1,10 @@
-#include "wheel_rail_contact/models/exact_model.hpp"
+#include "core/models/exact_model.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "wheel_rail_contact/exact/halfspace_normal.hpp"
-#include "wheel_rail_contact/models/rolling_direction.hpp"
+#include "core/exact/halfspace_normal.hpp"
+#include "core/models/rolling_direction.hpp"
 
 namespace wheel_rail_contact {
 

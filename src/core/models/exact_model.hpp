@@ -15,10 +15,10 @@
 /// FastSim models do (rolling_direction.hpp).
 #pragma once
 
+#include "core/exact/halfspace_solver.hpp"
+#include "core/models/rolling_direction.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/exact/halfspace_solver.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
-#include "wheel_rail_contact/models/rolling_direction.hpp"
 
 namespace wheel_rail_contact {
 

@@ -1,11 +1,11 @@
-#include "wheel_rail_contact/models/nss_model.hpp"
+#include "core/models/nss_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "wheel_rail_contact/models/rolling_direction.hpp"
+#include "core/models/rolling_direction.hpp"
 
 namespace wheel_rail_contact {
 

@@ -9,12 +9,12 @@
 
 #include <vector>
 
+#include "core/fastsim/transient_fastsim.hpp"
+#include "core/models/rolling_direction.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/fastsim/chi_table.hpp"
 #include "wheel_rail_contact/fastsim/second_order_flexibility.hpp"
-#include "wheel_rail_contact/fastsim/transient_fastsim.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
-#include "wheel_rail_contact/models/rolling_direction.hpp"
 
 namespace wheel_rail_contact {
 

@@ -1,4 +1,4 @@
-#include "wheel_rail_contact/models/rolling_direction.hpp"
+#include "core/models/rolling_direction.hpp"
 
 #include <cmath>
 

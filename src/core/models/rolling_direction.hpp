@@ -10,9 +10,9 @@
 /// the traction that stands in the material at a reversal is carried on (nothing jumps).
 #pragma once
 
+#include "core/fastsim/fastsim.hpp"
+#include "core/fastsim/transient_fastsim.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/fastsim/fastsim.hpp"
-#include "wheel_rail_contact/fastsim/transient_fastsim.hpp"
 
 namespace wheel_rail_contact {
 

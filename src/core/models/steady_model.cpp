@@ -1,6 +1,6 @@
-#include "wheel_rail_contact/models/steady_model.hpp"
+#include "core/models/steady_model.hpp"
 
-#include "wheel_rail_contact/models/rolling_direction.hpp"
+#include "core/models/rolling_direction.hpp"
 
 namespace wheel_rail_contact {
 

@@ -2,8 +2,8 @@
 /// V < 0 marches the mirror image (rolling_direction.hpp). Units as in contact_model.hpp.
 #pragma once
 
+#include "core/fastsim/fastsim.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
-#include "wheel_rail_contact/fastsim/fastsim.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
 
 namespace wheel_rail_contact {
