@@ -17,6 +17,11 @@ struct StepInput {
   double eta = 0.0;  ///< lateral creepage [-]
   double phi = 0.0;  ///< spin [1/m]
   double fz = 0.0;   ///< normal load [N]
+  /// Optional per-step contact geometry and friction (a simulator whose contact point moves across
+  /// the profiles); 0 = not given, the parameters apply: a = a0 (fz/fz0)^(1/3), b likewise, mu.
+  double a = 0.0;   ///< patch semi-axis along x (rolling) [m]; given together with b
+  double b = 0.0;   ///< patch semi-axis along y (lateral) [m]; given together with a
+  double mu = 0.0;  ///< Coulomb friction coefficient [-]
 };
 
 enum class StepStatus {

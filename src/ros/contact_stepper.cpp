@@ -92,6 +92,10 @@ StepResult ContactStepper::stepWithLoad(int64_t stampNs, double V, double xi, do
   return stepImpl(stampNs, {0.0, V, xi, eta, phi, fz}, true);
 }
 
+StepResult ContactStepper::stepWithLoad(int64_t stampNs, const StepInput& in) {
+  return stepImpl(stampNs, in, true);
+}
+
 StepResult ContactStepper::stepImpl(int64_t stampNs, const StepInput& input, bool loadGiven) {
   ++counters_.creepages;
   StepResult r;

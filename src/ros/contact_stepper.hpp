@@ -74,6 +74,10 @@ class ContactStepper {
   /// The Step service: `fz` becomes the latest load (stamp = stampNs) and is used for this step.
   StepResult stepWithLoad(int64_t stampNs, double V, double xi, double eta, double phi, double fz);
 
+  /// The same with the whole input: in.fz is this step's load (it becomes the latest load, stamp
+  /// stampNs), in.a, in.b, in.mu the optional per-step geometry and friction; in.dt is ignored.
+  StepResult stepWithLoad(int64_t stampNs, const StepInput& in);
+
   /// Clears everything a fresh stepper does not have: model state, time base, latest load.
   /// Counters are kept (resets is incremented).
   void reset();
