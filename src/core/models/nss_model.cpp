@@ -60,7 +60,20 @@ bool NssModel::followAOverB(double ab) {
     secondKind_[k] = second[k];
   }
   ab_ = ab;
+  reshaped_ = true;
   return true;
+}
+
+void NssModel::reshapeHistory(const HertzEllipse& h) {
+  // The adaptive mesh carries a load's change along the strips at fixed y/b (AlongStripMap): a and
+  // b scale alike there. A new a/b moves b against a, and strips kept at fixed y/b would stretch
+  // the history across the patch by b_new/b_old with the force it carries (a/b 1.4 -> 0.7 at the
+  // same area: +35 % in Fy at once). So the history is carried at fixed physical coordinates
+  // (paper eq. 19) into the new patch, and the march then runs on it in place.
+  spare_.scale(h.a, h.b);
+  remapState(mesh_, state_, spare_, &remapped_);
+  std::swap(state_, remapped_);
+  mesh_.scale(h.a, h.b);
 }
 
 void NssModel::dropSecondState() {
@@ -84,6 +97,7 @@ void NssModel::reset() {
   last_ = StepOutput();
   lastA_ = 0.0;
   if (ab_ != ab0_) followAOverB(ab0_);  // a fresh model's coefficients (no history to carry)
+  reshaped_ = false;
   lastSpeed_ = 0.0;
   std::fill(firstBefore_.begin(), firstBefore_.end(), p_.nx);  // no node loaded
   frame_.reset();
@@ -271,6 +285,7 @@ StepOutput NssModel::settle(const StepInput& given) {
   StepInput in;
   HertzEllipse h;
   if (!screen(given, &in, &h, &out)) return out;
+  reshaped_ = false;
   if (meshMustFollow(h)) mesh_.scale(h.a, h.b);  // no carry: the history is overwritten below
   parabolicBound(mesh_, h.a, h.b, in.fz, stepMu(in, p_.mu), &field_);
   if (!adaptive_) coverTrailingNodes();
@@ -307,6 +322,8 @@ StepOutput NssModel::step(const StepInput& given) {
   StepInput in;
   HertzEllipse h;
   if (!screen(given, &in, &h, &out)) return out;
+  if (reshaped_ && adaptive_ && lastA_ > 0.0) reshapeHistory(h);
+  reshaped_ = false;
   const bool moves = patchMoves(h);
   const CreepForces f = advance(in, h, moves);
   if (moves) settlePatch();

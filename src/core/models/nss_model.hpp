@@ -72,6 +72,10 @@ class NssModel : public ContactModel {
   /// Kalker's coefficients and chi at a/b `ab`, the history carried into them; false (nothing
   /// changed) where chi is not stable.
   bool followAOverB(double ab);
+  /// Adaptive mesh after a new a/b: the history carried at fixed physical coordinates into the
+  /// patch h, the mesh moved onto it.
+  void reshapeHistory(const HertzEllipse& h);
+  bool reshaped_ = false;  // a/b changed since the last march (followAOverB)
   /// Drops the second filter state of both history buffers (first order from now on).
   void dropSecondState();
 
