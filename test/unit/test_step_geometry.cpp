@@ -207,3 +207,21 @@ TEST(StepGeometry, ExactHonoursTheStepPatchAndRejectsOneBeyondItsGrid) {
   EXPECT_STREQ(beyond.message,
                "exact model: the step's a or b exceeds the fixed grid's patch (a0, b0 at fz_max)");
 }
+
+TEST(StepGeometry, ShippedChiIsStableAtEveryAOverB) {
+  // nss re-picks chi at each new a/b and rejects the step where the interpolated second-order F
+  // is unstable: on the shipped table that must happen nowhere in Kalker's range, on any mesh.
+  const ChiTable table = ChiTable::load(ChiTable::defaultPath());
+  for (int n : table.meshes()) {
+    ContactParameters p = params("nss", "adaptive");
+    p.nx = p.ny = n;
+    NssModel m(p, table);
+    for (int k = 0; k <= 400; ++k) {
+      const double ab = 0.1001 * std::pow(9.999 / 0.1001, k / 400.0), s = 5e-3;
+      const StepOutput out =
+          m.step(withPatch(rolling(1e-3, 1e-3, 1.0), s * std::sqrt(ab), s / std::sqrt(ab)));
+      ASSERT_EQ(out.status, StepStatus::kOk)
+          << "mesh " << n << " a/b " << ab << ": " << out.message;
+    }
+  }
+}
