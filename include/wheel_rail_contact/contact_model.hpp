@@ -19,6 +19,11 @@ struct StepInput {
   double fz = 0.0;   ///< normal load [N]
   /// Optional per-step contact geometry and friction (a simulator whose contact point moves across
   /// the profiles); 0 = not given, the parameters apply: a = a0 (fz/fz0)^(1/3), b likewise, mu.
+  /// Given, they must lie in the ranges the parameters a0, b0, a0/b0, mu accept (a, b in
+  /// [1e-6, 1] m, a/b in [0.1, 10], mu in [1e-6, 1000]; a and b together), else kRejected. The
+  /// FastSim models carry their history across a change of a, b, a/b (doc/varying_geometry.md),
+  /// and a change of mu only moves the traction bound; on the fixed mesh a patch beyond the mesh
+  /// (sized for fz_max at a0, b0) is clipped, with a message; exact rejects such a patch.
   double a = 0.0;   ///< patch semi-axis along x (rolling) [m]; given together with b
   double b = 0.0;   ///< patch semi-axis along y (lateral) [m]; given together with a
   double mu = 0.0;  ///< Coulomb friction coefficient [-]
@@ -71,7 +76,8 @@ constexpr double kMaxInputMagnitude = 1e12;
 /// underflow (the exact solver then returned NaN, found by fuzzing).
 constexpr double kMinLoad = 1e-6;
 
-/// Checks shared by every model: finite fields, dt >= 0, magnitudes at most kMaxInputMagnitude.
+/// Checks shared by every model: finite fields, dt >= 0, magnitudes at most kMaxInputMagnitude,
+/// per-step a, b, mu absent (0) or in range, a and b together.
 /// Returns "" if fine, else why (static text).
 const char* checkStepInput(const StepInput& in);
 

@@ -1,6 +1,8 @@
 /// Scenario files: the input histories contact_cli replays, one row per time step.
-/// CSV with a header naming at least t,V,xi,eta,phi,fz (s, m/s, -, -, 1/m, N), any column order,
-/// extra columns ignored, '#' lines are comments.
+/// CSV with a header naming t,V,xi,eta,phi,fz (s, m/s, -, -, 1/m, N) and optionally a,b (m, both
+/// or neither) and mu (-), the per-step geometry and friction of StepInput (0 in a row: not given,
+/// the parameters apply); any column order; an unknown or repeated column is an error; '#' lines
+/// are comments.
 #pragma once
 
 #include <istream>
@@ -19,6 +21,9 @@ struct ScenarioRow {
   double eta = 0.0;  ///< [-]
   double phi = 0.0;  ///< [1/m]
   double fz = 0.0;   ///< [N]
+  double a = 0.0;    ///< [m]; 0: not given (no column, or 0 in the row)
+  double b = 0.0;    ///< [m]; 0: not given
+  double mu = 0.0;   ///< [-]; 0: not given
 };
 
 /// A malformed scenario: what() names the source, line and field.

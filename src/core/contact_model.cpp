@@ -7,6 +7,7 @@
 #include "core/models/exact_model.hpp"
 #include "core/models/nss_model.hpp"
 #include "core/models/steady_model.hpp"
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 namespace wheel_rail_contact {
 
@@ -26,6 +27,26 @@ const char* toString(StepStatus s) {
   return "unknown";
 }
 
+namespace {
+
+const char* checkStepGeometry(const StepInput& in) {
+  // The ranges validate() accepts for a0, b0, a0/b0 and mu: Kalker's table and the chi table stop
+  // at a/b in [0.1, 10], and a patch beyond 1 m or below 1 um is no wheel-rail contact.
+  if ((in.a != 0.0) != (in.b != 0.0)) return "a and b must be given together (or both 0)";
+  if (in.a != 0.0) {
+    if (!(in.a >= 1e-6 && in.a <= 1.0)) return "a must be in [1e-6, 1] m (or 0: not given)";
+    if (!(in.b >= 1e-6 && in.b <= 1.0)) return "b must be in [1e-6, 1] m (or 0: not given)";
+    const double ab = in.a / in.b;
+    if (!(ab >= kKalkerMinAOverB && ab <= kKalkerMaxAOverB))
+      return "a/b must be in [0.1, 10] (Kalker's table)";
+  }
+  if (in.mu != 0.0 && !(in.mu >= 1e-6 && in.mu <= 1e3))
+    return "mu must be in [1e-6, 1000] (or 0: not given)";
+  return "";
+}
+
+}  // namespace
+
 const char* checkStepInput(const StepInput& in) {
   if (!std::isfinite(in.dt)) return "dt is not finite";
   if (!std::isfinite(in.V)) return "V is not finite";
@@ -38,6 +59,8 @@ const char* checkStepInput(const StepInput& in) {
   // comes near it, so such input is out of range rather than a case to compute.
   for (double v : {in.dt, in.V, in.xi, in.eta, in.phi, in.fz})
     if (std::abs(v) > kMaxInputMagnitude) return "an input exceeds 1e12 in magnitude (SI units)";
+  // Absent per-step geometry and friction cost this one branch (NaN != 0 takes it too).
+  if (in.a != 0.0 || in.b != 0.0 || in.mu != 0.0) return checkStepGeometry(in);
   return "";
 }
 

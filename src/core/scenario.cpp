@@ -9,7 +9,9 @@ namespace wheel_rail_contact {
 
 namespace {
 
-const std::array<const char*, 6> kColumns = {"t", "V", "xi", "eta", "phi", "fz"};
+// The first kRequired columns must be present; a, b (together) and mu may be.
+const std::array<const char*, 9> kColumns = {"t", "V", "xi", "eta", "phi", "fz", "a", "b", "mu"};
+constexpr size_t kRequired = 6;
 
 std::string trim(const std::string& s) {
   const auto first = s.find_first_not_of(" \t\r");
@@ -34,13 +36,13 @@ std::vector<std::string> splitCsv(const std::string& line) {
 
 StepInput stepInputAt(const std::vector<ScenarioRow>& rows, size_t k) {
   const ScenarioRow& r = rows[k];
-  return {k == 0 ? 0.0 : r.t - rows[k - 1].t, r.V, r.xi, r.eta, r.phi, r.fz};
+  return {k == 0 ? 0.0 : r.t - rows[k - 1].t, r.V, r.xi, r.eta, r.phi, r.fz, r.a, r.b, r.mu};
 }
 
 std::vector<ScenarioRow> readScenario(std::istream& in, const std::string& source) {
   std::string line;
   long lineNo = 0;
-  std::array<int, 6> col{};
+  std::array<int, kColumns.size()> col{};
   col.fill(-1);
   bool haveHeader = false;
   std::vector<ScenarioRow> rows;
@@ -50,16 +52,25 @@ std::vector<ScenarioRow> readScenario(std::istream& in, const std::string& sourc
     if (t.empty() || t[0] == '#') continue;
     const auto cells = splitCsv(t);
     if (!haveHeader) {
-      for (size_t c = 0; c < cells.size(); ++c)
-        for (size_t k = 0; k < kColumns.size(); ++k)
-          if (cells[c] == kColumns[k]) col[k] = static_cast<int>(c);
-      for (size_t k = 0; k < kColumns.size(); ++k)
+      for (size_t c = 0; c < cells.size(); ++c) {
+        size_t k = 0;
+        while (k < kColumns.size() && cells[c] != kColumns[k]) ++k;
+        if (k == kColumns.size())
+          fail(source, lineNo,
+               "unknown column '" + cells[c] + "' (known: t,V,xi,eta,phi,fz and optional a,b,mu)");
+        if (col[k] >= 0) fail(source, lineNo, "column '" + cells[c] + "' given twice");
+        col[k] = static_cast<int>(c);
+      }
+      for (size_t k = 0; k < kRequired; ++k)
         if (col[k] < 0) fail(source, lineNo, std::string("missing column '") + kColumns[k] + "'");
+      if ((col[6] < 0) != (col[7] < 0))
+        fail(source, lineNo, "columns 'a' and 'b' must be given together");
       haveHeader = true;
       continue;
     }
-    double v[6];
+    double v[kColumns.size()] = {};
     for (size_t k = 0; k < kColumns.size(); ++k) {
+      if (col[k] < 0) continue;  // an optional column not given: 0, the parameters apply
       if (col[k] >= static_cast<int>(cells.size()))
         fail(source, lineNo, std::string("field '") + kColumns[k] + "': missing value");
       const std::string& cell = cells[col[k]];
@@ -74,7 +85,7 @@ std::vector<ScenarioRow> readScenario(std::istream& in, const std::string& sourc
     }
     if (!rows.empty() && !(v[0] > rows.back().t))
       fail(source, lineNo, "field 't': time must increase strictly");
-    rows.push_back({v[0], v[1], v[2], v[3], v[4], v[5]});
+    rows.push_back({v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]});
   }
   if (!haveHeader) fail(source, lineNo, "no header line (expected t,V,xi,eta,phi,fz)");
   return rows;

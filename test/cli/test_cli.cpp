@@ -169,3 +169,29 @@ TEST(ContactCli, FreqForEveryFastSimModel) {
     EXPECT_LT(std::stod(rows[1][3]), std::stod(rows[2][3]) + 1e-12);  // shorter wave, smaller |C|
   }
 }
+
+TEST(ContactCli, RunHonoursTheOptionalGeometryAndFrictionColumns) {
+  // Row 1: the parameters; row 2: a round patch of its own, linear theory at a/b = 1; row 3:
+  // mu = 0.1 saturated; row 4: a negative a, rejected with its reason on stderr.
+  const std::string f = writeTemp("geom.csv",
+                                  "t,V,xi,eta,phi,fz,a,b,mu\n0,20,1e-7,0,0,8e4,0,0,0\n"
+                                  "0.001,20,1e-7,0,0,8e4,5e-3,5e-3,0\n"
+                                  "0.002,20,0.5,0,0,8e4,0,0,0.1\n"
+                                  "0.003,20,0.5,0,0,8e4,-5e-3,5e-3,0\n");
+  for (const char* model : {"steady", "nss"}) {
+    const Result r = cli({"run", "--scenario", f, "--model", model, "--mesh", "adaptive"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto rows = parseCsv(r.out);
+    ASSERT_EQ(rows.size(), 5u);
+    EXPECT_EQ(std::stod(rows[1][5]), 6e-3) << model;
+    EXPECT_EQ(std::stod(rows[2][5]), 5e-3) << model;
+    EXPECT_EQ(std::stod(rows[2][6]), 5e-3) << model;
+    if (std::string(model) == "steady") {
+      const double Gab = 8.2e10 * 5e-3 * 5e-3, c11 = kalkerCoefficients(1.0, 0.28).c11;
+      EXPECT_NEAR(std::stod(rows[2][1]), -Gab * c11 * 1e-7, 0.005 * Gab * c11 * 1e-7);
+      EXPECT_NEAR(std::stod(rows[3][1]), -0.1 * 8e4, 1e-6 * 0.1 * 8e4);
+    }
+    EXPECT_EQ(rows[4][8], "rejected input") << model;
+    EXPECT_NE(r.err.find("a must be in [1e-6, 1] m"), std::string::npos) << r.err;
+  }
+}

@@ -19,9 +19,10 @@ namespace wheel_rail_contact::fuzz {
 }
 
 inline std::string describe(const StepInput& in) {
-  char s[256];
-  std::snprintf(s, sizeof s, "dt=%.17g V=%.17g xi=%.17g eta=%.17g phi=%.17g fz=%.17g", in.dt, in.V,
-                in.xi, in.eta, in.phi, in.fz);
+  char s[400];
+  std::snprintf(s, sizeof s,
+                "dt=%.17g V=%.17g xi=%.17g eta=%.17g phi=%.17g fz=%.17g a=%.17g b=%.17g mu=%.17g",
+                in.dt, in.V, in.xi, in.eta, in.phi, in.fz, in.a, in.b, in.mu);
   return s;
 }
 

@@ -1,10 +1,11 @@
 // libFuzzer target: makeContactModel(ContactParameters) then a sequence of step() / reset() on the
 // models steady, shen-li, nss (fixed and adaptive mesh) and exact (tiny grid), parameters and
 // inputs decoded from the fuzz bytes with a bias to extremes (NaN, Inf, 1e+-300, sign flips,
-// dt <= 0, fz <= 0, meshes 0..61). Findings: a crash or sanitizer report; an exception other than
-// std::invalid_argument from makeContactModel, or any exception from step()/reset(); an output
-// breaking contact_model.hpp's contract (fuzz_checks.hpp); traction above mu p at a node
-// (steady, shen-li, nss) or a total force above mu fz; reset() not giving a fresh model's output.
+// dt <= 0, fz <= 0, meshes 0..61), per-step a, b, mu among them. Findings: a crash or sanitizer
+// report; an exception other than std::invalid_argument from makeContactModel, or any exception
+// from step()/reset(); an output breaking contact_model.hpp's contract (fuzz_checks.hpp); traction
+// above mu p at a node (steady, shen-li, nss) or a total force above mu fz; reset() not giving a
+// fresh model's output.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <algorithm>
@@ -129,6 +130,12 @@ StepInput decodeInput(Decoder& d, StepInput in) {
   if (d.flag()) in.eta = d.value(1e-3);
   if (d.flag()) in.phi = d.value(1.0);
   if (d.flag()) in.fz = d.value(8e4);
+  // Per-step geometry and friction, now and then (0 = not given); a and b mostly together.
+  if (d.pick(4) == 3) {
+    in.a = d.flag() ? 0.0 : d.value(6e-3);
+    in.b = d.pick(8) == 7 ? 0.0 : d.value(4e-3);
+  }
+  if (d.pick(4) == 3) in.mu = d.flag() ? 0.0 : d.value(0.3);
   return in;
 }
 
@@ -216,11 +223,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const int steps = d.pick((exact ? kMaxExactSteps : kMaxSteps) + 1);
   StepInput in{1e-3, 20.0, 2e-3, 0.0, 0.0, 8e4};
   double maxFz = 0.0;  // largest load since the history was last cleared (exact's forces lag)
+  double maxMu = 0.0;  // largest friction coefficient since then (p.mu or the steps' own)
   for (int k = 0; k < steps; ++k) {
     const std::string where = p.model + "/" + p.mesh + " step " + std::to_string(k);
     if (d.pick(8) == 7) {
       model->reset();
-      maxFz = 0.0;
+      maxFz = maxMu = 0.0;
     }
     in = decodeInput(d, in);
     const StepOutput out = safeStep(*model, in, where);
@@ -228,9 +236,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       std::fprintf(stderr, "%s\n  in:  %s\n  out: %s\n", where.c_str(), describe(in).c_str(),
                    describe(out).c_str());
     checkOutputContract(in, out, where);
-    if (out.status == StepStatus::kNoLoad) maxFz = 0.0;
+    if (out.status == StepStatus::kNoLoad) maxFz = maxMu = 0.0;
     if (out.status != StepStatus::kRejected && in.fz > 0.0) maxFz = std::max(maxFz, in.fz);
-    checkForce(out, p.mu, exact ? maxFz : out.fz, where);
+    // A held output (standstill, exact without a sub-step) may stem from an earlier step's mu.
+    if (out.status != StepStatus::kRejected) maxMu = std::max(maxMu, in.mu != 0.0 ? in.mu : p.mu);
+    checkForce(out, maxMu, exact ? maxFz : out.fz, where);
     if (out.status == StepStatus::kOk) checkTraction(*model, where);
   }
   if (steps > 0) checkReset(*model, p, in);

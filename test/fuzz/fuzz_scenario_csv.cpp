@@ -35,7 +35,7 @@ std::vector<ScenarioRow> read(const std::string& text, bool* ok) {
 void checkRows(const std::vector<ScenarioRow>& rows) {
   for (size_t k = 0; k < rows.size(); ++k) {
     const ScenarioRow& r = rows[k];
-    for (double v : {r.t, r.V, r.xi, r.eta, r.phi, r.fz})
+    for (double v : {r.t, r.V, r.xi, r.eta, r.phi, r.fz, r.a, r.b, r.mu})
       if (!std::isfinite(v)) finding("accepted a non-finite value in row " + std::to_string(k));
     if (k > 0 && !(r.t > rows[k - 1].t))
       finding("accepted a time that does not increase, row " + std::to_string(k));
@@ -47,11 +47,8 @@ void replay(const std::vector<ScenarioRow>& rows) {
   p.nx = 6;
   p.ny = 5;
   const auto model = makeContactModel(p);
-  double tPrev = 0.0;
   for (size_t k = 0; k < rows.size() && k < kMaxReplayedRows; ++k) {
-    const ScenarioRow& r = rows[k];
-    const StepInput in{k == 0 ? 0.0 : r.t - tPrev, r.V, r.xi, r.eta, r.phi, r.fz};
-    tPrev = r.t;
+    const StepInput in = stepInputAt(rows, k);
     StepOutput out;
     try {
       out = model->step(in);

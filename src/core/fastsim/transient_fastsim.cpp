@@ -46,6 +46,11 @@ void TransientState::scaleStates(double r, bool second) {
   if (second) history_.bottomRows<2>() *= r;
 }
 
+void TransientState::scaleDirections(double rx, double ry) {
+  // Rows x, y alternate (tx, ty, sx, sy, s2x, s2y); sx, sy held decayed scale alike.
+  for (int row = 0; row < kRows; ++row) history_.row(row) *= row % 2 == 0 ? rx : ry;
+}
+
 // The marches' access to TransientState's storage.
 struct TransientStorage {
   // As stored: outside the patch sx, sy may be held decayed (only the in-place first-order march

@@ -39,6 +39,8 @@ class TransientState {
   void copyTraction(int from, int to) { history_.col(to).head<2>() = history_.col(from).head<2>(); }
   /// Multiplies sx, sy (with `second` also s2x, s2y) by r; no settling needed (D is unchanged).
   void scaleStates(double r, bool second);
+  /// Multiplies every x row (tx, sx, s2x) by rx and every y row by ry; no settling needed.
+  void scaleDirections(double rx, double ry);
   auto tx() { return settled().row(0); }
   auto ty() { return settled().row(1); }
   auto sx() { return settled().row(2); }

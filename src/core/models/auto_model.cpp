@@ -46,8 +46,8 @@ ContactParameters withMesh(ContactParameters p, int n, const char* model) {
 }  // namespace
 
 SteadinessMonitor::SteadinessMonitor(double l, double window, const CreepCoefficients& c,
-                                     double sqrtAb)
-    : l_(l), bucket_(0.5 * window), sqrtAb_(sqrtAb), c_(c) {}
+                                     double sqrtAb, double nu)
+    : l_(l), bucket_(0.5 * window), sqrtAb_(sqrtAb), nu_(nu), c_(c) {}
 
 void SteadinessMonitor::reset() {
   primed_ = false;
@@ -60,7 +60,15 @@ double SteadinessMonitor::update(const StepInput& in) {
   // Linear-theory force in the contact frame: creepages are per signed V, so a reversal at
   // constant creepage turns xi's and eta's forces over (rolling_direction.hpp) and must count.
   const double dir = in.V < 0.0 ? -1.0 : 1.0;
-  const double fx = dir * c_.c11 * in.xi, fy = dir * c_.c22 * in.eta + c_.c23 * in.phi * sqrtAb_;
+  double fx = dir * c_.c11 * in.xi, fy = dir * c_.c22 * in.eta + c_.c23 * in.phi * sqrtAb_;
+  if (in.a != 0.0) {
+    // The step's own patch: the force of the creepages at its a/b and area (per G a0 b0), so a
+    // changing geometry counts as a changing input.
+    const CreepCoefficients c = kalkerCoefficients(in.a / in.b, nu_);
+    const double area = in.a * in.b / (sqrtAb_ * sqrtAb_);
+    fx = area * dir * c.c11 * in.xi;
+    fy = area * (dir * c.c22 * in.eta + c.c23 * in.phi * std::sqrt(in.a * in.b));
+  }
   if (primed_) {
     travelled_ += dq;
     if (travelled_ > bucket_) {  // two buckets: the peaks of the last half to whole window
@@ -119,7 +127,7 @@ AutoModel::AutoModel(const ContactParameters& p, const ChiTable& chi)
       l_(nssRelaxationLength(p, chi)),
       nss_(withMesh(p, n_, "nss"), chi),
       monitor_(l_, peakWindow(l_, p.tolerance), kalkerCoefficients(p.a0 / p.b0, p.nu),
-               std::sqrt(p.a0 * p.b0)) {}
+               std::sqrt(p.a0 * p.b0), p.nu) {}
 
 void AutoModel::reset() {
   nss_.reset();

@@ -13,13 +13,15 @@ namespace wheel_rail_contact {
 /// How fast the inputs change per distance rolled, as the force error steady FastSim would make:
 /// a first-order lag of relaxation length l gives F_steady - F = l dF/dq, so the estimate is
 /// l |dF_lin/dq| / |F_lin| (linear-theory force of the creepages, peaks over the last `window`),
-/// and 0.3 l |dfz/dq| / fz for the load (weight from the chart's varying-load scenes).
+/// and 0.3 l |dfz/dq| / fz for the load (weight from the chart's varying-load scenes). A step's own
+/// a, b enter F_lin through Kalker's coefficients at its a/b and its area.
 class SteadinessMonitor {
  public:
   /// l: relaxation length [m]; window: distance over which the peaks are held (between half of it
   /// and all of it) [m];
-  /// c: Kalker's coefficients weighting xi, eta and spin into a force; sqrtAb: sqrt(a0 b0) [m].
-  SteadinessMonitor(double l, double window, const CreepCoefficients& c, double sqrtAb);
+  /// c: Kalker's coefficients weighting xi, eta and spin into a force; sqrtAb: sqrt(a0 b0) [m];
+  /// nu: Poisson's ratio, for the coefficients at a step's own a/b (StepInput::a, b).
+  SteadinessMonitor(double l, double window, const CreepCoefficients& c, double sqrtAb, double nu);
   /// One usable step (dq = |V| dt > 0, fz > 0). Returns the current estimate [-].
   double update(const StepInput& in);
   void reset();
@@ -29,7 +31,7 @@ class SteadinessMonitor {
   struct Peaks {
     double slope = 0.0, size = 0.0, load = 0.0;  // |dF_lin/dq|, |F_lin|, |dfz/dq| / fz
   };
-  double l_, bucket_, sqrtAb_;
+  double l_, bucket_, sqrtAb_, nu_;
   CreepCoefficients c_;
   bool primed_ = false;
   double fx_ = 0.0, fy_ = 0.0, fz_ = 0.0;  // previous linear force (per G a b) and load

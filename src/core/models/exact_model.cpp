@@ -5,6 +5,7 @@
 
 #include "core/exact/halfspace_normal.hpp"
 #include "core/models/rolling_direction.hpp"
+#include "core/models/step_geometry.hpp"
 
 namespace wheel_rail_contact {
 
@@ -20,20 +21,36 @@ HalfspaceGrid gridFor(const ContactParameters& p) {
   return HalfspaceGrid::covering(p.a0 * s, p.b0 * s, p.nx, p.ny);
 }
 
-StepInput lerp(const StepInput& a, const StepInput& b, double f) {
+StepInput lerp(const StepInput& a, const StepInput& b, double f, const ReferencePatch& ref,
+               double mu) {
   StepInput r;
   r.V = a.V + f * (b.V - a.V);
   r.xi = a.xi + f * (b.xi - a.xi);
   r.eta = a.eta + f * (b.eta - a.eta);
   r.phi = a.phi + f * (b.phi - a.phi);
   r.fz = a.fz + f * (b.fz - a.fz);
+  // Per-step geometry or friction at either end: both ends' own values (the parameters' where
+  // absent) interpolated too.
+  if (a.a != 0.0 || b.a != 0.0) {
+    const HertzEllipse ha = stepPatch(a, ref), hb = stepPatch(b, ref);
+    r.a = ha.a + f * (hb.a - ha.a);
+    r.b = ha.b + f * (hb.b - ha.b);
+  }
+  if (a.mu != 0.0 || b.mu != 0.0) {
+    const double ma = stepMu(a, mu), mb = stepMu(b, mu);
+    r.mu = ma + f * (mb - ma);
+  }
   return r;
 }
 
 }  // namespace
 
 ExactModel::ExactModel(const ContactParameters& p)
-    : p_(p), ref_{p.a0, p.b0, p.fz0}, solver_(gridFor(p), p.G, p.nu), fzMax_(effectiveFzMax(p)) {}
+    : p_(p),
+      ref_{p.a0, p.b0, p.fz0},
+      solver_(gridFor(p), p.G, p.nu),
+      fzMax_(effectiveFzMax(p)),
+      maxPatch_(ref_.at(fzMax_)) {}
 
 void ExactModel::reset() {
   solver_.clearHistory();
@@ -51,16 +68,22 @@ void ExactModel::subStep(const StepInput& in) {
   // The normal problem is solved again when the load has moved by more than 0.5 % (a, b by
   // 0.17 %, a small fraction of an element on any grid this model allows); in between, its
   // pressure is scaled to the load, which keeps sum p dA = fz exactly.
-  if (!(loadedFz_ > 0.0) || std::abs(in.fz - loadedFz_) > 5e-3 * loadedFz_) {
-    const HertzEllipse h = ref_.at(in.fz);
+  // A step's own a, b: solved again when either has moved by more than that 0.17 % too.
+  const bool moved = in.a != 0.0 && (std::abs(in.a - loadedA_) > 1.7e-3 * loadedA_ ||
+                                     std::abs(in.b - loadedB_) > 1.7e-3 * loadedB_);
+  if (!(loadedFz_ > 0.0) || std::abs(in.fz - loadedFz_) > 5e-3 * loadedFz_ || moved) {
+    const HertzEllipse h = stepPatch(in, ref_);
     normalPressure_ = hertzianGridPressure(solver_.grid(), h.a, h.b, in.fz, p_.G, p_.nu);
     loadedFz_ = in.fz;
+    loadedA_ = h.a;
+    loadedB_ = h.b;
   }
   solver_.setPressure(normalPressure_ * (in.fz / loadedFz_));
   // The slip solve squares the rigid slip: a subnormal creepage made it NaN (found by fuzzing).
   // Below 1e-100 a creepage is zero (its force would be below 1e-80 N).
   const auto flush = [](double c) { return std::abs(c) < 1e-100 ? 0.0 : c; };
-  solver_.solve(RollingMode::kTransient, {flush(in.xi), flush(in.eta), flush(in.phi)}, p_.mu);
+  solver_.solve(RollingMode::kTransient, {flush(in.xi), flush(in.eta), flush(in.phi)},
+                stepMu(in, p_.mu));
   ++subSteps_;
 }
 
@@ -79,9 +102,16 @@ StepOutput ExactModel::step(const StepInput& given) {
     }
     return out;
   }
-  if (given.fz > fzMax_ * (1.0 + 1e-12)) {
+  if (given.a == 0.0 && given.fz > fzMax_ * (1.0 + 1e-12)) {
     out.status = StepStatus::kRejected;
     out.message = "fz above fz_max: the fixed grid does not cover the patch";
+    return out;
+  }
+  if (given.a != 0.0 &&
+      (given.a > maxPatch_.a * (1.0 + 1e-12) || given.b > maxPatch_.b * (1.0 + 1e-12))) {
+    out.status = StepStatus::kRejected;
+    out.message =
+        "exact model: the step's a or b exceeds the fixed grid's patch (a0, b0 at fz_max)";
     return out;
   }
   // Rolls forwards, in the mirror while V < 0. At a reversal, as the FastSim models: the traction
@@ -102,7 +132,7 @@ StepOutput ExactModel::step(const StepInput& given) {
     out.message = "V = 0: no travel, forces held";
     return contactFrame(out);
   }
-  const HertzEllipse h = ref_.at(in.fz);
+  const HertzEllipse h = stepPatch(in, ref_);
   if (!started_) {  // from rest: no distance rolled yet, no traction
     solver_.clearHistory();
     started_ = true;
@@ -125,7 +155,7 @@ StepOutput ExactModel::step(const StepInput& given) {
       solver_.clearHistory();
     }
     for (long k = first; k <= n; ++k)  // the last one takes the row's own input
-      subStep(k == n ? in : lerp(prev_, in, ((k + skip) * dx - carry_) / travel));
+      subStep(k == n ? in : lerp(prev_, in, ((k + skip) * dx - carry_) / travel, ref_, p_.mu));
     // After a clamped (restarted) travel the remainder's rounding exceeds dx: start on a node.
     carry_ = elements > 2.0 * cap ? 0.0 : total - n * dx;
     if (n > 0) {

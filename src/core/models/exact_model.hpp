@@ -13,6 +13,10 @@
 /// after start, reset or loss of contact starts from zero traction and returns zero force.
 /// V < 0 rolls forwards in the mirror x -> -x, the history mirrored at each reversal, as the
 /// FastSim models do (rolling_direction.hpp).
+/// Per-step a, b and mu (StepInput) are honoured: interpolated between rows like the other
+/// inputs, the normal problem solved again when a or b moves by more than 0.17 %; the traction
+/// history stands on the fixed grid, so a change of patch needs no remapping. A step whose a or b
+/// exceeds the patch at fz_max (what the grid covers) is rejected.
 #pragma once
 
 #include "core/exact/halfspace_solver.hpp"
@@ -42,12 +46,14 @@ class ExactModel : public ContactModel {
   ReferencePatch ref_;
   HalfspaceSolver solver_;
   double fzMax_;
+  HertzEllipse maxPatch_;  // the patch at fz_max: what the grid covers (a step's a, b at most)
   StepInput prev_;
   bool started_ = false;
-  RollingFrame frame_;              // the mirror while rolling backwards
-  double carry_ = 0.0;              // distance rolled since the last sub-step [m]
-  double loadedFz_ = -1.0;          // load of the last normal solve [N]
-  Eigen::VectorXd normalPressure_;  // its pressure [Pa]
+  RollingFrame frame_;                    // the mirror while rolling backwards
+  double carry_ = 0.0;                    // distance rolled since the last sub-step [m]
+  double loadedFz_ = -1.0;                // load of the last normal solve [N]
+  double loadedA_ = 0.0, loadedB_ = 0.0;  // its patch [m]
+  Eigen::VectorXd normalPressure_;        // its pressure [Pa]
   int subSteps_ = 0;
   StepOutput last_;
 };

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/models/rolling_direction.hpp"
+#include "core/models/step_geometry.hpp"
 
 namespace wheel_rail_contact {
 
@@ -14,18 +15,15 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
       ref_{p.a0, p.b0, p.fz0},
       kalker_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
       adaptive_(p.mesh != "fixed"),  // "auto": fitted to the patch, moved only when fz changes
-      dynamic_(p.model == "nss") {
-  const ChiTable mine = chi.forMesh(p.nx);  // chi is fitted per mesh
-  for (int k = 0; k < 3; ++k)
-    chi_[k] =
-        dynamic_ ? mine.secondOrderAt(static_cast<CreepageKind>(k), p.a0 / p.b0) : SecondOrderChi{};
+      dynamic_(p.model == "nss"),
+      chiTable_(dynamic_ ? chi.forMesh(p.nx) : ChiTable::uniform({})),  // chi is fitted per mesh
+      ab0_(p.a0 / p.b0),
+      ab_(ab0_) {
   // Linear interpolation between two stable second-order rows need not be stable (the Routh
   // condition is not convex in chi): refuse an a/b where it is not.
-  for (int k = 0; k < 3; ++k) secondKind_[k] = chi_[k].chi4 != 0.0 || chi_[k].chi5 != 0.0;
-  for (int k = 0; k < 3; ++k)
-    if (secondKind_[k] && !chi_[k].valid())
-      throw std::invalid_argument("nss: the chi table's second-order F at a/b = " +
-                                  std::to_string(p.a0 / p.b0) + " is not stable");
+  if (!pickChi(ab0_, chi_, secondKind_))
+    throw std::invalid_argument(
+        "nss: the chi table's second-order F at a/b = " + std::to_string(ab0_) + " is not stable");
   const HertzEllipse largest = ref_.at(adaptive_ ? p.fz0 : effectiveFzMax(p));
   mesh_ = PatchMesh(p.nx, p.ny, largest.a, largest.b);
   spare_ = mesh_;
@@ -36,6 +34,46 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
   scratch_.resize(mesh_.size());
   firstBefore_.resize(mesh_.ny());
   reset();
+}
+
+bool NssModel::pickChi(double ab, SecondOrderChi* chi, bool* secondKind) const {
+  for (int k = 0; k < 3; ++k) {
+    chi[k] =
+        dynamic_ ? chiTable_.secondOrderAt(static_cast<CreepageKind>(k), ab) : SecondOrderChi{};
+    secondKind[k] = chi[k].chi4 != 0.0 || chi[k].chi5 != 0.0;
+    if (secondKind[k] && !chi[k].valid()) return false;
+  }
+  return true;
+}
+
+bool NssModel::followAOverB(double ab) {
+  SecondOrderChi chi[3];
+  bool second[3];
+  if (!pickChi(ab, chi, second)) return false;
+  const CreepCoefficients c = kalkerCoefficients(ab, p_.nu);
+  // What persists in the material is the displacement u = L tau (historyScale), and L1, L2 scale
+  // with 1 / C11, 1 / C22 as well as with a: carry u along each direction.
+  if (lastA_ > 0.0) state_.scaleDirections(c.c11 / kalker_.c11, c.c22 / kalker_.c22);
+  kalker_ = c;
+  for (int k = 0; k < 3; ++k) {
+    chi_[k] = chi[k];
+    secondKind_[k] = second[k];
+  }
+  ab_ = ab;
+  reshaped_ = true;
+  return true;
+}
+
+void NssModel::reshapeHistory(const HertzEllipse& h) {
+  // The adaptive mesh carries a load's change along the strips at fixed y/b (AlongStripMap): a and
+  // b scale alike there. A new a/b moves b against a, and strips kept at fixed y/b would stretch
+  // the history across the patch by b_new/b_old with the force it carries (a/b 1.4 -> 0.7 at the
+  // same area: +35 % in Fy at once). So the history is carried at fixed physical coordinates
+  // (paper eq. 19) into the new patch, and the march then runs on it in place.
+  spare_.scale(h.a, h.b);
+  remapState(mesh_, state_, spare_, &remapped_);
+  std::swap(state_, remapped_);
+  mesh_.scale(h.a, h.b);
 }
 
 void NssModel::dropSecondState() {
@@ -58,6 +96,8 @@ void NssModel::reset() {
   wx_[1] = wy_[1] = 0.0;
   last_ = StepOutput();
   lastA_ = 0.0;
+  if (ab_ != ab0_) followAOverB(ab0_);  // a fresh model's coefficients (no history to carry)
+  reshaped_ = false;
   lastSpeed_ = 0.0;
   std::fill(firstBefore_.begin(), firstBefore_.end(), p_.nx);  // no node loaded
   frame_.reset();
@@ -106,8 +146,9 @@ void NssModel::coverTrailingNodes() {
 
 double NssModel::historyScale(double a) const {
   // What persists in the material is the elastic displacement u = L tau (paper eq. 3), and every
-  // flexibility L scales with a (a/b is fixed): carry u, not tau, into the new patch size, i.e.
-  // read the history times a_old / a (folded into the march's constants).
+  // flexibility L scales with a at a given a/b: carry u, not tau, into the new patch size, i.e.
+  // read the history times a_old / a (folded into the march's constants). A change of a/b moves
+  // L1, L2 further through C11, C22: followAOverB carries that part.
   return lastA_ > 0.0 ? lastA_ / a : 1.0;
 }
 
@@ -164,7 +205,7 @@ CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool m
   // When the adaptive patch moves, the step runs on spare_ and carries the history over from mesh_
   // along the strips as it marches (AlongStripMap) into remapped_; settlePatch() then swaps.
   const PatchMesh& mesh = moves ? spare_ : mesh_;
-  parabolicBound(mesh, h.a, h.b, in.fz, p_.mu, &field_);
+  parabolicBound(mesh, h.a, h.b, in.fz, stepMu(in, p_.mu), &field_);
   if (!adaptive_) coverTrailingNodes();
   // Travel below 1e-9 a is no travel (a subnormal V made 1 / (V dt) infinite: NaN, found by
   // fuzzing): the step then holds the history as dt = 0 does, saturated at the current load.
@@ -197,6 +238,14 @@ bool NssModel::screen(const StepInput& given, StepInput* in, HertzEllipse* h, St
     *out = hold(StepStatus::kStandstill, "V = 0: no travel, state and forces held");
     return false;
   }
+  // A new a/b (per-step geometry) re-picks chi and Kalker's coefficients; absent, a/b stays a0/b0.
+  const double ab = stepAOverB(given, ab0_);
+  if (ab != ab_ && !followAOverB(ab)) {
+    *out = StepOutput();
+    out->status = StepStatus::kRejected;
+    out->message = "nss: the chi table's second-order F is not stable at this step's a/b";
+    return false;
+  }
   // V < 0: the mirror image rolls forwards. At a reversal the traction standing in the material
   // stays where it is: carry it into the other direction's frame rather than clear it (a braked
   // wheel that reverses keeps its grip).
@@ -204,7 +253,7 @@ bool NssModel::screen(const StepInput& given, StepInput* in, HertzEllipse* h, St
     mirrorAlongX(mesh_, &state_);
     mirrorAlongX(mesh_, &field_);
   });
-  *h = ref_.at(in->fz);
+  *h = stepPatch(*in, ref_);
   return true;
 }
 
@@ -213,7 +262,13 @@ StepOutput NssModel::finish(const CreepForces& f, const StepInput& in, const Her
   frame_.toContact(&out);
   if (!adaptive_) {
     if (h.a > mesh_.a() * (1 + 1e-12))
-      out.message = "fz exceeds fz_max: the patch is clipped to the fixed mesh";
+      out.message = in.a != 0.0 ? "the step's patch exceeds the fixed mesh (sized for fz_max at "
+                                  "a0, b0): the patch is clipped to it"
+                                : "fz exceeds fz_max: the patch is clipped to the fixed mesh";
+    else if (h.b > mesh_.b() * (1 + 1e-12))
+      out.message =
+          "the step's patch exceeds the fixed mesh (sized for fz_max at a0, b0): the patch is "
+          "clipped to it";
     // A fixed mesh sized far above the load leaves the patch a node or two: the force is then
     // coarse (29 % off at 2 nodes) or zero (inside one element), so say so.
     else if (std::min(h.a / mesh_.a() * p_.nx, h.b / mesh_.b() * p_.ny) < 4.0)
@@ -230,8 +285,9 @@ StepOutput NssModel::settle(const StepInput& given) {
   StepInput in;
   HertzEllipse h;
   if (!screen(given, &in, &h, &out)) return out;
+  reshaped_ = false;
   if (meshMustFollow(h)) mesh_.scale(h.a, h.b);  // no carry: the history is overwritten below
-  parabolicBound(mesh_, h.a, h.b, in.fz, p_.mu, &field_);
+  parabolicBound(mesh_, h.a, h.b, in.fz, stepMu(in, p_.mu), &field_);
   if (!adaptive_) coverTrailingNodes();
   const Creepages c{in.xi, in.eta, in.phi};
   updateWeights(c, h.a, h.b);
@@ -251,7 +307,7 @@ StepOutput NssModel::settle(const StepInput& given) {
 
 StepOutput NssModel::steadyAlongside(const StepInput& given) {
   const StepInput in = frame_.inFrame(given);
-  const HertzEllipse h = ref_.at(in.fz);
+  const HertzEllipse h = stepPatch(in, ref_);
   scratch_.bound = field_.bound;
   scratch_.entry = field_.entry;
   const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_),
@@ -266,6 +322,8 @@ StepOutput NssModel::step(const StepInput& given) {
   StepInput in;
   HertzEllipse h;
   if (!screen(given, &in, &h, &out)) return out;
+  if (reshaped_ && adaptive_ && lastA_ > 0.0) reshapeHistory(h);
+  reshaped_ = false;
   const bool moves = patchMoves(h);
   const CreepForces f = advance(in, h, moves);
   if (moves) settlePatch();

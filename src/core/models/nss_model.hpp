@@ -64,10 +64,22 @@ class NssModel : public ContactModel {
   CreepCoefficients kalker_;
   bool adaptive_ = false;
   bool dynamic_ = false;  // nss (else shen-li)
+  ChiTable chiTable_;     // for this mesh (nss), to re-pick chi when a/b changes
+  double ab0_ = 1.0;      // a0/b0: the a/b of every step without per-step geometry
+  double ab_ = 1.0;       // the a/b kalker_ and chi_ are for
+  /// chi of the three kinds at a/b `ab`; false if a second-order one is not stable there.
+  bool pickChi(double ab, SecondOrderChi* chi, bool* secondKind) const;
+  /// Kalker's coefficients and chi at a/b `ab`, the history carried into them; false (nothing
+  /// changed) where chi is not stable.
+  bool followAOverB(double ab);
+  /// Adaptive mesh after a new a/b: the history carried at fixed physical coordinates into the
+  /// patch h, the mesh moved onto it.
+  void reshapeHistory(const HertzEllipse& h);
+  bool reshaped_ = false;  // a/b changed since the last march (followAOverB)
   /// Drops the second filter state of both history buffers (first order from now on).
   void dropSecondState();
 
-  // Kinds 11, 22, 23 at this a/b (a/b does not change with load); first order where the table
+  // Kinds 11, 22, 23 at a/b ab_ (a/b does not change with load); first order where the table
   // has no chi4, chi5 (kinds 11, 22; 23 in an older table).
   SecondOrderChi chi_[3];
   bool secondKind_[3] = {false, false, false};  // chi_[k] has chi4 or chi5 != 0

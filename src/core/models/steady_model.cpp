@@ -1,6 +1,7 @@
 #include "core/models/steady_model.hpp"
 
 #include "core/models/rolling_direction.hpp"
+#include "core/models/step_geometry.hpp"
 
 namespace wheel_rail_contact {
 
@@ -8,6 +9,8 @@ SteadyModel::SteadyModel(const ContactParameters& p, Mesh mesh)
     : p_(p),
       ref_{p.a0, p.b0, p.fz0},
       c_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
+      ab0_(p.a0 / p.b0),
+      ab_(ab0_),
       fitted_(mesh == Mesh::kFittedToPatch) {
   const HertzEllipse sized = ref_.at(fitted_ ? p.fz0 : effectiveFzMax(p));
   mesh_ = PatchMesh(p.nx, p.ny, sized.a, sized.b);
@@ -29,9 +32,14 @@ StepOutput SteadyModel::step(const StepInput& in) {
   // Rolling backwards: forward rolling of the mirror image (rolling_direction.hpp).
   const bool backwards = in.V < 0.0;
   const StepInput fwd = backwards ? mirroredInput(in) : in;
-  const HertzEllipse h = ref_.at(fwd.fz);
+  const HertzEllipse h = stepPatch(fwd, ref_);
+  const double ab = stepAOverB(fwd, ab0_);
+  if (ab != ab_) {  // per-step geometry: Kalker's coefficients at this a/b
+    c_ = kalkerCoefficients(ab, p_.nu);
+    ab_ = ab;
+  }
   if (fitted_) mesh_.scale(h.a, h.b);
-  parabolicBound(mesh_, h.a, h.b, fwd.fz, p_.mu, &field_);
+  parabolicBound(mesh_, h.a, h.b, fwd.fz, stepMu(fwd, p_.mu), &field_);
   const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, c_),
                                       {fwd.xi, fwd.eta, fwd.phi}, &field_);
   out = stepOutput(f, fwd.fz, h.a, h.b);

@@ -1,4 +1,5 @@
-/// Steady FastSim as a ContactModel: no memory, the patch follows the Hertz scaling of the load.
+/// Steady FastSim as a ContactModel: no memory, the patch follows the Hertz scaling of the load,
+/// or the step's own a, b (and mu) where given.
 /// V < 0 marches the mirror image (rolling_direction.hpp). Units as in contact_model.hpp.
 #pragma once
 
@@ -27,7 +28,9 @@ class SteadyModel : public ContactModel {
  private:
   ContactParameters p_;
   ReferencePatch ref_;
-  CreepCoefficients c_;
+  CreepCoefficients c_;  // Kalker's, at a/b ab_
+  double ab0_;           // a0/b0: the a/b of every step without per-step geometry
+  double ab_;
   PatchMesh mesh_;
   TractionField field_;
   bool fitted_;      // mesh_ follows the patch
