@@ -22,8 +22,9 @@
 
 namespace wrc = wheel_rail_contact;
 
-// A simulator's kinematics would give these; here: a slow sway of one wheelset at 20 m/s.
-const double kV = 20.0, kDt = 1e-3;
+// A simulator's kinematics would give these; here: a slow sway of one wheelset at 20 m/s. The
+// single contact carries a steady load; the vehicle's wheels trade load between left and right.
+const double kV = 20.0, kDt = 1e-3, kFz = 8e4;
 double xiAt(int k, int wheel) {
   return 1e-3 * std::sin(0.05 * k) * (wheel % 2 ? -1.0 : 1.0);
 }
@@ -31,7 +32,7 @@ double etaAt(int k) {
   return 5e-4 * std::cos(0.05 * k);
 }
 double fzAt(int k, int wheel) {
-  return 8e4 + 2e3 * std::sin(0.02 * k) * (wheel % 2 ? -1.0 : 1.0);
+  return kFz + 2e3 * std::sin(0.02 * k) * (wheel % 2 ? -1.0 : 1.0);
 }
 
 void print(const char* path, const std::string& name, int k, const ros::Time& t, double xi,
@@ -60,18 +61,18 @@ int main(int argc, char** argv) {
   int k = 0;                         // one time line per contact: stamps keep increasing
   auto stampOf = [](int step) { return ros::Time(100.0 + step * kDt); };
 
-  // 1. The step service: a persistent connection, one call per step.
+  // 1. The step service: one persistent connection (made once the service exists), a call a step.
+  if (!ros::service::waitForService(contact + "/step", ros::Duration(30.0))) return 1;
   auto step = nh.serviceClient<wrc::Step>(contact + "/step", true);
-  if (!step.waitForExistence(ros::Duration(30.0))) return 1;
   for (int end = k + steps; k < end; ++k) {
     wrc::Step s;
     s.request.stamp = stampOf(k);
     s.request.velocity = kV;
     s.request.longitudinal = xiAt(k, 0);
     s.request.lateral = etaAt(k);
-    s.request.normal_force = fzAt(k, 0);
+    s.request.normal_force = kFz;
     if (!step.call(s)) return 1;
-    print("step", contact, k, s.request.stamp, xiAt(k, 0), etaAt(k), fzAt(k, 0), s.response.fx,
+    print("step", contact, k, s.request.stamp, xiAt(k, 0), etaAt(k), kFz, s.response.fx,
           s.response.fy, s.response.mz, s.response.status);
   }
 
@@ -87,7 +88,7 @@ int main(int argc, char** argv) {
   for (int end = k + steps; k < end; ++k) {
     wrc::NormalLoad l;
     l.header.stamp = stampOf(k);
-    l.force = fzAt(k, 0);
+    l.force = kFz;
     load.publish(l);
     wrc::Creepage c;
     c.header.stamp = stampOf(k);
@@ -96,17 +97,17 @@ int main(int argc, char** argv) {
     c.lateral = etaAt(k);
     creepage.publish(c);
     if (!waitFor(state, c.header.stamp)) return 1;
-    print("topic", contact, k, c.header.stamp, xiAt(k, 0), etaAt(k), fzAt(k, 0), state.fx, state.fy,
+    print("topic", contact, k, c.header.stamp, xiAt(k, 0), etaAt(k), kFz, state.fx, state.fy,
           state.mz, state.status);
   }
 
   // 3. The vehicle: all contacts in one message per tick, the answer in the input's order.
+  if (!ros::service::waitForService(vehicle + "/vehicle_step", ros::Duration(30.0))) return 1;
   auto vehicleStep = nh.serviceClient<wrc::VehicleStep>(vehicle + "/vehicle_step", true);
   wrc::VehicleState vstate;
   auto input = nh.advertise<wrc::VehicleInput>(vehicle + "/vehicle_input", 10);
   auto vstateSub = nh.subscribe<wrc::VehicleState>(
       vehicle + "/vehicle_state", 10, [&](const wrc::VehicleState::ConstPtr& m) { vstate = *m; });
-  if (!vehicleStep.waitForExistence(ros::Duration(30.0))) return 1;
   while (ros::ok() && input.getNumSubscribers() == 0) ros::WallDuration(0.01).sleep();
   if (!wheel_rail_contact_examples::waitForLink(vehicle + "/vehicle_state", 30.0)) return 1;
   for (int end = k + 2 * steps; k < end; ++k) {

@@ -74,7 +74,7 @@ void expectAsCli(const std::string& name, const std::string& node, size_t expect
 }  // namespace
 
 TEST(StepClient, ContactThroughServiceAndTopicsEqualsContactCli) {
-  expectAsCli("contact", "contact/contact_node", 10, {"step", "topic"});
+  expectAsCli("/contact", "contact/contact_node", 10, {"step", "topic"});
 }
 
 TEST(StepClient, VehicleThroughServiceAndTopicEqualsContactCliPerContact) {

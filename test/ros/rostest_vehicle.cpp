@@ -31,14 +31,16 @@ class VehicleClient {
     input_ = nh.advertise<VehicleInput>(vehicleNs + "/vehicle_input", 1000);
     stateSub_ = nh.subscribe(vehicleNs + "/vehicle_state", 10000, &VehicleClient::onState, this,
                              ros::TransportHints().tcpNoDelay());
-    step_ = nh.serviceClient<wheel_rail_contact::VehicleStep>(vehicleNs + "/vehicle_step", true);
     reset_ = nh.serviceClient<wheel_rail_contact::Reset>(vehicleNs + "/reset");
   }
 
-  bool connect() {
+  bool connect(ros::NodeHandle& nh) {
+    if (!ros::service::waitForService(vehicleNs + "/vehicle_step", ros::Duration(30.0)))
+      return false;
+    // Persistent, made once the service is there: one connection for the whole run.
+    step_ = nh.serviceClient<wheel_rail_contact::VehicleStep>(vehicleNs + "/vehicle_step", true);
     return spinUntil([&] { return input_.getNumSubscribers() > 0; }, 30.0) &&
            wheel_rail_contact_examples::waitForLink(vehicleNs + "/vehicle_state", 30.0) &&
-           step_.waitForExistence(ros::Duration(30.0)) &&
            reset_.waitForExistence(ros::Duration(30.0));
   }
 
@@ -50,48 +52,55 @@ class VehicleClient {
   /// One tick through the topic: waits for its VehicleState (matched by stamp).
   ::testing::AssertionResult viaTopic(const VehicleInput& in, VehicleState* out) {
     input_.publish(in);
-    ++sent;
+    return take(in.header.stamp, out);
+  }
+
+  /// One tick through the service; its answer is also published, and taken here.
+  ::testing::AssertionResult viaService(const VehicleInput& in, VehicleState* out) {
+    wheel_rail_contact::VehicleStep srv;
+    srv.request.input = in;
+    if (!step_.call(srv))
+      return ::testing::AssertionFailure() << "vehicle_step call failed (valid " << step_.isValid()
+                                           << ", exists " << step_.exists() << ")";
+    *out = srv.response.state;
+    VehicleState published;
+    auto r = take(in.header.stamp, &published);
+    if (!r) return r;
+    bool same = published.names == out->names && published.contacts.size() == out->contacts.size();
+    for (size_t j = 0; same && j < out->contacts.size(); ++j)
+      same = published.contacts[j].fx == out->contacts[j].fx &&
+             published.contacts[j].fy == out->contacts[j].fy &&
+             published.contacts[j].status == out->contacts[j].status;
+    if (!same) return ::testing::AssertionFailure() << "vehicle_state differs from the answer";
+    return r;
+  }
+
+  /// No vehicle_state beyond the one per input taken so far.
+  ::testing::AssertionResult noneLeft() {
+    ros::spinOnce();
+    if (states.empty()) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << states.size() << " vehicle_state messages too many";
+  }
+
+  std::vector<VehicleState> states;  ///< received and not yet taken
+
+ private:
+  /// Waits for the vehicle_state with this stamp and removes it from `states`.
+  ::testing::AssertionResult take(const ros::Time& stamp, VehicleState* out) {
     auto it = states.end();
     const bool got = spinUntil(
         [&] {
-          it = std::find_if(states.begin(), states.end(), [&](const VehicleState& s) {
-            return s.header.stamp == in.header.stamp;
-          });
+          it = std::find_if(states.begin(), states.end(),
+                            [&](const VehicleState& s) { return s.header.stamp == stamp; });
           return it != states.end();
         },
         10.0);
-    if (!got) return ::testing::AssertionFailure() << "no vehicle_state for " << in.header.stamp;
+    if (!got) return ::testing::AssertionFailure() << "no vehicle_state for " << stamp;
     *out = *it;
     states.erase(it);
     return ::testing::AssertionSuccess();
   }
 
-  ::testing::AssertionResult viaService(const VehicleInput& in, VehicleState* out) {
-    wheel_rail_contact::VehicleStep srv;
-    srv.request.input = in;
-    if (!step_.call(srv)) return ::testing::AssertionFailure() << "vehicle_step call failed";
-    ++sent;
-    ++published;  // the service's answer is also published; collected by expectOneEach()
-    *out = srv.response.state;
-    return ::testing::AssertionSuccess();
-  }
-
-  /// Exactly one vehicle_state was published per service call (the topic's were taken already).
-  ::testing::AssertionResult expectOneEach() {
-    spinUntil([&] { return states.size() >= published; }, 10.0);
-    const size_t got = states.size();
-    states.clear();
-    const size_t expected = published;
-    published = 0;
-    if (got == expected) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure()
-           << got << " vehicle_state messages for " << expected << " service calls";
-  }
-
-  std::vector<VehicleState> states;
-  size_t sent = 0, published = 0;
-
- private:
   void onState(const VehicleState::ConstPtr& m) { states.push_back(*m); }
   ros::Publisher input_;
   ros::Subscriber stateSub_;
@@ -207,7 +216,7 @@ TEST(Vehicle, EveryTickEqualsTheSingleContactNodes) {
       if (k == 90 && j == 2) EXPECT_EQ(srv.response.status, ContactState::STATUS_STANDSTILL);
     }
   }
-  EXPECT_TRUE(vehicle->expectOneEach());
+  EXPECT_TRUE(vehicle->noneLeft());
 }
 
 TEST(Vehicle, FramesAreUniquePerContactAndOverridable) {
@@ -225,7 +234,7 @@ TEST(Vehicle, FramesAreUniquePerContactAndOverridable) {
       EXPECT_EQ(f, vehicleNs + "_" + out.names[j]);  // the namespace as a prefix
   }
   EXPECT_EQ(frames.size(), names.size());
-  EXPECT_TRUE(vehicle->expectOneEach());
+  EXPECT_TRUE(vehicle->noneLeft());
 }
 
 TEST(Vehicle, PerTickGeometryAndFrictionEqualAStepperGivenTheSame) {
@@ -280,7 +289,7 @@ TEST(Vehicle, PerTickGeometryAndFrictionEqualAStepperGivenTheSame) {
       expectEqualState(out.contacts[j], ref, "tick " + std::to_string(k) + " " + c.name);
     }
   }
-  EXPECT_TRUE(vehicle->expectOneEach());
+  EXPECT_TRUE(vehicle->noneLeft());
 }
 
 TEST(Vehicle, UnknownMissingAndRepeatedNamesAreRejectedAndHoldTheirForces) {
@@ -333,7 +342,7 @@ TEST(Vehicle, UnknownMissingAndRepeatedNamesAreRejectedAndHoldTheirForces) {
       EXPECT_NE(s.fz, 0.0);
     }
   }
-  EXPECT_TRUE(vehicle->expectOneEach());
+  EXPECT_TRUE(vehicle->noneLeft());
 }
 
 TEST(Vehicle, ResetClearsEveryContact) {
@@ -358,7 +367,7 @@ TEST(Vehicle, ResetClearsEveryContact) {
       if (k == 0) EXPECT_EQ(s.contacts[j].dt, 0.0);
     }
   }
-  EXPECT_TRUE(vehicle->expectOneEach());
+  EXPECT_TRUE(vehicle->noneLeft());
 }
 
 int main(int argc, char** argv) {
@@ -373,18 +382,19 @@ int main(int argc, char** argv) {
     return 1;
   }
   vehicle = std::make_unique<VehicleClient>(nh);
-  if (!vehicle->connect()) {
+  if (!vehicle->connect(nh)) {
     ADD_FAILURE() << "vehicle node not connected";
     return 1;
   }
   for (const auto& n : names) {
-    singleStep[n] = nh.serviceClient<wheel_rail_contact::Step>(singleNs + "/" + n + "/step", true);
-    singleReset[n] = nh.serviceClient<wheel_rail_contact::Reset>(singleNs + "/" + n + "/reset");
-    if (!singleStep[n].waitForExistence(ros::Duration(30.0)) ||
-        !singleReset[n].waitForExistence(ros::Duration(30.0))) {
-      ADD_FAILURE() << singleNs << "/" << n << " not available";
+    const std::string ns = singleNs + "/" + n;
+    if (!ros::service::waitForService(ns + "/step", ros::Duration(30.0)) ||
+        !ros::service::waitForService(ns + "/reset", ros::Duration(30.0))) {
+      ADD_FAILURE() << ns << " not available";
       return 1;
     }
+    singleStep[n] = nh.serviceClient<wheel_rail_contact::Step>(ns + "/step", true);
+    singleReset[n] = nh.serviceClient<wheel_rail_contact::Reset>(ns + "/reset");
   }
   const int result = RUN_ALL_TESTS();
   vehicle.reset();
