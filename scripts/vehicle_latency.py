@@ -189,14 +189,15 @@ def main():
             reset()  # every run starts the contacts afresh at the same stamps
             trips, lost, bad, late, wall = client.run(path, timing, n, args.rate, t0)
             row = dict(run=run, contacts=len(names), ticks=n, answered=len(trips), lost=lost,
+                       load_avg_1min=os.getloadavg()[0],
                        rejected_entries=bad, late_sends=late, wall_s=wall,
                        p50_ms=1e3 * percentile(trips, 50), p99_ms=1e3 * percentile(trips, 99),
                        max_ms=1e3 * max(trips) if trips else float("nan"))
             rows.append(row)
             print("%-17s %d contacts, %d ticks in %.2f s: p50 %.3f ms, p99 %.3f ms, max %.3f ms, "
-                  "lost %d, rejected entries %d, late sends %d" % (
+                  "lost %d, rejected entries %d, late sends %d (load average %.1f)" % (
                       run, row["contacts"], n, wall, row["p50_ms"], row["p99_ms"], row["max_ms"],
-                      lost, bad, late), flush=True)
+                      lost, bad, late, row["load_avg_1min"]), flush=True)
         if args.csv:
             with open(args.csv, "w") as f:
                 keys = list(rows[0].keys())
