@@ -7,8 +7,9 @@ schedule, answers collected as they come). Prints one line per run and writes a 
 
   scripts/vehicle_latency.py --launch --contacts 8 --seconds 10 --rate 1000 --csv out.csv
 
---launch starts `roslaunch wheel_rail_contact vehicle_contacts.launch` on its own master port
-(and stops it); without it the script uses the running master and --ns.
+--launch starts `roslaunch wheel_rail_contact vehicle_contacts.launch use_sim_time:=true` on its own
+master port (and stops it); without it the script uses the running master and --ns. Exit code 1
+if a tick was lost or an entry came back with a status other than ok.
 """
 import argparse
 import math
@@ -164,7 +165,8 @@ def main():
         os.environ["ROS_MASTER_URI"] = "http://localhost:%d" % args.port
         launch = subprocess.Popen(
             ["roslaunch", "-p", str(args.port), "wheel_rail_contact", "vehicle_contacts.launch",
-             "contacts:=%d" % args.contacts, "model:=" + args.model, "ns:=" + args.ns],
+             "contacts:=%d" % args.contacts, "model:=" + args.model, "ns:=" + args.ns,
+             "use_sim_time:=true"],
             stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
     try:
         import rospy
