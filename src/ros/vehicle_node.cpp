@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "../cli/config_yaml.hpp"
+#include "ros_conversions.hpp"
 
 namespace wheel_rail_contact {
 
@@ -22,21 +23,6 @@ std::string text(double v) {
   return t;
 }
 
-/// A parameter value as the text setParameter() parses (the rule contact_node and contact_cli
-/// share), so one YAML file configures all three.
-std::string parameterText(const std::string& name, XmlRpc::XmlRpcValue& v) {
-  switch (v.getType()) {
-    case XmlRpc::XmlRpcValue::TypeInt:
-      return std::to_string(static_cast<int>(v));
-    case XmlRpc::XmlRpcValue::TypeDouble:
-      return text(static_cast<double>(v));
-    case XmlRpc::XmlRpcValue::TypeString:
-      return static_cast<std::string>(v);
-    default:
-      throw std::invalid_argument(name + ": expected a number or a name, got " + v.toXml());
-  }
-}
-
 double toNumber(const std::string& name, const std::string& t) {
   char* end = nullptr;
   const double d = std::strtod(t.c_str(), &end);
@@ -50,21 +36,6 @@ bool validContactName(const std::string& n) {
   for (char ch : n)
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_') return false;
   return true;
-}
-
-template <class State>
-void fillState(const StepResult& r, State* m) {
-  m->fx = r.out.fx;
-  m->fy = r.out.fy;
-  m->fz = r.out.fz;
-  m->mz = r.out.mz;
-  m->a = r.out.a;
-  m->b = r.out.b;
-  m->adhesion_fraction = r.out.adhesionFraction;
-  m->dt = r.dt;
-  m->solver_time = r.solverTime;
-  m->status = contactStateStatus(r.out.status);
-  m->message = r.message;
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "../../examples/wait_for_link.hpp"
+#include "../../src/ros/ros_conversions.hpp"
 #include "../../src/ros/vehicle_stepper.hpp"
 #include "rostest_helpers.hpp"
 #include "wheel_rail_contact/Reset.h"
@@ -161,15 +162,7 @@ wheel_rail_contact::ContactParameters parametersOf(const std::string& name) {
     if (!ros::param::get(vehicleNode + "/" + name + "/" + d.name, v) &&
         !ros::param::get(vehicleNode + "/" + d.name, v))
       continue;
-    std::string text;
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeString) text = static_cast<std::string>(v);
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) text = std::to_string(static_cast<int>(v));
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%.17g", static_cast<double>(v));
-      text = buf;
-    }
-    wheel_rail_contact::setParameter(&p, d.name, text);
+    wheel_rail_contact::setParameter(&p, d.name, wheel_rail_contact::parameterText(d.name, v));
   }
   return p;
 }
