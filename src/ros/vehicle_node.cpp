@@ -72,6 +72,9 @@ bool VehicleNode::readParameters() {
     vehicleKeys.insert(std::begin(kVehicleKeys), std::end(kVehicleKeys));
     std::set<std::string> ignored;  // contact_node's own keys (a shared YAML file) not used here
     const std::set<std::string> named(names.begin(), names.end());
+    for (const auto& n : names)  // ~NAME/ holds a contact's overrides: it cannot be a key too
+      if (vehicleKeys.count(n) || isNodeOnlyParameter(n))
+        throw std::invalid_argument("contacts: '" + n + "' is a parameter's name");
     std::vector<std::string> all;
     ros::param::getParamNames(all);
     const std::string prefix = pnh_.getNamespace() + "/";

@@ -45,6 +45,7 @@ TEST(VehicleBadParameters, ContactListErrorsNameIt) {
   expectFatal({{"contacts", list({"left", "left"})}}, "contacts: 'left' is listed twice");
   expectFatal({{"contacts", list({"left", "1st"})}}, "contacts: '1st' is not a name");
   expectFatal({{"contacts", list({"left", "a/b"})}}, "contacts: 'a/b' is not a name");
+  expectFatal({{"contacts", list({"left", "mu"})}}, "contacts: 'mu' is a parameter's name");
 }
 
 TEST(VehicleBadParameters, UnknownKeysFail) {
