@@ -3,6 +3,8 @@
 // step service) for the same inputs, to 1e-9; per-tick geometry and friction equal a ContactStepper
 // given the same a, b, mu; unknown, missing and repeated names give rejected entries holding the
 // last accepted forces; reset clears every contact.
+#include <diagnostic_msgs/DiagnosticArray.h>
+
 #include <algorithm>
 #include <map>
 #include <set>
@@ -361,6 +363,51 @@ TEST(Vehicle, ResetClearsEveryContact) {
     }
   }
   EXPECT_TRUE(vehicle->noneLeft());
+}
+
+TEST(Vehicle, DiagnosticsReportTheVehicleAndEveryContact) {
+  resetAll();
+  VehicleInput in = tickOf(0, 60.0);
+  // names[0] missing, for the first time in this run (the other tests only repeat it).
+  const std::string missing = names.front();
+  in.contacts.erase(std::find_if(in.contacts.begin(), in.contacts.end(),
+                                 [&](const ContactInput& c) { return c.name == missing; }));
+  VehicleState out;
+  ASSERT_TRUE(vehicle->viaService(in, &out));
+  ASSERT_TRUE(vehicle->noneLeft());
+  ros::NodeHandle nh;
+  std::map<std::string, std::map<std::string, std::string>> seen;  // status name -> key -> value
+  auto sub = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 100, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& s : m->status)
+          for (const auto& kv : s.values) seen[s.name][kv.key] = kv.value;
+      });
+  const std::string prefix = "/" + vehicleNs;
+  auto contactStatus = [&](const std::string& n) {
+    for (const auto& s : seen)
+      if (s.first.find("contact " + prefix + " " + n) != std::string::npos) return &s.second;
+    return static_cast<const std::map<std::string, std::string>*>(nullptr);
+  };
+  // The node reports every diagnostic_period (1 s): wait for a report that includes this tick.
+  ASSERT_TRUE(spinUntil(
+      [&] {
+        const auto* m = contactStatus(missing);
+        return m && m->count("rejected: missing from the input") &&
+               std::stoul(m->at("rejected: missing from the input")) >= 1;
+      },
+      20.0))
+      << "no diagnostics counting the missing contact " << missing;
+  for (const auto& n : names) {
+    const auto* m = contactStatus(n);
+    ASSERT_TRUE(m) << n;
+    EXPECT_EQ(m->count("model"), 1u) << n;
+    EXPECT_EQ(m->count("rejected, forces held"), 1u) << n;
+  }
+  bool vehicleStatus = false;
+  for (const auto& s : seen)
+    if (s.first.find("vehicle " + prefix) != std::string::npos)
+      vehicleStatus = s.second.count("ticks") && std::stoul(s.second.at("ticks")) >= 1;
+  EXPECT_TRUE(vehicleStatus);
 }
 
 int main(int argc, char** argv) {
