@@ -30,7 +30,9 @@ def parse_args():
     p.add_argument("--seconds", type=float, default=10.0, help="simulated seconds per run")
     p.add_argument("--rate", type=float, default=1000.0, help="ticks per second [Hz]")
     p.add_argument("--runs", default="topic-lockstep,service-lockstep,topic-wall,service-wall",
-                   help="comma-separated runs: {topic,service}-{lockstep,wall}")
+                   help="comma-separated runs: {topic,service,steps}-{lockstep,wall}; steps = the\n"
+                        "same contacts as separate contact_nodes (launch/vehicle.launch per\n"
+                        "bogie), one `step` call per contact and tick, for comparison")
     p.add_argument("--launch", action="store_true", help="start the vehicle node (own master)")
     p.add_argument("--port", type=int, default=11460, help="with --launch: master port")
     p.add_argument("--csv", default="", help="write the summary here")
@@ -108,6 +110,27 @@ class Client:
             msg.contacts.append(c)
         return msg
 
+    def connect_contact_nodes(self):
+        """The same contacts as contact_nodes of launch/vehicle.launch (bogie1, bogie2)."""
+        from wheel_rail_contact.srv import Reset, Step
+        self.Step = Step
+        self.steps, self.resets = [], []
+        for i in range(len(self.names)):
+            ns = "/bogie%d/wheelset%d/%s" % (1 + i // 4, 1 + (i // 2) % 2, ("left", "right")[i % 2])
+            self.rospy.wait_for_service(ns + "/step", timeout=30.0)
+            self.steps.append(self.rospy.ServiceProxy(ns + "/step", Step, persistent=True))
+            self.resets.append(self.rospy.ServiceProxy(ns + "/reset", Reset))
+
+    def step_each(self, msg):
+        """One tick as one `step` call per contact_node; returns the statuses."""
+        statuses = []
+        for proxy, c in zip(self.steps, msg.contacts):
+            r = proxy(self.Step._request_class(
+                stamp=msg.header.stamp, longitudinal=c.longitudinal, lateral=c.lateral,
+                spin=c.spin, velocity=c.velocity, normal_force=c.normal_force))
+            statuses.append(r.status)
+        return statuses
+
     def run(self, path, timing, n, rate, t0):
         # t0: the first tick's stamp [ns]
         """Returns round trips [s] of the answered ticks, the lost ticks, bad entries, late sends."""
@@ -131,6 +154,11 @@ class Client:
             else:
                 self.clock.publish(self.Clock(clock=stamp))
             t = time.perf_counter()
+            if path == "steps":
+                statuses = self.step_each(msg)
+                trips.append(time.perf_counter() - t)
+                bad += sum(1 for st in statuses if st != 0)
+                continue
             if path == "service":
                 state = self.step(msg).state
                 trips.append(time.perf_counter() - t)
@@ -160,14 +188,23 @@ class Client:
 
 def main():
     args = parse_args()
-    launch = None
+    launches = []
+    baseline = any(r.startswith("steps-") for r in args.runs.split(","))
     if args.launch:
         os.environ["ROS_MASTER_URI"] = "http://localhost:%d" % args.port
-        launch = subprocess.Popen(
+        launches.append(subprocess.Popen(
             ["roslaunch", "-p", str(args.port), "wheel_rail_contact", "vehicle_contacts.launch",
              "contacts:=%d" % args.contacts, "model:=" + args.model, "ns:=" + args.ns,
              "use_sim_time:=true"],
-            stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
+            stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT))
+        for bogie in range(1, args.contacts // 4 + 1) if baseline else []:
+            import rosgraph
+            end = time.monotonic() + 30.0
+            while not rosgraph.is_master_online() and time.monotonic() < end:
+                time.sleep(0.1)  # the first roslaunch starts the master
+            launches.append(subprocess.Popen(
+                ["roslaunch", "wheel_rail_contact", "vehicle.launch", "bogie:=bogie%d" % bogie,
+                 "model:=" + args.model], stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT))
     try:
         import rospy
         import rosgraph
@@ -182,7 +219,14 @@ def main():
         names = rospy.get_param(node + "/contacts")
         client = Client("/" + args.ns.strip("/"), names)
         from wheel_rail_contact.srv import Reset
-        reset = rospy.ServiceProxy("/" + args.ns.strip("/") + "/reset", Reset)
+        reset_vehicle = rospy.ServiceProxy("/" + args.ns.strip("/") + "/reset", Reset)
+        if baseline:
+            client.connect_contact_nodes()
+
+        def reset():
+            reset_vehicle()
+            for r in client.resets if baseline else []:
+                r()
         n = int(round(args.seconds * args.rate))
         rows = []
         t0 = 1000 * 10**9  # [ns]
@@ -209,7 +253,7 @@ def main():
                                      for k in keys) + "\n")
         return 0 if all(r["lost"] == 0 and r["rejected_entries"] == 0 for r in rows) else 1
     finally:
-        if launch:
+        for launch in reversed(launches):
             launch.terminate()
             launch.wait(timeout=30)
 
