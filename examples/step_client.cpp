@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
   const std::string vehicle = pnh.param<std::string>("vehicle", "vehicle");
   const int steps = pnh.param("steps", 5);
   std::vector<std::string> wheels = {"left", "right"};
-  pnh.getParam("contacts", wheels);  // the vehicle node's ~contacts
+  pnh.getParam("contacts", wheels);  // names of the vehicle node's contacts
   int k = 0;                         // one time line per contact: stamps keep increasing
   auto stampOf = [](int step) { return ros::Time(100.0 + step * kDt); };
 
