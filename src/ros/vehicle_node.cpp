@@ -1,0 +1,374 @@
+#include "vehicle_node.hpp"
+
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+#include <stdexcept>
+
+#include "../cli/config_yaml.hpp"
+#include "ros_conversions.hpp"
+
+namespace wheel_rail_contact {
+
+namespace {
+
+const char* const kStepperKeys[] = {"max_dt", "time_jump_reset", "max_load_age"};
+const char* const kVehicleKeys[] = {"contacts", "frame_prefix", "queue_size", "publish_queue_size",
+                                    "diagnostic_period"};
+
+std::string text(double v) {
+  char t[64];
+  std::snprintf(t, sizeof t, "%.17g", v);
+  return t;
+}
+
+double toNumber(const std::string& name, const std::string& t) {
+  char* end = nullptr;
+  const double d = std::strtod(t.c_str(), &end);
+  if (t.empty() || end != t.c_str() + t.size())
+    throw std::invalid_argument(name + ": expected a number, got '" + t + "'");
+  return d;
+}
+
+bool validContactName(const std::string& n) {
+  if (n.empty() || !std::isalpha(static_cast<unsigned char>(n[0]))) return false;
+  for (char ch : n)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_') return false;
+  return true;
+}
+
+}  // namespace
+
+VehicleNode::VehicleNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
+    : nh_(nh), pnh_(pnh) {}
+
+bool VehicleNode::readParameters() {
+  try {
+    XmlRpc::XmlRpcValue list;
+    if (!pnh_.getParam("contacts", list))
+      throw std::invalid_argument("contacts: not set (a list of contact names)");
+    if (list.getType() != XmlRpc::XmlRpcValue::TypeArray || list.size() == 0)
+      throw std::invalid_argument("contacts: expected a non-empty list of names, got " +
+                                  list.toXml());
+    std::vector<std::string> names;
+    for (int i = 0; i < list.size(); ++i) {
+      if (list[i].getType() != XmlRpc::XmlRpcValue::TypeString)
+        throw std::invalid_argument("contacts: entry " + std::to_string(i) +
+                                    " is not a name: " + list[i].toXml());
+      const std::string n = static_cast<std::string>(list[i]);
+      if (!validContactName(n))
+        throw std::invalid_argument("contacts: '" + n +
+                                    "' is not a name (a letter, then letters, digits, _)");
+      names.push_back(n);
+    }
+
+    // Unknown private keys fail, as in contact_node; a contact's overrides live under ~NAME/.
+    std::set<std::string> contactKeys(std::begin(kStepperKeys), std::end(kStepperKeys));
+    contactKeys.insert("frame_id");
+    for (const auto& d : parameterDocs()) contactKeys.insert(d.name);
+    std::set<std::string> vehicleKeys(contactKeys);
+    vehicleKeys.erase("frame_id");
+    vehicleKeys.insert(std::begin(kVehicleKeys), std::end(kVehicleKeys));
+    std::set<std::string> ignored;  // contact_node's own keys (a shared YAML file) not used here
+    const std::set<std::string> named(names.begin(), names.end());
+    for (const auto& n : names)  // ~NAME/ holds a contact's overrides: it cannot be a key too
+      if (vehicleKeys.count(n) || isNodeOnlyParameter(n))
+        throw std::invalid_argument("contacts: '" + n + "' is a parameter's name");
+    std::vector<std::string> all;
+    ros::param::getParamNames(all);
+    const std::string prefix = pnh_.getNamespace() + "/";
+    for (const auto& full : all) {
+      if (full.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::string key = full.substr(prefix.size());
+      const size_t slash = key.find('/');
+      const std::string first = key.substr(0, slash);
+      if (slash == std::string::npos) {
+        if (vehicleKeys.count(first)) continue;
+        if (isNodeOnlyParameter(first)) {
+          ignored.insert(first);
+          continue;
+        }
+        throw std::invalid_argument(key + ": unknown parameter");
+      }
+      if (!named.count(first))
+        throw std::invalid_argument(key + ": unknown parameter (" + first +
+                                    " is not in ~contacts)");
+      if (!contactKeys.count(key.substr(slash + 1)))
+        throw std::invalid_argument(key + ": unknown parameter");
+    }
+
+    XmlRpc::XmlRpcValue v;
+    auto count = [&](const char* name, int value) {
+      XmlRpc::XmlRpcValue x;
+      if (!pnh_.getParam(name, x)) return value;
+      const double d = toNumber(name, parameterText(name, x));
+      if (!(d >= 1.0 && d <= 1e6) || d != static_cast<int>(d))
+        throw std::invalid_argument(std::string(name) +
+                                    ": must be an integer in [1, 1000000], got " + text(d));
+      return static_cast<int>(d);
+    };
+    queueSize_ = count("queue_size", 100);
+    publishQueueSize_ = count("publish_queue_size", 100);
+    if (pnh_.getParam("diagnostic_period", v))
+      diagnosticPeriod_ = toNumber("diagnostic_period", parameterText("diagnostic_period", v));
+    // ros::(Wall)Duration throws beyond 2^31 s; a day is plenty.
+    if (!(diagnosticPeriod_ > 0.0 && diagnosticPeriod_ <= 86400.0))
+      throw std::invalid_argument("diagnostic_period: must be in (0, 86400] s, got " +
+                                  text(diagnosticPeriod_));
+    std::string framePrefix;
+    if (pnh_.getParam("frame_prefix", v)) {
+      framePrefix = parameterText("frame_prefix", v);
+    } else {  // the namespace: /bogie1 -> bogie1_, so two vehicles' frames differ
+      for (char ch : nh_.getNamespace()) framePrefix += ch == '/' ? '_' : ch;
+      while (!framePrefix.empty() && framePrefix[0] == '_') framePrefix.erase(0, 1);
+      if (!framePrefix.empty()) framePrefix += '_';
+    }
+
+    std::vector<VehicleContactConfig> configs;
+    for (const auto& n : names) {
+      VehicleContactConfig c;
+      c.name = n;
+      // A contact's own value (~NAME/key) wins over the shared one (~key).
+      auto lookup = [&](const std::string& key, XmlRpc::XmlRpcValue* x, std::string* where) {
+        *where = n + "/" + key;
+        if (pnh_.getParam(*where, *x)) return true;
+        *where = key;
+        return pnh_.getParam(key, *x);
+      };
+      std::string where;
+      for (const auto& d : parameterDocs())
+        if (lookup(d.name, &v, &where)) {
+          try {
+            setParameter(&c.parameters, d.name, parameterText(where, v));
+          } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(where == d.name ? e.what() : n + "/" + e.what());
+          }
+        }
+      double* options[] = {&c.options.max_dt, &c.options.time_jump_reset, &c.options.max_load_age};
+      for (size_t k = 0; k < 3; ++k)
+        if (lookup(kStepperKeys[k], &v, &where))
+          *options[k] = toNumber(where, parameterText(where, v));
+      c.frameId = framePrefix + n;
+      if (pnh_.getParam(n + "/frame_id", v)) c.frameId = parameterText(n + "/frame_id", v);
+      configs.push_back(c);
+    }
+    vehicle_ = std::make_unique<VehicleStepper>(configs);
+
+    for (size_t i = 0; i < vehicle_->size(); ++i) {
+      const VehicleContactConfig& c = vehicle_->config(i);
+      const ContactParameters& p = c.parameters;
+      ROS_INFO(
+          "vehicle_node %s: contact %s: model %s, G %g Pa, nu %g, mu %g, a0 %g m, b0 %g m, "
+          "fz0 %g N, mesh %s %dx%d, frame '%s'",
+          nh_.getNamespace().c_str(), c.name.c_str(), p.model.c_str(), p.G, p.nu, p.mu, p.a0, p.b0,
+          p.fz0, p.mesh.c_str(), p.nx, p.ny, c.frameId.c_str());
+      const std::string chosen = vehicle_->stepper(i).modelChoices();
+      if (!chosen.empty())
+        ROS_INFO("vehicle_node %s: contact %s: %s", nh_.getNamespace().c_str(), c.name.c_str(),
+                 chosen.c_str());
+    }
+    if (!ignored.empty()) {
+      std::string list;
+      for (const auto& k : ignored) list += " " + k;
+      ROS_INFO("vehicle_node %s: contact_node parameters not used here:%s",
+               nh_.getNamespace().c_str(), list.c_str());
+    }
+    lastStepper_.assign(vehicle_->size(), StepperCounters{});
+    lastVehicle_.assign(vehicle_->size(), VehicleContactCounters{});
+    return true;
+  } catch (const std::exception& e) {
+    ROS_FATAL("vehicle_node: invalid parameter %s", e.what());
+    return false;
+  }
+}
+
+void VehicleNode::start() {
+  statePub_ = nh_.advertise<VehicleState>("vehicle_state", publishQueueSize_);
+  stepSrv_ = nh_.advertiseService("vehicle_step", &VehicleNode::stepService, this);
+  resetSrv_ = nh_.advertiseService("reset", &VehicleNode::resetService, this);
+  inputSub_ = nh_.subscribe("vehicle_input", queueSize_, &VehicleNode::inputCallback, this,
+                            ros::TransportHints().tcpNoDelay());
+
+  // Made only now: its constructor reads ~diagnostic_period and throws on a value ros::Duration
+  // cannot hold, which readParameters() has ruled out.
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_);
+  updater_->setHardwareID("wheel_rail_contact" + nh_.getNamespace());
+  updater_->add("vehicle " + nh_.getNamespace(), this, &VehicleNode::diagnoseVehicle);
+  for (size_t i = 0; i < vehicle_->size(); ++i)
+    updater_->add(
+        "contact " + nh_.getNamespace() + " " + vehicle_->config(i).name,
+        [this, i](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnoseContact(i, s); });
+  lastDiagTime_ = ros::WallTime::now();
+  // A wall timer: diagnostics keep coming while sim time is paused.
+  diagnosticTimer_ =
+      nh_.createWallTimer(ros::WallDuration(diagnosticPeriod_), [this](const ros::WallTimerEvent&) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        updater_->force_update();
+      });
+}
+
+void VehicleNode::tick(const VehicleInput& in, VehicleState* state) {
+  inputs_.resize(in.contacts.size());
+  for (size_t k = 0; k < in.contacts.size(); ++k) {
+    const ContactInput& c = in.contacts[k];
+    VehicleContactInput& e = inputs_[k];
+    e.name = c.name;
+    e.in = StepInput{};
+    e.in.V = c.velocity;
+    e.in.xi = c.longitudinal;
+    e.in.eta = c.lateral;
+    e.in.phi = c.spin;
+    e.in.fz = c.normal_force;
+    e.in.a = c.a;
+    e.in.b = c.b;
+    e.in.mu = c.mu;
+    e.curvatureX = c.curvature_x;
+    e.curvatureY = c.curvature_y;
+  }
+  vehicle_->step(static_cast<int64_t>(in.header.stamp.toNSec()), inputs_, &results_);
+
+  state->header.stamp = in.header.stamp;
+  state->header.frame_id = in.header.frame_id;
+  state->names.resize(results_.size());
+  state->contacts.resize(results_.size());
+  for (size_t k = 0; k < results_.size(); ++k) {
+    const VehicleContactResult& r = results_[k];
+    ContactState& s = state->contacts[k];
+    const bool known = r.contact >= 0;
+    state->names[k] =
+        k < in.contacts.size() ? in.contacts[k].name : vehicle_->config(r.contact).name;
+    s.header.stamp = in.header.stamp;
+    s.header.frame_id = known ? vehicle_->config(r.contact).frameId : "";
+    s.model = known ? vehicle_->stepper(r.contact).modelName() : "";
+    fillState(r.step, &s);
+    report(r, state->names[k]);
+  }
+}
+
+void VehicleNode::inputCallback(const ros::MessageEvent<const VehicleInput>& event) {
+  const VehicleInputConstPtr& msg = event.getConstMessage();
+  auto state = boost::make_shared<VehicleState>();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // roscpp numbers each publisher's messages: a gap is a tick dropped before this callback.
+    auto seen = lastSeq_.find(event.getPublisherName());
+    if (seen != lastSeq_.end() && msg->header.seq > seen->second + 1) {
+      lostInputs_ += msg->header.seq - seen->second - 1;
+      ROS_WARN_THROTTLE(1.0, "%s: %lu vehicle_input messages lost before the node (queue_size %d)",
+                        nh_.getNamespace().c_str(), static_cast<unsigned long>(lostInputs_),
+                        queueSize_);
+    }
+    lastSeq_[event.getPublisherName()] = msg->header.seq;
+    tick(*msg, state.get());
+  }
+  statePub_.publish(state);
+}
+
+bool VehicleNode::stepService(VehicleStep::Request& req, VehicleStep::Response& res) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    tick(req.input, &res.state);
+  }
+  statePub_.publish(res.state);
+  return true;
+}
+
+bool VehicleNode::resetService(Reset::Request&, Reset::Response& res) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    vehicle_->reset();
+  }
+  res.success = true;
+  res.message = "all " + std::to_string(vehicle_->size()) +
+                " contacts reset (traction history, filter state, time base, load, held forces)";
+  ROS_INFO("%s: %s", nh_.getNamespace().c_str(), res.message.c_str());
+  return true;
+}
+
+void VehicleNode::report(const VehicleContactResult& r, const std::string& name) {
+  const char* ns = nh_.getNamespace().c_str();
+  const char* msg = r.step.message.c_str();
+  if (r.step.timeJumpReset)
+    ROS_WARN("%s: %s: stamps jumped backwards: state reset", ns, name.c_str());
+  if (r.held) {
+    ROS_WARN_THROTTLE(1.0, "%s: %s rejected (last accepted forces held): %s", ns, name.c_str(),
+                      msg);
+  } else if (r.contact < 0) {
+    ROS_WARN_THROTTLE(1.0, "%s: %s", ns, msg);
+  } else if (r.step.event == StepEvent::kNoLoadYet) {
+    ROS_WARN_THROTTLE(5.0, "%s: %s: no normal load yet: zero forces", ns, name.c_str());
+  } else if (r.step.out.status == StepStatus::kOk && !r.step.message.empty()) {
+    ROS_WARN_THROTTLE(5.0, "%s: %s: %s", ns, name.c_str(), msg);  // clipped or coarse patch
+  }
+  if (r.step.staleLoad)
+    ROS_WARN_THROTTLE(5.0, "%s: %s: the load is %.3f s old (max_load_age)", ns, name.c_str(),
+                      r.step.loadAge);
+}
+
+void VehicleNode::diagnoseVehicle(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  const VehicleCounters& c = vehicle_->counters();
+  const ros::WallTime now = ros::WallTime::now();
+  const double span = (now - lastDiagTime_).toSec();
+  const double rate = span > 0.0 ? static_cast<double>(c.ticks - lastTicks_) / span : 0.0;
+  if (lostInputs_ > lastLost_)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                 "vehicle_input messages lost before the node: raise queue_size");
+  else if (c.unknownNames > lastUnknown_)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "inputs name unknown contacts");
+  else
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  stat.add("contacts", vehicle_->size());
+  stat.addf("tick rate [Hz]", "%.1f", rate);
+  stat.add("ticks", c.ticks);
+  stat.add("entries with an unknown contact name", c.unknownNames);
+  stat.add("vehicle_input lost before the node (queue_size)", lostInputs_);
+  lastTicks_ = c.ticks;
+  lastUnknown_ = c.unknownNames;
+  lastLost_ = lostInputs_;
+  lastDiagTime_ = now;
+}
+
+void VehicleNode::diagnoseContact(size_t i, diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  const StepperCounters& c = vehicle_->stepper(i).counters();
+  const VehicleContactCounters& v = vehicle_->counters(i);
+  const StepperCounters& c0 = lastStepper_[i];
+  const VehicleContactCounters& v0 = lastVehicle_[i];
+  const uint64_t newHeld = v.held - v0.held;
+  if (newHeld > 0)
+    stat.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
+                  "%lu steps rejected (forces held) since the last report",
+                  static_cast<unsigned long>(newHeld));
+  else if (c.staleLoad > c0.staleLoad)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "load older than max_load_age");
+  else if (!vehicle_->stepper(i).hasLoad())
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "no normal load yet");
+  else
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  stat.add("model", vehicle_->stepper(i).modelName());
+  stat.add("frame_id", vehicle_->config(i).frameId);
+  stat.add("steps", c.creepages);
+  stat.add("ok", c.ok);
+  stat.add("no load", c.noLoad);
+  stat.add("standstill", c.standstill);
+  stat.add("solver not converged (exact model)", c.notConverged);
+  stat.add("rejected, forces held", v.held);
+  stat.add("rejected: missing from the input", v.missing);
+  stat.add("rejected: name repeated in the input", v.duplicate);
+  stat.add("rejected: a, b, curvatures or mu malformed", v.badGeometry);
+  stat.add("rejected: non-finite", c.nonFinite);
+  stat.add("rejected: stamp out of order", c.outOfOrder);
+  stat.add("rejected: dt > max_dt", c.dtTooLarge);
+  stat.add("rejected: by the model", c.rejectedByModel);
+  stat.add("stale load steps", c.staleLoad);
+  stat.add("latest load [N]", vehicle_->stepper(i).load());
+  stat.add("resets", c.resets);
+  stat.add("time-jump resets", c.timeJumpResets);
+  stat.addf("solver time mean [ms]", "%.4f",
+            c.creepages > 0 ? 1e3 * c.solverTimeSum / static_cast<double>(c.creepages) : 0.0);
+  stat.addf("solver time max [ms]", "%.4f", 1e3 * c.solverTimeMax);
+  lastStepper_[i] = c;
+  lastVehicle_[i] = v;
+}
+
+}  // namespace wheel_rail_contact

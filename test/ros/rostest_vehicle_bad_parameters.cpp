@@ -1,0 +1,74 @@
+// rostest: vehicle_node with an invalid configuration exits with code 1 after a ROS_FATAL naming
+// the parameter (a contact's own parameters as CONTACT/NAME): a missing, empty or malformed contact
+// list, a repeated or invalid name, an unknown key (shared or per contact, or under a name that is
+// not a contact), values out of range. Never a crash.
+#include "rostest_helpers.hpp"
+
+using namespace wrc_test;
+
+namespace {
+
+int counter = 0;
+
+/// vehicle_node started as a fresh node whose private parameters are `params`; the exit code of
+/// a node that keeps running (a valid configuration) is that of SIGINT after 20 s.
+void expectFatal(const std::vector<std::pair<std::string, XmlRpc::XmlRpcValue>>& params,
+                 const std::string& text) {
+  const std::string name = "vehicle_bad_" + std::to_string(++counter);
+  for (const auto& p : params) ros::param::set("/" + name + "/" + p.first, p.second);
+  std::string out;
+  const int code = run(
+      std::string("timeout --preserve-status -s INT 20 ") + WRC_VEHICLE_NODE + " __name:=" + name,
+      &out);
+  EXPECT_EQ(code, 1) << text << "\n" << out;
+  EXPECT_NE(out.find("FATAL"), std::string::npos) << out;
+  EXPECT_NE(out.find("invalid parameter " + text), std::string::npos) << text << "\n" << out;
+}
+
+XmlRpc::XmlRpcValue list(const std::vector<std::string>& names) {
+  XmlRpc::XmlRpcValue v;
+  v.setSize(static_cast<int>(names.size()));
+  for (size_t i = 0; i < names.size(); ++i) v[static_cast<int>(i)] = names[i];
+  return v;
+}
+
+XmlRpc::XmlRpcValue two() {
+  return list({"left", "right"});
+}
+
+}  // namespace
+
+TEST(VehicleBadParameters, ContactListErrorsNameIt) {
+  expectFatal({}, "contacts: not set");
+  expectFatal({{"contacts", list({})}}, "contacts: expected a non-empty list");
+  expectFatal({{"contacts", XmlRpc::XmlRpcValue("left")}}, "contacts: expected a non-empty list");
+  expectFatal({{"contacts", list({"left", "left"})}}, "contacts: 'left' is listed twice");
+  expectFatal({{"contacts", list({"left", "1st"})}}, "contacts: '1st' is not a name");
+  expectFatal({{"contacts", list({"left", "a/b"})}}, "contacts: 'a/b' is not a name");
+  expectFatal({{"contacts", list({"left", "mu"})}}, "contacts: 'mu' is a parameter's name");
+}
+
+TEST(VehicleBadParameters, UnknownKeysFail) {
+  expectFatal({{"contacts", two()}, {"mux", XmlRpc::XmlRpcValue(0.3)}}, "mux: unknown parameter");
+  expectFatal({{"contacts", two()}, {"left/mux", XmlRpc::XmlRpcValue(0.3)}},
+              "left/mux: unknown parameter");
+  expectFatal({{"contacts", two()}, {"middle/mu", XmlRpc::XmlRpcValue(0.3)}},
+              "middle/mu: unknown parameter (middle is not in ~contacts)");
+}
+
+TEST(VehicleBadParameters, ValuesOutOfRangeNameTheContact) {
+  expectFatal({{"contacts", two()}, {"right/mu", XmlRpc::XmlRpcValue(-1.0)}}, "right/mu");
+  expectFatal({{"contacts", two()}, {"nu", XmlRpc::XmlRpcValue(0.7)}}, "left/nu");
+  expectFatal({{"contacts", two()}, {"left/model", XmlRpc::XmlRpcValue("fastest")}}, "left/model");
+  expectFatal({{"contacts", two()}, {"right/max_dt", XmlRpc::XmlRpcValue(0.0)}}, "right/max_dt");
+  expectFatal({{"contacts", two()}, {"queue_size", XmlRpc::XmlRpcValue(0)}}, "queue_size");
+  expectFatal({{"contacts", two()}, {"diagnostic_period", XmlRpc::XmlRpcValue(-1.0)}},
+              "diagnostic_period");
+}
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "vehicle_bad_parameters");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
