@@ -90,6 +90,25 @@ TEST(WheelsetDemo, SteadyAndNssAgreeOnHuntingAndDifferAtShortWavelength) {
   EXPECT_LE(fxNss / fxSteady, 1.17);
 }
 
+TEST(WheelsetDemo, BadParameterOrMissingContactsFailFastNamingTheCause) {
+  std::string bin = WRC_CONTACT_NODE, output;
+  bin = bin.substr(0, bin.rfind('/')) + "/wheelset_sim";
+  // An unknown private parameter (set on the command line) stops the sim before it starts.
+  EXPECT_EQ(wrc_test::run(bin + " __ns:=/steady __name:=misspelt_sim _yaw_stifness:=1e6", &output),
+            1);
+  EXPECT_NE(output.find("yaw_stifness: unknown parameter"), std::string::npos) << output;
+  // Contacts that never come: the wait ends at service_timeout with a message naming them.
+  XmlRpc::XmlRpcValue cases;
+  cases[0]["name"] = std::string("hunting");
+  cases[0]["y0"] = 0.001;
+  ASSERT_TRUE(ros::param::has("/steady/wheelset_sim/r0"));
+  ros::param::set("/nowhere/wheelset_sim/cases", cases);
+  ros::param::set("/nowhere/wheelset_sim/service_timeout", 0.5);
+  EXPECT_EQ(wrc_test::run(bin + " __ns:=/nowhere __name:=wheelset_sim", &output), 1);
+  EXPECT_NE(output.find("/nowhere/left"), std::string::npos) << output;
+  EXPECT_NE(output.find("did not appear within service_timeout"), std::string::npos) << output;
+}
+
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "rostest_wheelset_demo");
