@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -62,6 +63,9 @@ Case readCase(XmlRpc::XmlRpcValue& c, size_t index) {
   if (c.getType() != XmlRpc::XmlRpcValue::TypeStruct)
     throw std::invalid_argument(where + ": expected a map {name: ..., speed: ..., ...}");
   Case k;
+  const std::map<std::string, double*> numbers = {
+      {"speed", &k.speed},         {"duration", &k.duration},     {"y0", &k.y0},
+      {"amplitude", &k.amplitude}, {"wavelength", &k.wavelength}, {"fit_from", &k.fitFrom}};
   for (auto& field : c) {
     const std::string& key = field.first;
     const std::string name = where + "." + key;
@@ -69,18 +73,8 @@ Case readCase(XmlRpc::XmlRpcValue& c, size_t index) {
       if (field.second.getType() != XmlRpc::XmlRpcValue::TypeString)
         throw std::invalid_argument(name + ": expected a string");
       k.name = static_cast<std::string>(field.second);
-    } else if (key == "speed") {
-      k.speed = number(field.second, name);
-    } else if (key == "duration") {
-      k.duration = number(field.second, name);
-    } else if (key == "y0") {
-      k.y0 = number(field.second, name);
-    } else if (key == "amplitude") {
-      k.amplitude = number(field.second, name);
-    } else if (key == "wavelength") {
-      k.wavelength = number(field.second, name);
-    } else if (key == "fit_from") {
-      k.fitFrom = number(field.second, name);
+    } else if (numbers.count(key)) {
+      *numbers.at(key) = number(field.second, name);
     } else {
       throw std::invalid_argument(name +
                                   ": unknown key (name, speed, duration, y0, amplitude, "
