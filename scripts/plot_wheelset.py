@@ -52,6 +52,23 @@ if cases:
             line += "".join(f"  {value[m] / value['steady']:14.3f}" for m in models if m != "steady")
         print(line)
 
+# The headline: the 0.2 m irregularity (the rostest's case) and the hunting damping, each model.
+if cases and "steady" in models and len(models) > 1:
+    pick = "irr_0.2" if "irr_0.2" in cases else cases[0]
+    fx = {m: next(float(r["fx_per_m"]) for r in rows(m, "irregularity") if r["case"] == pick)
+          for m in models}
+    first = next(r for r in rows(models[0], "irregularity") if r["case"] == pick)
+    print(f"[wheelset_demo] figure: |Fx| per mm at a {float(first['irregularity_wavelength']):g} m "
+          f"irregularity ({float(first['frequency_forced']):g} Hz at {speed:g} m/s): " +
+          ", ".join(f"{m} {fx[m] * 1e-6:.2f} kN/mm" +
+                    ("" if m == "steady" else f" ({100 * (fx[m] / fx['steady'] - 1):+.1f} %)")
+                    for m in models))
+    decays = {m: rows(m, "decay") for m in models}
+    if all(decays.values()):
+        print("[wheelset_demo] figure: hunting damping ratio at "
+              f"{float(decays[models[0]][0]['speed']):g} m/s: " +
+              ", ".join(f"{m} {float(decays[m][0]['damping_ratio']):.4f}" for m in models))
+
 fig, ax = plt.subplots(1, 3, figsize=(15, 4.2))
 for m in models:
     if m in hunting:
