@@ -37,7 +37,7 @@ build() {
   # /usr/bin first: a pyenv python3 elsewhere on PATH lacks catkin_pkg and rospy.
   export PATH="/usr/bin:$PATH"
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-    -DCATKIN_ENABLE_TESTING=ON > build.log 2>&1 || { cat build.log; exit 1; }
+    -DCATKIN_ENABLE_TESTING=ON -DWRC_WERROR="${WRC_WERROR:-OFF}" > build.log 2>&1 || { cat build.log; exit 1; }
   make_retry build.log -C build -j"$(nproc)" all tests || { tail -60 build.log; exit 1; }
   echo "[quickstart] built (log: build.log)"
 }

@@ -231,11 +231,11 @@ template <>
 struct SecondStateUpdate<true> {
   Pair rate2, rate2Old, pole2Old;
   double r;
-  SecondStateUpdate(const FilterZ& zx, const FilterZ& zy, double dt, double r)
+  SecondStateUpdate(const FilterZ& zx, const FilterZ& zy, double dt, double ratio)
       : rate2(Pair(zx.b2 - zx.a2 * zx.b0, zy.b2 - zy.a2 * zy.b0) / dt),
-        rate2Old(rate2 * r),
-        pole2Old(Pair(zx.a2, zy.a2) * r),
-        r(r) {}
+        rate2Old(rate2 * ratio),
+        pole2Old(Pair(zx.a2, zy.a2) * ratio),
+        r(ratio) {}
 };
 
 // The filter states' update at a node from its final traction t and history (old, s, s2):
@@ -345,8 +345,8 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     const double driveX = gx - gphi * mesh.stripY(j);
     const StripEntry e = f->entry[j];
     const int first = mesh.index(0, j), enter = first + e.first, leave = first + nx - e.first;
-    const double* const strip = history.strip(j, nx);
-    return Strip{strip,
+    const double* const stripHistory = history.strip(j, nx);
+    return Strip{stripHistory,
                  PackedStep(beta, X.lagPerLength, r, e.h, driveX, gy, gphi, a),
                  PackedStep(beta, X.lagPerLength, r, mesh.stripStep(j), driveX, gy, gphi, a),
                  first,
