@@ -10,7 +10,7 @@ cd "$here"
 source scripts/make_retry.sh
 mode="${1:-demo}"
 
-# Debian 12's own ROS 1 and tools (see doc/ and ../shared/docs/ros1-debian.md for why each).
+# Debian 12's own ROS 1 and the tools the build, the tests and the figures need.
 packages=(g++ make cmake catkin libroscpp-dev ros-message-generation
   libstd-msgs-dev ros-std-msgs libgeometry-msgs-dev ros-geometry-msgs
   libeigen3-dev libgtest-dev librostest-dev python3-rostest python3-std-msgs python3-geometry-msgs

@@ -83,10 +83,10 @@ struct TransientStorage {
 
 namespace {
 
-// One direction's time term for this step (method-notes section 4, Tustin filter in transposed
-// direct form II). The stored history (tau_old, s_old) is read times r, the history scale (the
-// caller's rescaling to the current patch, see NssModel), so no pass over it is needed. At a node
-// the adhesion guess solves
+// One direction's time term for this step (doc/method.md#dynamic-flexibility, Tustin filter in
+// transposed direct form II). The stored history (tau_old, s_old) is read times r, the history
+// scale (the caller's rescaling to the current patch, see NssModel), so no pass over it is needed.
+// At a node the adhesion guess solves
 //   tau (1 + h beta) = tau_up + h (beta r tau_old - r s_old / V - drive),  beta = b0 / (V dt),
 // and the filter state advances from the final (saturated) traction, g = (tau - r tau_old) / dt:
 //   s = b1 g - a1 (b0 g + r s_old) = rate tau - rate r tau_old - a1 r s_old.
