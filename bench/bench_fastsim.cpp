@@ -1,5 +1,5 @@
 // Cost of one step of each FastSim model and mesh (ns per step). Run:
-//   build/devel/lib/wheel_rail_contact/bench_fastsim --benchmark_repetitions=9 \
+//   build/devel/lib/wheel_rail_contact/bench_fastsim --benchmark_repetitions=9
 //     --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true
 // (random interleaving spreads the machine's load over every model alike; the `_min` aggregate,
 // the least of the repetitions, is the one to compare on a shared machine, whose interruptions only

@@ -1,6 +1,6 @@
 // step_cost: runs steps of one model so that callgrind can count the instructions of exactly those
 // steps (load-independent, unlike wall clock). scripts/step_cost.sh runs every model and mesh:
-//   valgrind --tool=callgrind --toggle-collect='*runSteps*' \
+//   valgrind --tool=callgrind --toggle-collect='*runSteps*'
 //     build/devel/lib/wheel_rail_contact/step_cost MODEL MESH N LOAD STEPS
 // MODEL steady|shen-li|nss, MESH fixed|adaptive (steady: fitted, SteadyModel, or fixed, on the
 // mesh nss fixed uses), N nodes per strip and strips, LOAD vary|constant; an optional last

@@ -2,10 +2,10 @@
 """Figures of the NSS-FastSim accuracy study from the CSVs accuracy_report writes (doc/data).
 
 Redoes the paper's Figs. 1-4 and 8-10 with our exact solver in the place of CONTACT:
-  doc/freq_ab1.png        |C^|/C_steady and phase against lambda/a, a/b = 1, every kind (Fig. 1)
-  doc/combined{1,2,3}.png force magnitude and angle, combined creepages (Figs. 2-4)
-  doc/load_dfx.png        dFx/(mu dFz) against lambda/a0 for each xi (Fig. 8)
-  doc/load_xi0.05_l15.png, doc/load_xi0.1_l15.png  Fx and Fz histories (Figs. 9-10)
+  doc/figures/freq_ab1.png        |C^|/C_steady and phase against lambda/a, a/b = 1, every kind (Fig. 1)
+  doc/figures/combined{1,2,3}.png force magnitude and angle, combined creepages (Figs. 2-4)
+  doc/figures/load_dfx.png        dFx/(mu dFz) against lambda/a0 for each xi (Fig. 8)
+  doc/figures/load_xi0.05_l15.png, doc/figures/load_xi0.1_l15.png  Fx and Fz histories (Figs. 9-10)
 Usage: python3 scripts/plot_figures.py [doc/data] [doc]
 """
 import csv
@@ -19,7 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 DATA = sys.argv[1] if len(sys.argv) > 1 else "doc/data"
-OUT = sys.argv[2] if len(sys.argv) > 2 else "doc"
+OUT = sys.argv[2] if len(sys.argv) > 2 else "doc/figures"
 STYLE = {"exact": ("k", "-"), "nss": ("tab:red", "--"), "shen-li": ("tab:blue", ":"),
          "steady": ("tab:green", "-.")}
 

@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """Speed against accuracy (issue 6) from the CSV speed_accuracy writes.
 
-doc/speed_accuracy.png: error against cost per step, log-log, one marker per model and mesh (the
+doc/figures/speed_accuracy.png: error against cost per step, log-log, one marker per model and mesh (the
 mesh n of n x n written beside it), two panels: the worst and the mean error over the scenes. The
 Pareto front (no other point is both cheaper and more accurate) is drawn in grey and its points are
 printed, so that the README can be read against them.
-Usage: python3 scripts/plot_speed_accuracy.py [doc/data/speed_accuracy.csv] [doc/speed_accuracy.png]
+Usage: python3 scripts/plot_speed_accuracy.py [doc/data/speed_accuracy.csv] [doc/figures/speed_accuracy.png]
 """
 import csv
 import sys
@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 TABLE = sys.argv[1] if len(sys.argv) > 1 else "doc/data/speed_accuracy.csv"
-OUT = sys.argv[2] if len(sys.argv) > 2 else "doc/speed_accuracy.png"
+OUT = sys.argv[2] if len(sys.argv) > 2 else "doc/figures/speed_accuracy.png"
 # Colours of plot_figures.py; a model added later (e.g. auto) falls back to the cycle below.
 COLOUR = {"exact": "k", "nss fixed": "tab:red", "nss adaptive": "tab:orange",
           "shen-li": "tab:blue", "steady": "tab:green", "auto": "tab:purple"}

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""doc/data/stability_map.csv (src/tools/stability_map.cpp) -> doc/stability_map.png: one row of
+"""doc/data/stability_map.csv (src/tools/stability_map.cpp) -> doc/figures/stability_map.png: one row of
 panels per model, one column per input (adhesion, partial slip, full slip, spin), lambda/a against
 V dt/dx, each cell coloured by its class."""
 import csv
@@ -17,7 +17,7 @@ CLASSES = ["good", "inaccurate", "undersampled", "oscillation", "blow-up", "nan"
 COLOURS = ["#4caf50", "#ffc107", "#b0bec5", "#ff5722", "#b71c1c", "#000000", "#7e57c2"]
 
 
-def main(src="doc/data/stability_map.csv", out="doc/stability_map.png"):
+def main(src="doc/data/stability_map.csv", out="doc/figures/stability_map.png"):
     rows = list(csv.DictReader(open(src)))
     models = list(OrderedDict.fromkeys(r["model"] for r in rows))
     inputs = list(OrderedDict.fromkeys(r["input"] for r in rows))

@@ -10,7 +10,7 @@ cd "$here"
 source scripts/make_retry.sh
 mode="${1:-demo}"
 
-# Debian 12's own ROS 1 and tools (see doc/ and ../shared/docs/ros1-debian.md for why each).
+# Debian 12's own ROS 1 and the tools the build, the tests and the figures need.
 packages=(g++ make cmake catkin libroscpp-dev ros-message-generation
   libstd-msgs-dev ros-std-msgs libgeometry-msgs-dev ros-geometry-msgs
   libeigen3-dev libgtest-dev librostest-dev python3-rostest python3-std-msgs python3-geometry-msgs
@@ -37,7 +37,7 @@ build() {
   # /usr/bin first: a pyenv python3 elsewhere on PATH lacks catkin_pkg and rospy.
   export PATH="/usr/bin:$PATH"
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-    -DCATKIN_ENABLE_TESTING=ON > build.log 2>&1 || { cat build.log; exit 1; }
+    -DCATKIN_ENABLE_TESTING=ON -DWRC_WERROR="${WRC_WERROR:-OFF}" > build.log 2>&1 || { cat build.log; exit 1; }
   make_retry build.log -C build -j"$(nproc)" all tests || { tail -60 build.log; exit 1; }
   echo "[quickstart] built (log: build.log)"
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Speed against accuracy (issue 6): every model and mesh through the frequency-response sweep, the
 # paper's combined cases and the varying-load cases, error against the fine-grid exact solver and
-# least cost per step over repeated passes and three sweeps (--rounds); writes doc/data/speed_accuracy.csv and doc/speed_accuracy.png.
+# least cost per step over repeated passes and three sweeps (--rounds); writes doc/data/speed_accuracy.csv and doc/figures/speed_accuracy.png.
 # The exact reference histories are cached in doc/data/speed_accuracy_reference.csv (15 min
 # here on a busy machine; --refresh forces it, and is needed after a change to the exact solver or
 # the paper scenes). Needs a Release build of speed_accuracy.
@@ -16,4 +16,4 @@ if [ ! -x "$bin" ]; then
 fi
 echo "# $(date -u +%FT%TZ) $(nproc) cores; load average: $(cut -d' ' -f1-3 /proc/loadavg)" >&2
 "$bin" --out doc/data "$@"
-/usr/bin/python3 scripts/plot_speed_accuracy.py doc/data/speed_accuracy.csv doc/speed_accuracy.png
+/usr/bin/python3 scripts/plot_speed_accuracy.py doc/data/speed_accuracy.csv doc/figures/speed_accuracy.png

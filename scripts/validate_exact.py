@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fine-grid validation of the exact half-space reference against CONTACT (../shared/reference/).
+"""Fine-grid validation of the exact half-space reference against CONTACT (test/data/contact_reference/).
 
 Runs the built contact_cli (freq --model exact) and prints, per row, our value and CONTACT's:
   1. contact_c11_ab1.csv: |C/C_steady| and phase of C11(lambda/a) at a/b = 1 on 30x30 and 40x40;
@@ -16,7 +16,7 @@ here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.dirname(here)
 cli = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
     root, "build/devel/lib/wheel_rail_contact/contact_cli")
-ref = os.path.join(root, "..", "shared", "reference")
+ref = os.path.join(root, "test", "data", "contact_reference")
 
 
 def freq(kind, ab, lambdas, m):

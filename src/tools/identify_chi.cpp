@@ -1,8 +1,8 @@
 // identify_chi: fits the NSS-FastSim dynamic-flexibility table chi (config/chi_table.csv) against
-// our exact half-space solver (method-notes section 5). For each creepage kind and a/b of the grid
-// it computes the exact C^(lambda/a) / C_steady curve, fits chi (chi_fit.hpp) at each FastSim mesh
-// and writes the table, plus every exact curve for plots.
-// Options: identify_chi --help.
+// our exact half-space solver (doc/method.md#chi-identification). For each creepage kind and a/b of
+// the grid it computes the exact C^(lambda/a) / C_steady curve, fits chi (chi_fit.hpp) at each
+// FastSim mesh and writes the table, plus every exact curve for plots. Options: identify_chi
+// --help.
 // --spin-out also fits a second-order F to kind 23 (second_order_flexibility.hpp) and writes its
 // chi1..chi5 with the same error measures to its own file. --second-order-spin puts that fit in
 // the table itself (columns chi4, chi5, zero for kinds 11 and 22): what NssModel then marches.

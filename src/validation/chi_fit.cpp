@@ -114,8 +114,8 @@ std::array<double, N> nelderMead(F f, std::array<double, N> start, double step, 
         x[worst] = k;
         fx[worst] = fk;
       } else {
-        for (size_t r = 1; r <= N; ++r) {
-          const int v = o[r];
+        for (size_t rank = 1; rank <= N; ++rank) {
+          const int v = o[rank];
           for (size_t d = 0; d < N; ++d) x[v][d] = x[best][d] + 0.5 * (x[v][d] - x[best][d]);
           fx[v] = f(x[v]);
         }

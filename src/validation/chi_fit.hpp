@@ -1,9 +1,9 @@
-/// Identification of the dynamic-flexibility parameters chi (paper eq. 8, method-notes section 5):
-/// minimise the distance between the exact and the NSS-FastSim non-steady creep coefficients over
-/// lambda/a in [1, 100], on the ratio to each model's own steady coefficient (so the exact grid's
-/// 1-4 % bias in the steady value is not fitted into chi).
-/// Measure (choice): d(ln lambda/a), which weighs short and long waves alike; the paper's
-/// d(lambda/a) is reported alongside.
+/// Identification of the dynamic-flexibility parameters chi (paper eq. 8,
+/// doc/method.md#chi-identification): minimise the distance between the exact and the NSS-FastSim
+/// non-steady creep coefficients over lambda/a in [1, 100], on the ratio to each model's own steady
+/// coefficient (so the exact grid's 1-4 % bias in the steady value is not fitted into chi). Measure
+/// (choice): d(ln lambda/a), which weighs short and long waves alike; the paper's d(lambda/a) is
+/// reported alongside.
 #pragma once
 
 #include <complex>

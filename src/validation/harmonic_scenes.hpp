@@ -1,8 +1,9 @@
 /// The frequency-response sweep in the time domain: one small harmonic creepage of one kind on the
 /// paper's material (a = b = 20 mm, V = 25 mm/s, constant load), run through any ContactModel and
 /// scored against the linear response the exact frequency-domain solver predicts
-/// (nonsteady_coefficients.hpp). Convention of method-notes section 5: creepage = amp cos(omega t),
-/// F = -norm amp Re(C^ e^{i omega t}), norm = G a b (xi, eta) or G (ab)^{3/2} (phi). Units SI.
+/// (nonsteady_coefficients.hpp). Convention of doc/method.md#chi-identification: creepage = amp
+/// cos(omega t), F = -norm amp Re(C^ e^{i omega t}), norm = G a b (xi, eta) or G (ab)^{3/2} (phi).
+/// Units SI.
 #pragma once
 
 #include <complex>

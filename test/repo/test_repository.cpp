@@ -1,4 +1,5 @@
-// The repository's own tooling: C++ style, and the build scripts' retry after a compiler crash.
+// The repository's own tooling: C++ style, self-containment, and the build scripts' retry after a
+// compiler crash.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -39,6 +40,16 @@ TEST(Style, ClangFormatClean) {
                           " && git ls-files -co --exclude-standard '*.cpp' '*.hpp' | "
                           "xargs -r clang-format --dry-run --Werror";
   EXPECT_EQ(shell(cmd), 0) << "run: clang-format -i $(git ls-files '*.cpp' '*.hpp')";
+}
+
+TEST(SelfContained, NothingNamesAPathOutsideTheRepository) {
+  // A clone alone builds and passes: no source, script, build file or doc reaches a sibling
+  // directory (the team's shared material) or cites notes that are not in the repository.
+  const std::string cmd = std::string("cd ") + WRC_SOURCE_DIR +
+                          " && git ls-files -co --exclude-standard | grep -v '^CHANGELOG.rst$' | "
+                          "xargs -r grep -l -e '\\.\\./[s]hared' -e 'shared/[r]eference' -e "
+                          "'shared/[d]ocs' -e 'method-[n]otes'";
+  EXPECT_NE(shell(cmd), 0) << "run: " << cmd;
 }
 
 TEST(BuildScripts, MakeRetryRetriesOnceAfterACompilerCrash) {

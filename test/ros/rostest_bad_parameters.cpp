@@ -29,10 +29,6 @@ int runNode(const std::string& name, const std::string& args, std::string* out,
              out);
 }
 
-int runNode(const std::string& args, std::string* out, double seconds = 20.0) {
-  return runNode(nextName(), args, out, seconds);
-}
-
 /// Exit code 1 (the controlled failure; a crash is a signal: -1, or 134/139 via the shell) and a
 /// ROS_FATAL "invalid parameter <text>".
 void expectFatalAs(const std::string& name, const std::string& args, const std::string& text) {

@@ -88,7 +88,9 @@ class NodeVsCli : public ::testing::Test {
     ASSERT_TRUE(client->reset());
   }
   void TearDown() override {
-    if (client) EXPECT_TRUE(client->oneOutputPerInput());
+    if (client) {
+      EXPECT_TRUE(client->oneOutputPerInput());
+    }
   }
   ros::NodeHandle nh;
   std::unique_ptr<ContactClient> client;

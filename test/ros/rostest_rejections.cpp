@@ -35,7 +35,9 @@ class Rejections : public ::testing::Test {
     ASSERT_TRUE(r->reset());
   }
   void TearDown() override {
-    if (r) EXPECT_TRUE(r->oneOutputPerInput());
+    if (r) {
+      EXPECT_TRUE(r->oneOutputPerInput());
+    }
   }
   /// A valid creepage after a load: status ok, forces non-zero.
   void good(double t, ContactState* s = nullptr) {

@@ -29,12 +29,12 @@ TEST(KalkerCoefficients, CircleAtNu028) {
   EXPECT_NEAR(c.c23, 1.488, 0.0005);
 }
 
-TEST(KalkerCoefficients, SharedReferenceTableColumn) {
-  // ../shared/reference/contact_steady_coefficients.csv: coef_kalker_table is CONTACT's own
-  // interpolation of the same table at nu = 0.28.
+TEST(KalkerCoefficients, ContactReferenceTableColumn) {
+  // test/data/contact_reference/contact_steady_coefficients.csv: coef_kalker_table is CONTACT's
+  // own interpolation of the same table at nu = 0.28.
   std::ifstream in(std::string(WRC_SOURCE_DIR) +
-                   "/../shared/reference/contact_steady_coefficients.csv");
-  if (!in) GTEST_SKIP() << "shared reference data not present";
+                   "/test/data/contact_reference/contact_steady_coefficients.csv");
+  ASSERT_TRUE(in) << "test/data/contact_reference/contact_steady_coefficients.csv missing";
   std::string line;
   std::getline(in, line);
   int n = 0;

@@ -157,7 +157,7 @@ TEST(NssModel, FixedMeshLargerThanThePatchKeepsTheLinearCoefficient) {
   // adaptive mesh's (fitted to the patch); integrating from the mesh's edge made it 11 % (spin 27
   // %) high.
   for (const char* model : {"shen-li", "nss"}) {
-    for (const StepInput in :
+    for (const StepInput& in :
          {StepInput{5e-5, 20.0, 1e-7, 0, 0, 0}, StepInput{5e-5, 20.0, 0, 1e-7, 0, 0},
           StepInput{5e-5, 20.0, 0, 0, 1e-5, 0}}) {
       ContactParameters fixed = params(model, "fixed"), adaptive = params(model, "adaptive");

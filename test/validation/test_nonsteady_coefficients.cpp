@@ -24,7 +24,7 @@ std::vector<std::vector<std::string>> readCsv(const std::string& path) {
   return csvRows(in);
 }
 
-const std::string kReference = std::string(WRC_SOURCE_DIR) + "/../shared/reference/";
+const std::string kReference = std::string(WRC_SOURCE_DIR) + "/test/data/contact_reference/";
 
 double kalker(CreepageKind k, double ab) {
   const CreepCoefficients c = kalkerCoefficients(ab, 0.28);
@@ -46,10 +46,10 @@ TEST(NonSteadyCoefficients, SteadyReproducesKalkersTableAt40x40) {
 }
 
 TEST(NonSteadyCoefficients, ReproducesContactSteadyCoefficientsAt50x50) {
-  // CONTACT's own 50 x 50 values (../shared/reference/contact_steady_coefficients.csv): same grid,
-  // same discrete normal problem, same scheme (spin slip taken dx/6 downstream, as CONTACT does).
-  // 2e-3 relative: we reach 1e-5 except at a/b = 0.2 (up to 9e-4; a boundary element of the
-  // normal problem may differ).
+  // CONTACT's own 50 x 50 values (test/data/contact_reference/contact_steady_coefficients.csv):
+  // same grid, same discrete normal problem, same scheme (spin slip taken dx/6 downstream, as
+  // CONTACT does). 2e-3 relative: we reach 1e-5 except at a/b = 0.2 (up to 9e-4; a boundary element
+  // of the normal problem may differ).
   const auto rows = readCsv(kReference + "contact_steady_coefficients.csv");
   ASSERT_EQ(rows.size(), 15u);
   std::map<double, CreepCoefficients> cache;
@@ -62,7 +62,7 @@ TEST(NonSteadyCoefficients, ReproducesContactSteadyCoefficientsAt50x50) {
 }
 
 TEST(NonSteadyCoefficients, ReproducesContactC11Curve) {
-  // ../shared/reference/contact_c11_ab1.csv (CONTACT, time-domain runs fitted over whole
+  // test/data/contact_reference/contact_c11_ab1.csv (CONTACT, time-domain runs fitted over whole
   // periods). Same scheme in the frequency domain: |C/C_steady| within 2e-4 and phase within
   // 0.02 degrees (we reach 8e-5 and 0.005 degrees, the reference's own fitting precision).
   const auto rows = readCsv(kReference + "contact_c11_ab1.csv");

@@ -45,8 +45,9 @@ void check(const PaperScene& s, double tie = 1.0) {
                steady = error(s, "steady", exact);
   EXPECT_LT(nss, 0.08) << s.name;
   EXPECT_LT(nss, tie * shenLi) << s.name;
-  if (tie > 1.0)  // where the fixed mesh ties, the adaptive one (fitted to the patch) must not
+  if (tie > 1.0) {  // where the fixed mesh ties, the adaptive one (fitted to the patch) must not
     EXPECT_LT(error(s, "nss", exact, "adaptive"), error(s, "shen-li", exact, "adaptive")) << s.name;
+  }
   EXPECT_LT(nss, steady) << s.name;
   // auto (tolerance 0.05: it picks its mesh and when to run nss).
   const double automatic = error(s, "auto", exact);
@@ -92,6 +93,8 @@ TEST(PaperScenes, VaryingLoadFollowsTheLoad) {
       // a node the trailing edge newly covers must take its upstream node's history (NssModel::
       // coverTrailingNodes). Measured: 3.28 % of the peak; 4.19 % when it kept the zero it had
       // outside the patch.
-      if (xi == 0.002 && l == 5.0) EXPECT_LT(error(s, "nss", exact), 0.037) << s.name;
+      if (xi == 0.002 && l == 5.0) {
+        EXPECT_LT(error(s, "nss", exact), 0.037) << s.name;
+      }
     }
 }

@@ -1,5 +1,5 @@
 /// Exact non-steady linear creep coefficients C11, C22, C23 as functions of the wavelength of a
-/// harmonic creepage (method-notes section 5), from the transient half-space scheme of
+/// harmonic creepage (doc/method.md#chi-identification), from the transient half-space scheme of
 /// halfspace_solver.hpp (shift dq = dx per step) in full adhesion, at periodic steady state.
 /// Convention: creepage = cos(omega t), omega t = 2 pi q / lambda; each step uses the exact mean of
 /// the creepage over the step (as CONTACT's reference runs); C = -F^/(norm), F = Re(F^ e^{i omega

@@ -1,8 +1,8 @@
 /// Frequency response of the FastSim models in full adhesion: the non-steady creep coefficient
 /// C^(lambda/a) (complex, dimensionless) for one small harmonic creepage, with the convention of
-/// method-notes section 5 (creepage = amp cos(wt); C = -F^/(norm amp); Im C < 0 is a lag).
-/// Computed exactly for the model's space discretisation in the continuous-time limit dt -> 0,
-/// by one complex march per strip: tau_i (1/h + (i k / a) F(k)) = tau_up / h - D_i, k = 2 pi
+/// doc/method.md#chi-identification (creepage = amp cos(wt); C = -F^/(norm amp); Im C < 0 is a
+/// lag). Computed exactly for the model's space discretisation in the continuous-time limit dt ->
+/// 0, by one complex march per strip: tau_i (1/h + (i k / a) F(k)) = tau_up / h - D_i, k = 2 pi
 /// a/lambda.
 #pragma once
 

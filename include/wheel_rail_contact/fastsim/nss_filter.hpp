@@ -1,7 +1,8 @@
 /// The dynamic flexibility of NSS-FastSim (Alonso & Gimenez 2008): a first-order transfer function
 /// F(k) = (chi2 + i k chi1) / (1 + i k chi3), the ratio of dynamic to static flexibility at the
-/// dimensionless spatial frequency k = 2 pi a / lambda (i k <-> (a/V) d/dt; method-notes section
-/// 4). chi1, chi2, chi3 are dimensionless. F == 1 (chi = {0, 1, 0}) is Shen & Li's model.
+/// dimensionless spatial frequency k = 2 pi a / lambda (i k <-> (a/V) d/dt;
+/// doc/method.md#dynamic-flexibility). chi1, chi2, chi3 are dimensionless. F == 1 (chi = {0, 1, 0})
+/// is Shen & Li's model.
 #pragma once
 
 #include <complex>
@@ -20,7 +21,8 @@ struct ChiParameters {
 /// F at spatial frequency k (continuous time).
 std::complex<double> transferFunction(const ChiParameters& chi, double k);
 
-/// F discretised for one step (Tustin, method-notes eq. 10) in transposed direct form II:
+/// F discretised for one step (Tustin, doc/method.md#dynamic-flexibility) in transposed direct form
+/// II:
 ///   h_n = b0 g_n + s_{n-1},  s_n = b1 g_n - a1 h_n + s2_{n-1},  s2_n = b2 g_n - a2 h_n,
 /// where g is the traction rate dtau/dt [Pa/s] and h the filtered rate [Pa/s]. A first-order F has
 /// b2 = a2 = 0 (its state s2 stays zero and the march skips it); the pole -a1 lies inside the unit

@@ -97,23 +97,23 @@ struct StripSums {
   int stuck = 0, loaded = 0;              ///< nodes in adhesion, nodes with pressure
   /// Saturates (tx, ty) at the bound g (Coulomb, direction kept), stores node k of `f` and adds it.
   /// Inline: it is the inner loop of every FastSim march.
-  void node(int k, double xn, double g, double* tx, double* ty, const FieldPointers& f) {
-    const double t2 = *tx * *tx + *ty * *ty;
+  void node(int k, double xn, double g, double* nodeTx, double* nodeTy, const FieldPointers& f) {
+    const double t2 = *nodeTx * *nodeTx + *nodeTy * *nodeTy;
     // Below about 1e-150 Pa the squares underflow (a traction above a zero bound stayed, found by
     // fuzzing): measure |t| by hypot there; the normal path is unchanged.
     const bool tiny = !(t2 > 1e-300);
-    const bool slips = tiny ? std::hypot(*tx, *ty) > g : t2 > g * g;
+    const bool slips = tiny ? std::hypot(*nodeTx, *nodeTy) > g : t2 > g * g;
     if (slips) {
-      const double s = g / (tiny ? std::hypot(*tx, *ty) : std::sqrt(t2));
-      *tx *= s;
-      *ty *= s;
+      const double s = g / (tiny ? std::hypot(*nodeTx, *nodeTy) : std::sqrt(t2));
+      *nodeTx *= s;
+      *nodeTy *= s;
     }
-    f.tx[k] = *tx;
-    f.ty[k] = *ty;
+    f.tx[k] = *nodeTx;
+    f.ty[k] = *nodeTy;
     f.slip[k] = slips;
-    this->tx += *tx;
-    this->ty += *ty;
-    xnTy += xn * *ty;
+    tx += *nodeTx;
+    ty += *nodeTy;
+    xnTy += xn * *nodeTy;
     loaded += g > 0.0;
     stuck += g > 0.0 && !slips;
   }

@@ -88,10 +88,10 @@ struct TransientStorage {
 
 namespace {
 
-// One direction's time term for this step (method-notes section 4, Tustin filter in transposed
-// direct form II). The stored history (tau_old, s_old) is read times r, the history scale (the
-// caller's rescaling to the current patch, see NssModel), so no pass over it is needed. At a node
-// the adhesion guess solves
+// One direction's time term for this step (doc/method.md#dynamic-flexibility, Tustin filter in
+// transposed direct form II). The stored history (tau_old, s_old) is read times r, the history
+// scale (the caller's rescaling to the current patch, see NssModel), so no pass over it is needed.
+// At a node the adhesion guess solves
 //   tau (1 + h beta) = tau_up + h (beta r tau_old - r s_old / V - drive),  beta = b0 / (V dt),
 // and the filter state advances from the final (saturated) traction, g = (tau - r tau_old) / dt:
 //   s = b1 g - a1 (b0 g + r s_old) = rate tau - rate r tau_old - a1 r s_old.
@@ -236,11 +236,11 @@ template <>
 struct SecondStateUpdate<true> {
   Pair rate2, rate2Old, pole2Old;
   double r;
-  SecondStateUpdate(const FilterZ& zx, const FilterZ& zy, double dt, double r)
+  SecondStateUpdate(const FilterZ& zx, const FilterZ& zy, double dt, double ratio)
       : rate2(Pair(zx.b2 - zx.a2 * zx.b0, zy.b2 - zy.a2 * zy.b0) / dt),
-        rate2Old(rate2 * r),
-        pole2Old(Pair(zx.a2, zy.a2) * r),
-        r(r) {}
+        rate2Old(rate2 * ratio),
+        pole2Old(Pair(zx.a2, zy.a2) * ratio),
+        r(ratio) {}
 };
 
 // The filter states' update at a node from its final traction t and history (old, s, s2):
@@ -350,8 +350,8 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     const double driveX = gx - gphi * mesh.stripY(j);
     const StripEntry e = f->entry[j];
     const int first = mesh.index(0, j), enter = first + e.first, leave = first + nx - e.first;
-    const double* const strip = history.strip(j, nx);
-    return Strip{strip,
+    const double* const stripHistory = history.strip(j, nx);
+    return Strip{stripHistory,
                  PackedStep(beta, X.lagPerLength, r, e.h, driveX, gy, gphi, a),
                  PackedStep(beta, X.lagPerLength, r, mesh.stripStep(j), driveX, gy, gphi, a),
                  first,
