@@ -169,10 +169,10 @@ bool VehicleNode::readParameters() {
                  chosen.c_str());
     }
     if (!ignored.empty()) {
-      std::string list;
-      for (const auto& k : ignored) list += " " + k;
+      std::string unused;
+      for (const auto& k : ignored) unused += " " + k;
       ROS_INFO("vehicle_node %s: contact_node parameters not used here:%s",
-               nh_.getNamespace().c_str(), list.c_str());
+               nh_.getNamespace().c_str(), unused.c_str());
     }
     lastStepper_.assign(vehicle_->size(), StepperCounters{});
     lastVehicle_.assign(vehicle_->size(), VehicleContactCounters{});

@@ -207,8 +207,12 @@ TEST(Vehicle, EveryTickEqualsTheSingleContactNodes) {
       expectEqualState(out.contacts[j], srv.response, where);
       EXPECT_EQ(out.contacts[j].model, srv.response.model) << where;
       EXPECT_EQ(out.contacts[j].header.stamp, in.header.stamp) << where;
-      if (k == 50 && j == 1) EXPECT_EQ(srv.response.status, ContactState::STATUS_NO_LOAD);
-      if (k == 90 && j == 2) EXPECT_EQ(srv.response.status, ContactState::STATUS_STANDSTILL);
+      if (k == 50 && j == 1) {
+        EXPECT_EQ(srv.response.status, ContactState::STATUS_NO_LOAD);
+      }
+      if (k == 90 && j == 2) {
+        EXPECT_EQ(srv.response.status, ContactState::STATUS_STANDSTILL);
+      }
     }
   }
   EXPECT_TRUE(vehicle->noneLeft());
@@ -359,7 +363,9 @@ TEST(Vehicle, ResetClearsEveryContact) {
       EXPECT_EQ(s.contacts[j].fx, first[k].contacts[j].fx) << k << " " << j;
       EXPECT_EQ(s.contacts[j].fy, first[k].contacts[j].fy) << k << " " << j;
       EXPECT_EQ(s.contacts[j].mz, first[k].contacts[j].mz) << k << " " << j;
-      if (k == 0) EXPECT_EQ(s.contacts[j].dt, 0.0);
+      if (k == 0) {
+        EXPECT_EQ(s.contacts[j].dt, 0.0);
+      }
     }
   }
   EXPECT_TRUE(vehicle->noneLeft());
