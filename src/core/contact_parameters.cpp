@@ -57,6 +57,9 @@ std::vector<ParameterDoc> parameterDocs() {
        "model auto: force error allowed, fraction of the peak force, (0, 1)"},
       {"fz_max", "N", str(d.fz_max), "largest load the fixed mesh covers; 0 = 1.5 fz0"},
       {"chi_table", "", "(shipped)", "chi table CSV for nss; empty = config/chi_table.csv"},
+      {"fastsim", "", "(model's own)",
+       "calibrated | classic: FastSim's steady part; empty = calibrated for nss and auto, "
+       "classic for steady and shen-li"},
   };
 }
 
@@ -92,6 +95,8 @@ void validate(const ContactParameters& p) {
     fail("tolerance", "must be in (0, 1), got " + str(p.tolerance));
   if (!(p.fz_max >= 0.0) || !std::isfinite(p.fz_max))
     fail("fz_max", "must be >= 0 (0 = 1.5 fz0), got " + str(p.fz_max));
+  if (!p.fastsim.empty() && p.fastsim != "calibrated" && p.fastsim != "classic")
+    fail("fastsim", "must be calibrated or classic (or empty), got '" + p.fastsim + "'");
 }
 
 void setParameter(ContactParameters* p, const std::string& name, const std::string& value) {
@@ -121,12 +126,19 @@ void setParameter(ContactParameters* p, const std::string& name, const std::stri
     p->fz_max = parseDouble(name, value);
   else if (name == "chi_table")
     p->chi_table = value;
+  else if (name == "fastsim")
+    p->fastsim = value;
   else
     fail(name, "unknown parameter");
 }
 
 double effectiveFzMax(const ContactParameters& p) {
   return p.fz_max > 0.0 ? p.fz_max : 1.5 * p.fz0;
+}
+
+bool calibratedFastSim(const ContactParameters& p) {
+  if (!p.fastsim.empty()) return p.fastsim == "calibrated";
+  return p.model == "nss" || p.model == "auto";
 }
 
 }  // namespace wheel_rail_contact

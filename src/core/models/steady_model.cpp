@@ -4,10 +4,12 @@
 
 namespace wheel_rail_contact {
 
-SteadyModel::SteadyModel(const ContactParameters& p, Mesh mesh)
+SteadyModel::SteadyModel(const ContactParameters& p, Mesh mesh,
+                         const SteadyCalibration& calibration)
     : p_(p),
       ref_{p.a0, p.b0, p.fz0},
       c_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
+      calibration_(calibration.at(p.a0 / p.b0)),
       fitted_(mesh == Mesh::kFittedToPatch) {
   const HertzEllipse sized = ref_.at(fitted_ ? p.fz0 : effectiveFzMax(p));
   mesh_ = PatchMesh(p.nx, p.ny, sized.a, sized.b);
@@ -32,8 +34,9 @@ StepOutput SteadyModel::step(const StepInput& in) {
   const HertzEllipse h = ref_.at(fwd.fz);
   if (fitted_) mesh_.scale(h.a, h.b);
   parabolicBound(mesh_, h.a, h.b, fwd.fz, p_.mu, &field_);
-  const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, c_),
-                                      {fwd.xi, fwd.eta, fwd.phi}, &field_);
+  const Creepages c{fwd.xi, fwd.eta, fwd.phi};
+  const CreepForces f = steadyFastSim(
+      mesh_, calibration_.flexibilities(h.a, h.b, p_.G, c_, p_.mu * fwd.fz, c), c, &field_);
   out = stepOutput(f, fwd.fz, h.a, h.b);
   if (backwards) mirrorForces(&out);
   last_ = out;

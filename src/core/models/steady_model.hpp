@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/fastsim/fastsim.hpp"
+#include "core/fastsim/steady_calibration.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
 
@@ -15,7 +16,9 @@ class SteadyModel : public ContactModel {
   /// nodes outside it skipped (the same-mesh reference for nss on the fixed mesh in the
   /// benchmarks).
   enum class Mesh { kFittedToPatch, kSizedForFzMax };
-  explicit SteadyModel(const ContactParameters& p, Mesh mesh = Mesh::kFittedToPatch);
+  /// `calibration`: the calibrated FastSim's table (empty: classic FastSim).
+  explicit SteadyModel(const ContactParameters& p, Mesh mesh = Mesh::kFittedToPatch,
+                       const SteadyCalibration& calibration = SteadyCalibration());
   StepOutput step(const StepInput& in) override;
   void reset() override { last_ = StepOutput(); }
   std::string name() const override { return "steady"; }
@@ -28,6 +31,7 @@ class SteadyModel : public ContactModel {
   ContactParameters p_;
   ReferencePatch ref_;
   CreepCoefficients c_;
+  FlexibilityCalibration calibration_;
   PatchMesh mesh_;
   TractionField field_;
   bool fitted_;      // mesh_ follows the patch
