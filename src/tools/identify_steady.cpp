@@ -37,8 +37,8 @@ struct Options {
   int grid = 20, nx = 20;
   double nu = 0.28, G = 8.2e10, mu = 0.3, fz = 1e4;
   std::vector<double> ratios = {0.2, 0.5, 1, 2, 5};
-  std::vector<double> knots = {0,   0.1, 0.2,  0.35, 0.5, 0.6, 0.75, 0.9, 1,
-                                1.25, 1.5, 2,   3,    4.5, 7,   10,   15};
+  std::vector<double> knots = {0,    0.1, 0.2, 0.35, 0.5, 0.6, 0.75, 0.9, 1,
+                               1.25, 1.5, 2,   3,    4.5, 7,   10,   15};
   std::vector<double> points = {0.05, 0.15, 0.3, 0.6, 0.9, 1.25, 1.75, 2.5, 4, 6, 9, 13};
 };
 
@@ -82,8 +82,8 @@ struct Ray {
   const char* name;
   double e[3];
 };
-const Ray kRays[] = {{"11", {1, 0, 0}},         {"22", {0, 1, 0}},    {"23", {0, 0, 1}},
-                     {"xe", {1, 1, 0}},         {"xep", {1, 1, 1}},   {"opp", {1, -1, 1}},
+const Ray kRays[] = {{"11", {1, 0, 0}},       {"22", {0, 1, 0}},  {"23", {0, 0, 1}},
+                     {"xe", {1, 1, 0}},       {"xep", {1, 1, 1}}, {"opp", {1, -1, 1}},
                      {"spin", {0.3, -0.3, 1}}};
 
 // Normalised forces: fx, fy over mu fz, mz over mu fz sqrt(ab).
@@ -129,7 +129,7 @@ class ExactCache {
       for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
       if (f.size() < 9) throw std::runtime_error(path + ": short line: " + line);
       map_[Key{std::stod(f[0]), f[1], std::stod(f[2])}] = {std::stod(f[6]), std::stod(f[7]),
-                                                         std::stod(f[8])};
+                                                           std::stod(f[8])};
     }
   }
   Point at(double g, const Ray& r, double e) {
@@ -146,7 +146,8 @@ class ExactCache {
         solverAB_ = g;
       }
       const HalfspaceSolution& x = solver_->solve(RollingMode::kSteady, s.creepages(r, e), s.mu);
-      if (!x.converged) std::cerr << "warning: exact not converged at " << g << " " << r.name << " " << e << "\n";
+      if (!x.converged)
+        std::cerr << "warning: exact not converged at " << g << " " << r.name << " " << e << "\n";
       p = s.normalised(x.fx, x.fy, x.mz);
     }
     map_[key] = p;
@@ -345,8 +346,11 @@ void writeCurves(const Options& o, ExactCache* exact, const SteadyCalibration& t
           out << line;
         }
       }
-      std::printf("%-5g %-5s %9.4f %9.4f %9.4f %9.4f\n", g, r.name, fErr[0], fErr[1], mErr[0],
-                  mErr[1]);
+      if (peak > 1e-3)
+        std::printf("%-5g %-5s %9.4f %9.4f %9.4f %9.4f\n", g, r.name, fErr[0], fErr[1], mErr[0],
+                    mErr[1]);
+      else  // no spin moment to speak of (xi alone)
+        std::printf("%-5g %-5s %9.4f %9.4f %9s %9s\n", g, r.name, fErr[0], fErr[1], "-", "-");
     }
   }
 }
@@ -358,8 +362,9 @@ int run(const Options& o, int argc, char** argv) {
     ~Saver() { c->save(); }
   } saver{&exact};
   if (!o.out.empty()) writeTable(o, &exact, argc, argv);
-  const std::string path =
-      !o.out.empty() ? o.out : !o.table.empty() ? o.table : SteadyCalibration::defaultPath();
+  const std::string path = !o.out.empty()     ? o.out
+                           : !o.table.empty() ? o.table
+                                              : SteadyCalibration::defaultPath();
   writeCurves(o, &exact, path == "classic" ? SteadyCalibration() : SteadyCalibration::load(path));
   return 0;
 }

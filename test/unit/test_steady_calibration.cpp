@@ -57,10 +57,20 @@ TEST(SteadyCalibration, ScalesEachFlexibilityByItsKindsRatioAtTheNormalisedCreep
   // e = G a b C11 xi / (mu fz) = 0.5 for xi alone.
   const Creepages c1{0.5 * muFz / (G * a * b * k.c11), 0.0, 0.0};
   EXPECT_NEAR(FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, c1), 0.5, 1e-12);
-  const Flexibilities L0 = kalkerFlexibilities(a, b, G, k), L = c.flexibilities(a, b, G, k, muFz, c1);
+  const Flexibilities L0 = kalkerFlexibilities(a, b, G, k),
+                      L = c.flexibilities(a, b, G, k, muFz, c1);
+  // A single creepage: its kind's ratio, the others blended towards L_crss = L1 with w = e / 5.
   EXPECT_DOUBLE_EQ(L.L1, 1.5 * L0.L1);
-  EXPECT_DOUBLE_EQ(L.L2, 0.75 * L0.L2);
-  EXPECT_DOUBLE_EQ(L.L3, 1.5 * L0.L3);
+  EXPECT_NEAR(L.L2, 1.5 * (0.9 * L0.L2 + 0.1 * L0.L1), 1e-12 * L0.L2);
+  EXPECT_NEAR(L.L3, 1.5 * (0.9 * L0.L3 + 0.1 * L0.L1), 1e-12 * L0.L3);
+  // Two kinds at e = 1 (e1 = e2): ln rho is the mean of their ln ratios, 2 and 0.5: rho = 1.
+  const Creepages c12{c1.xi / 0.5 / std::sqrt(2.0), c1.xi / 0.5 / std::sqrt(2.0) * k.c11 / k.c22,
+                      0.0};
+  EXPECT_NEAR(FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, c12), 1.0, 1e-12);
+  const Flexibilities L12 = c.flexibilities(a, b, G, k, muFz, c12);
+  const double x2 = c12.xi * c12.xi, y2 = c12.eta * c12.eta;
+  const double crss = (x2 + y2) / (x2 / L0.L1 + y2 / L0.L2);
+  EXPECT_NEAR(L12.L1, 0.8 * L0.L1 + 0.2 * crss, 1e-12 * L0.L1);
   // Spin and signs: e is the norm of the three linear forces over mu fz.
   const Creepages c3{-c1.xi, 0.0, 0.5 * muFz / (G * std::pow(a * b, 1.5) * k.c23)};
   EXPECT_NEAR(FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, c3), std::sqrt(0.5),

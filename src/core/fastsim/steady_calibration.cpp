@@ -17,7 +17,8 @@ double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
                                                   const CreepCoefficients& k, double muFz,
                                                   const Creepages& c, double* squares) {
   const double ab = a * b, s = G * ab / muFz;
-  const double e1 = s * k.c11 * c.xi, e2 = s * k.c22 * c.eta, e3 = s * std::sqrt(ab) * k.c23 * c.phi;
+  const double e1 = s * k.c11 * c.xi, e2 = s * k.c22 * c.eta,
+               e3 = s * std::sqrt(ab) * k.c23 * c.phi;
   if (squares) {
     squares[0] = e1 * e1;
     squares[1] = e2 * e2;
@@ -47,20 +48,22 @@ Flexibilities FlexibilityCalibration::flexibilities(double a, double b, double G
   double e2[3];
   const double e = normalisedCreepage(a, b, G, k, muFz, c, e2);
   if (!(e > 0.0)) return L;  // no creepage: linear theory
-  // One ratio for the step: each kind's, weighted by its share of e^2 (a single creepage gets its
-  // own curve exactly).
-  double rho = 1.0;
+  // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
+  // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
+  // curves better than the arithmetic one (identify_steady's combined rays,
+  // doc/calibrated_fastsim.md).
+  double rho = ratio(0, e);  // no friction (e infinite): every kind's last knot is full slip
   if (std::isfinite(e))
-    rho = (e2[0] * ratio(0, e) + e2[1] * ratio(1, e) + e2[2] * ratio(2, e)) / (e * e);
-  else
-    rho = ratio(0, e);  // no friction: every knot's end is full slip
+    rho = std::exp((e2[0] * std::log(ratio(0, e)) + e2[1] * std::log(ratio(1, e)) +
+                    e2[2] * std::log(ratio(2, e))) /
+                   (e * e));
   // Towards full slip the flexibilities blend into one, L_crss (Vollebregt and Voltr 2023,
-  // CONTACT's FASTSIM), weight min(1, e / 3): the saturated traction then points along the rigid
-  // slip, as in exact theory, not along (xi / L1, eta / L2). A single creepage has L_crss = its own
-  // L, unchanged.
+  // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
+  // theory, not along (xi / L1, eta / L2). A single creepage has L_crss = its own L, unchanged.
+  // Weight min(1, e / 5): of e / 1.5, 3, 5, 10, 20 the one nearest the combined exact curves.
   const double kphi = 3.0 * M_PI * a / 32.0 * c.phi, x2 = c.xi * c.xi, y2 = c.eta * c.eta,
                s2 = kphi * kphi, den = x2 / L.L1 + y2 / L.L2 + s2 / L.L3;
-  const double w = std::isfinite(e) ? std::min(1.0, e / 3.0) : 1.0;
+  const double w = std::isfinite(e) ? std::min(1.0, e / 5.0) : 1.0;
   const double crss = den > 0.0 ? (x2 + y2 + s2) / den : L.L1;
   L.L1 = rho * ((1.0 - w) * L.L1 + w * crss);
   L.L2 = rho * ((1.0 - w) * L.L2 + w * crss);

@@ -8,10 +8,11 @@
 /// between steps leaves standing, like the drive's change with the creepage).
 ///
 /// Normalised creepage: each kind's linear force over mu fz,
-///   e1 = G a b C11 |xi| / (mu fz), e2 = G a b C22 |eta| / (mu fz), e3 = G (ab)^1.5 C23 |phi| / (mu fz),
+///   e1 = G a b C11 |xi| / (mu fz), e2 = G a b C22 |eta| / (mu fz), e3 = G (ab)^1.5 C23 |phi| / (mu
+///   fz),
 /// and e = sqrt(e1^2 + e2^2 + e3^2). The step's flexibilities are
-///   L_i = rho(e) ((1 - w) L_i,Kalker + w L_crss),   rho = sum_k e_k^2 ratio_k(e) / e^2,
-/// w = min(1, e / 3), L_crss = (xi^2 + eta^2 + (k phi)^2) / (xi^2/L1 + eta^2/L2 + (k phi)^2/L3),
+///   L_i = rho(e) ((1 - w) L_i,Kalker + w L_crss),   ln rho = sum_k e_k^2 ln ratio_k(e) / e^2,
+/// w = min(1, e / 5), L_crss = (xi^2 + eta^2 + (k phi)^2) / (xi^2/L1 + eta^2/L2 + (k phi)^2/L3),
 /// k = 3 pi a / 32 (CONTACT's FASTSIM, Vollebregt and Voltr 2023): a single
 /// creepage of kind k gets L_k ratio_k(e) exactly, so the table is identified on single creepages.
 ///
@@ -35,8 +36,8 @@ namespace wheel_rail_contact {
 class FlexibilityCalibration {
  public:
   bool classic() const { return eps_[0].empty(); }
-  /// Kalker's flexibilities at patch (a, b), scaled for creepages c at mu fz = muFz. Classic: exactly
-  /// kalkerFlexibilities(a, b, G, k).
+  /// Kalker's flexibilities at patch (a, b), scaled for creepages c at mu fz = muFz. Classic:
+  /// exactly kalkerFlexibilities(a, b, G, k).
   Flexibilities flexibilities(double a, double b, double G, const CreepCoefficients& k, double muFz,
                               const Creepages& c) const;
   /// Ratio of kind k (0: 11, 1: 22, 2: 23) at normalised creepage e.
