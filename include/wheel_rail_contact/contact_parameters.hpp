@@ -25,9 +25,9 @@ struct ContactParameters {
   double fz_max = 0.0;
   /// chi table file for nss; empty = the table shipped in the package (config/chi_table.csv).
   std::string chi_table;
-  /// FastSim's steady part: "calibrated" (flexibilities identified against the exact solver,
-  /// config/steady_calibration.csv), "classic" (Kalker's 1982 FastSim), or empty: the model's own
-  /// (calibrated for nss and auto; classic for steady and shen-li, the baselines).
+  /// FastSim's steady part in steady, shen-li, nss and auto: "calibrated" (flexibilities
+  /// identified against the exact solver, config/steady_calibration.csv) or "classic" (Kalker's
+  /// 1982 FastSim); empty = classic (see calibratedFastSim).
   std::string fastsim;
 };
 

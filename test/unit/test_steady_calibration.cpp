@@ -121,22 +121,17 @@ TEST(SteadyCalibration, ShippedTableKeepsLinearTheory) {
   }
 }
 
-TEST(FastSimParameter, DefaultsToCalibratedForNssAndAutoAndClassicForTheBaselines) {
+TEST(FastSimParameter, ClassicUnlessAskedForByName) {
   ContactParameters p;
-  for (const char* m : {"nss", "auto"}) {
+  for (const char* m : {"steady", "shen-li", "nss", "auto"}) {
     p.model = m;
-    EXPECT_TRUE(calibratedFastSim(p)) << m;
-  }
-  for (const char* m : {"steady", "shen-li"}) {
-    p.model = m;
-    EXPECT_FALSE(calibratedFastSim(p)) << m;
-    p.fastsim = "calibrated";
-    EXPECT_TRUE(calibratedFastSim(p)) << m;
     p.fastsim.clear();
+    EXPECT_FALSE(calibratedFastSim(p)) << m;
+    setParameter(&p, "fastsim", "calibrated");
+    EXPECT_TRUE(calibratedFastSim(p)) << m;
+    setParameter(&p, "fastsim", "classic");
+    EXPECT_FALSE(calibratedFastSim(p)) << m;
   }
-  p.model = "nss";
-  setParameter(&p, "fastsim", "classic");
-  EXPECT_FALSE(calibratedFastSim(p));
   p.fastsim = "exact";
   try {
     validate(p);
