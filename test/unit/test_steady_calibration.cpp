@@ -1,6 +1,7 @@
 // The calibrated FastSim's table (steady_calibration.hpp) and the `fastsim` parameter.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -40,9 +41,9 @@ TEST(SteadyCalibration, InterpolatesInCreepageAndLogAOverBAndHoldsBeyondTheLastK
   const SteadyCalibration t = SteadyCalibration::load(writeTable(kTwoRows));
   const FlexibilityCalibration lo = t.at(0.5), mid = t.at(1.0), below = t.at(0.1);
   EXPECT_DOUBLE_EQ(lo.ratio(0, 0.0), 1.0);
-  EXPECT_DOUBLE_EQ(lo.ratio(0, 0.5), 1.5);
-  EXPECT_DOUBLE_EQ(lo.ratio(0, 7.0), 2.0);  // held
-  EXPECT_DOUBLE_EQ(lo.ratio(2, 1.0), 2.0);
+  EXPECT_DOUBLE_EQ(lo.ratio(0, 0.5), std::sqrt(2.0));  // ln ratio linear in e
+  EXPECT_DOUBLE_EQ(lo.ratio(0, 7.0), 2.0);             // held
+  EXPECT_NEAR(lo.ratio(2, 1.0), std::sqrt(3.0), 1e-15);
   EXPECT_DOUBLE_EQ(mid.ratio(0, 1.0), 3.0);  // ln(1) halfway between ln(0.5) and ln(2)
   EXPECT_DOUBLE_EQ(mid.ratio(2, 2.0), 2.0);
   EXPECT_DOUBLE_EQ(below.ratio(0, 1.0), 2.0);  // clamped at the table's end
@@ -54,15 +55,16 @@ TEST(SteadyCalibration, ScalesEachFlexibilityByItsKindsRatioAtTheNormalisedCreep
   const FlexibilityCalibration c = t.at(0.5);
   const double a = 4e-3, b = 8e-3, G = 8.2e10, muFz = 3e3;
   const CreepCoefficients k = kalkerCoefficients(0.5, 0.28);
-  // e = G a b C11 xi / (mu fz) = 0.5 for xi alone.
+  // e = G a b C11 xi / (mu fz) = 0.5 for xi alone: ratio sqrt(2) (ln ratio halfway to ln 2).
   const Creepages c1{0.5 * muFz / (G * a * b * k.c11), 0.0, 0.0};
   EXPECT_NEAR(FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, c1), 0.5, 1e-12);
   const Flexibilities L0 = kalkerFlexibilities(a, b, G, k),
                       L = c.flexibilities(a, b, G, k, muFz, c1);
   // A single creepage: its kind's ratio, the others blended towards L_crss = L1 with w = e / 5.
-  EXPECT_DOUBLE_EQ(L.L1, 1.5 * L0.L1);
-  EXPECT_NEAR(L.L2, 1.5 * (0.9 * L0.L2 + 0.1 * L0.L1), 1e-12 * L0.L2);
-  EXPECT_NEAR(L.L3, 1.5 * (0.9 * L0.L3 + 0.1 * L0.L1), 1e-12 * L0.L3);
+  const double r = std::sqrt(2.0);
+  EXPECT_NEAR(L.L1, r * L0.L1, 1e-12 * L0.L1);
+  EXPECT_NEAR(L.L2, r * (0.9 * L0.L2 + 0.1 * L0.L1), 1e-12 * L0.L2);
+  EXPECT_NEAR(L.L3, r * (0.9 * L0.L3 + 0.1 * L0.L1), 1e-12 * L0.L3);
   // Two kinds at e = 1 (e1 = e2): ln rho is the mean of their ln ratios, 2 and 0.5: rho = 1.
   const Creepages c12{c1.xi / 0.5 / std::sqrt(2.0), c1.xi / 0.5 / std::sqrt(2.0) * k.c11 / k.c22,
                       0.0};
@@ -77,7 +79,7 @@ TEST(SteadyCalibration, ScalesEachFlexibilityByItsKindsRatioAtTheNormalisedCreep
               1e-12);
   // No friction: full slip, the last knots.
   const Flexibilities Lf = c.flexibilities(a, b, G, k, 0.0, c1);
-  EXPECT_DOUBLE_EQ(Lf.L1, 2.0 * L0.L1);
+  EXPECT_NEAR(Lf.L1, 2.0 * L0.L1, 1e-12 * L0.L1);
 }
 
 TEST(SteadyCalibration, EmptyIsClassicFastSimExactly) {

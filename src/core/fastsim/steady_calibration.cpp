@@ -28,16 +28,20 @@ double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
   return std::sqrt(e1 * e1 + e2 * e2 + e3 * e3);
 }
 
-double FlexibilityCalibration::ratio(int kind, double e) const {
+double FlexibilityCalibration::logRatio(int kind, double e) const {
   const std::vector<double>& x = eps_[kind];
-  const std::vector<double>& r = ratio_[kind];
-  if (x.empty()) return 1.0;
+  const std::vector<double>& r = logRatio_[kind];
+  if (x.empty()) return 0.0;
   if (!(e < x.back())) return r.back();  // beyond the last knot (or NaN): held
-  const auto hi = std::upper_bound(x.begin(), x.end(), e);
-  if (hi == x.begin()) return r.front();
-  const std::size_t i = static_cast<std::size_t>(hi - x.begin());
+  // A short table (17 knots): a forward scan is as fast as bisection and branch-predictable.
+  std::size_t i = 1;
+  while (x[i] <= e) ++i;
   const double t = (e - x[i - 1]) / (x[i] - x[i - 1]);
   return r[i - 1] + t * (r[i] - r[i - 1]);
+}
+
+double FlexibilityCalibration::ratio(int kind, double e) const {
+  return std::exp(logRatio(kind, e));
 }
 
 Flexibilities FlexibilityCalibration::flexibilities(double a, double b, double G,
@@ -52,11 +56,11 @@ Flexibilities FlexibilityCalibration::flexibilities(double a, double b, double G
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
   // curves better than the arithmetic one (identify_steady's combined rays,
   // doc/calibrated_fastsim.md).
-  double rho = ratio(0, e);  // no friction (e infinite): every kind's last knot is full slip
-  if (std::isfinite(e))
-    rho = std::exp((e2[0] * std::log(ratio(0, e)) + e2[1] * std::log(ratio(1, e)) +
-                    e2[2] * std::log(ratio(2, e))) /
-                   (e * e));
+  const double logRho =
+      std::isfinite(e)
+          ? (e2[0] * logRatio(0, e) + e2[1] * logRatio(1, e) + e2[2] * logRatio(2, e)) / (e * e)
+          : logRatio(0, e);  // no friction: full slip, last knot
+  const double rho = std::exp(logRho);
   // Towards full slip the flexibilities blend into one, L_crss (Vollebregt and Voltr 2023,
   // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
   // theory, not along (xi / L1, eta / L2). A single creepage has L_crss = its own L, unchanged.
@@ -148,9 +152,9 @@ FlexibilityCalibration SteadyCalibration::at(double a_over_b) const {
       (&lo == &hi || !(x > lo.logAB)) ? 0.0 : std::min(1.0, (x - lo.logAB) / (hi.logAB - lo.logAB));
   for (int k = 0; k < 3; ++k) {
     c.eps_[k] = lo.eps[k];
-    c.ratio_[k].resize(lo.ratio[k].size());
+    c.logRatio_[k].resize(lo.ratio[k].size());
     for (std::size_t j = 0; j < lo.ratio[k].size(); ++j)
-      c.ratio_[k][j] = lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]);
+      c.logRatio_[k][j] = std::log(lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]));
   }
   return c;
 }

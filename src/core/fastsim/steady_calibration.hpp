@@ -18,11 +18,11 @@
 ///
 /// Table (CSV, '#' comment lines: command, Poisson ratio, grids, fit errors):
 ///   a_over_b,kind,epsilon,ratio[,...]   kind in {11, 22, 23}
-/// Every a/b holds the same epsilon knots per kind (increasing, the first 0 with ratio 1); the
-/// ratio is interpolated linearly in epsilon, held beyond the last knot, and linearly in ln(a/b)
-/// between rows, clamped at the table's ends. The table is identified at nu = 0.28: at another nu
-/// the same ratios apply to that nu's Kalker flexibilities (the normalisation by C_ij(nu) carries
-/// the first-order effect of nu).
+/// Every a/b holds the same epsilon knots per kind (increasing, the first 0 with ratio 1); ln
+/// ratio is interpolated linearly in epsilon and held beyond the last knot; the ratio linearly in
+/// ln(a/b) between rows, clamped at the table's ends. The table is identified at nu = 0.28: at
+/// another nu the same ratios apply to that nu's Kalker flexibilities (the normalisation by
+/// C_ij(nu) carries the first-order effect of nu).
 #pragma once
 
 #include <string>
@@ -40,8 +40,9 @@ class FlexibilityCalibration {
   /// exactly kalkerFlexibilities(a, b, G, k).
   Flexibilities flexibilities(double a, double b, double G, const CreepCoefficients& k, double muFz,
                               const Creepages& c) const;
-  /// Ratio of kind k (0: 11, 1: 22, 2: 23) at normalised creepage e.
+  /// Ratio of kind k (0: 11, 1: 22, 2: 23) at normalised creepage e, and its logarithm.
   double ratio(int kind, double e) const;
+  double logRatio(int kind, double e) const;
   /// Normalised creepage e (above) at patch (a, b); infinity where muFz <= 0. `squares`, if
   /// given, receives e1^2, e2^2, e3^2 (each kind's share; finite only where muFz > 0).
   static double normalisedCreepage(double a, double b, double G, const CreepCoefficients& k,
@@ -49,7 +50,7 @@ class FlexibilityCalibration {
 
  private:
   friend class SteadyCalibration;
-  std::vector<double> eps_[3], ratio_[3];
+  std::vector<double> eps_[3], logRatio_[3];  // knots, ln ratio at them
 };
 
 /// The identified table over a/b.
