@@ -27,6 +27,7 @@
 #include "core/fastsim/fastsim.hpp"
 #include "core/fastsim/steady_calibration.hpp"
 #include "tool_args.hpp"
+#include "validation/steady_curves.hpp"
 
 using namespace wheel_rail_contact;
 
@@ -120,17 +121,8 @@ using Key = std::tuple<double, std::string, double>;  // a/b, ray, epsilon
 class ExactCache {
  public:
   ExactCache(const std::string& path, const Options& o) : path_(path), o_(o) {
-    std::ifstream in(path);
-    std::string line;
-    while (std::getline(in, line)) {
-      if (line.empty() || line[0] == '#' || line.rfind("a_over_b", 0) == 0) continue;
-      std::stringstream ss(line);
-      std::vector<std::string> f;
-      for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
-      if (f.size() < 9) throw std::runtime_error(path + ": short line: " + line);
-      map_[Key{std::stod(f[0]), f[1], std::stod(f[2])}] = {std::stod(f[6]), std::stod(f[7]),
-                                                           std::stod(f[8])};
-    }
+    for (const SteadyCurvePoint& p : readSteadyCurves(path))
+      map_[Key{p.aOverB, p.ray, p.epsilon}] = {p.fx, p.fy, p.mz};
   }
   Point at(double g, const Ray& r, double e) {
     const Key key{g, r.name, e};

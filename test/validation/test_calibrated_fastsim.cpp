@@ -9,14 +9,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/exact/halfspace_solver.hpp"
 #include "core/fastsim/steady_calibration.hpp"
+#include "validation/steady_curves.hpp"
 
 using namespace wheel_rail_contact;
 
@@ -32,23 +31,10 @@ struct CurvePoint {
 };
 
 std::map<std::pair<double, std::string>, std::vector<CurvePoint>> readExact() {
-  std::ifstream in(std::string(WRC_SOURCE_DIR) + "/doc/data/steady_exact_curves.csv");
   std::map<std::pair<double, std::string>, std::vector<CurvePoint>> curves;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line.rfind("a_over_b", 0) == 0) continue;
-    std::stringstream ss(line);
-    std::vector<std::string> f;
-    for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
-    if (f.size() < 9) continue;
-    const double e = std::stod(f[2]);
-    if (e == 0.0) continue;
-    curves[{std::stod(f[0]), f[1]}].push_back({e,
-                                               {std::stod(f[3]), std::stod(f[4]), std::stod(f[5])},
-                                               std::stod(f[6]),
-                                               std::stod(f[7]),
-                                               std::stod(f[8])});
-  }
+  for (const SteadyCurvePoint& p :
+       readSteadyCurves(std::string(WRC_SOURCE_DIR) + "/doc/data/steady_exact_curves.csv"))
+    if (p.epsilon > 0.0) curves[{p.aOverB, p.ray}].push_back({p.epsilon, p.c, p.fx, p.fy, p.mz});
   return curves;
 }
 
