@@ -68,6 +68,17 @@ double least(const std::vector<double>& v) {
 }  // namespace
 
 #define MESHES Arg(10)->Arg(20)->Arg(30)->Arg(40)->ComputeStatistics("min", least)
+// The calibrated FastSim (fastsim: calibrated) against the same models classic.
+void SteadyCalibrated(benchmark::State& s) {
+  run(s, "steady-calibrated", "fitted", true);
+}
+void NssFixedCalibrated(benchmark::State& s) {
+  run(s, "nss-calibrated", "fixed", true, true);
+}
+void NssAdaptiveCalibrated(benchmark::State& s) {
+  run(s, "nss-calibrated", "adaptive", true, true);
+}
+
 BENCHMARK(Steady)->MESHES;
 BENCHMARK(SteadyFixedMesh)->MESHES;
 BENCHMARK(ShenLi)->MESHES;
@@ -77,4 +88,7 @@ BENCHMARK(NssAdaptiveConstantLoad)->MESHES;
 BENCHMARK(NssFixedShipped)->MESHES;
 BENCHMARK(NssAdaptiveShipped)->MESHES;
 BENCHMARK(NssAdaptiveConstantLoadShipped)->MESHES;
+BENCHMARK(SteadyCalibrated)->MESHES;
+BENCHMARK(NssFixedCalibrated)->MESHES;
+BENCHMARK(NssAdaptiveCalibrated)->MESHES;
 BENCHMARK_MAIN();

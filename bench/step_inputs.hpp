@@ -27,17 +27,25 @@ inline StepInput input(int k, bool varyLoad) {
 // SteadyModel with its mesh fitted to the patch, on "fixed" SteadyModel on NssModel's fixed mesh
 // (the same-mesh reference for nss fixed). nss runs a uniform first-order chi, or with shippedChi
 // config/chi_table.csv (kind 23 second order: with spin the march carries s2).
+// A model name ending in "-calibrated" runs the calibrated FastSim (config/steady_calibration.csv).
 inline std::unique_ptr<ContactModel> makeModel(const std::string& model, const std::string& mesh,
                                                int n, bool shippedChi = false) {
   ContactParameters p;
-  p.model = model;
+  const std::string suffix = "-calibrated";
+  const bool calibrated = model.size() > suffix.size() &&
+                          model.compare(model.size() - suffix.size(), suffix.size(), suffix) == 0;
+  p.model = calibrated ? model.substr(0, model.size() - suffix.size()) : model;
   p.mesh = mesh;
   p.nx = p.ny = n;
+  const SteadyCalibration cal =
+      calibrated ? SteadyCalibration::load(SteadyCalibration::defaultPath()) : SteadyCalibration();
   if (p.model == "steady" && p.mesh == "fixed")
-    return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kSizedForFzMax);
-  if (p.model == "steady") return std::make_unique<SteadyModel>(p);
+    return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kSizedForFzMax, cal);
+  if (p.model == "steady")
+    return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kFittedToPatch, cal);
   return std::make_unique<NssModel>(
-      p, shippedChi ? ChiTable::load(ChiTable::defaultPath()) : ChiTable::uniform({0.4, 1.1, 0.6}));
+      p, shippedChi ? ChiTable::load(ChiTable::defaultPath()) : ChiTable::uniform({0.4, 1.1, 0.6}),
+      cal);
 }
 
 }  // namespace bench

@@ -25,6 +25,10 @@ struct ContactParameters {
   double fz_max = 0.0;
   /// chi table file for nss; empty = the table shipped in the package (config/chi_table.csv).
   std::string chi_table;
+  /// FastSim's steady part in steady, shen-li, nss and auto: "calibrated" (flexibilities
+  /// identified against the exact solver, config/steady_calibration.csv) or "classic" (Kalker's
+  /// 1982 FastSim); empty = classic (see calibratedFastSim).
+  std::string fastsim;
 };
 
 /// One parameter's name, default and meaning, for --help and the node's documentation.
@@ -45,5 +49,8 @@ void setParameter(ContactParameters* p, const std::string& name, const std::stri
 
 /// fz_max resolved (0 -> 1.5 fz0).
 double effectiveFzMax(const ContactParameters& p);
+
+/// fastsim resolved: true when the model runs the calibrated FastSim (see ContactParameters).
+bool calibratedFastSim(const ContactParameters& p);
 
 }  // namespace wheel_rail_contact

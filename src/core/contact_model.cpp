@@ -79,11 +79,28 @@ bool screenStep(const StepInput& in, StepOutput* out) {
   return false;
 }
 
+namespace {
+
+// The calibrated FastSim's table when p asks for it (calibratedFastSim), else empty (classic).
+SteadyCalibration steadyCalibration(const ContactParameters& p) {
+  if (p.model == "exact" || !calibratedFastSim(p)) return SteadyCalibration();
+  try {
+    return SteadyCalibration::load(SteadyCalibration::defaultPath());
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(std::string("fastsim: ") + e.what());
+  }
+}
+
+}  // namespace
+
 std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
   validate(p);
-  if (p.model == "steady") return std::make_unique<SteadyModel>(p);
+  const SteadyCalibration calibration = steadyCalibration(p);
+  if (p.model == "steady")
+    return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kFittedToPatch, calibration);
   if (p.model == "exact") return std::make_unique<ExactModel>(p);
-  if (p.model == "shen-li") return std::make_unique<NssModel>(p, ChiTable::uniform({}));
+  if (p.model == "shen-li")
+    return std::make_unique<NssModel>(p, ChiTable::uniform({}), calibration);
   if (p.model == "nss" || p.model == "auto") {
     const std::string path = p.chi_table.empty() ? ChiTable::defaultPath() : p.chi_table;
     ChiTable chi;
@@ -92,8 +109,8 @@ std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
     } catch (const std::runtime_error& e) {
       throw std::invalid_argument(std::string("chi_table: ") + e.what());
     }
-    if (p.model == "auto") return std::make_unique<AutoModel>(p, chi);
-    return std::make_unique<NssModel>(p, chi);
+    if (p.model == "auto") return std::make_unique<AutoModel>(p, chi, calibration);
+    return std::make_unique<NssModel>(p, chi, calibration);
   }
   throw std::invalid_argument("model: '" + p.model + "' is not available in this build yet");
 }

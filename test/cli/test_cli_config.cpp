@@ -57,6 +57,7 @@ TEST(ConfigYaml, DefaultYamlHoldsTheCliDefaults) {
   p.mesh = "x";
   p.fz_max = 7.0;
   p.chi_table = "x";
+  p.fastsim = "x";
   loadConfigYaml(kDefaultYaml, &p);
   const ContactParameters d;
   EXPECT_EQ(p.G, d.G);
@@ -71,6 +72,7 @@ TEST(ConfigYaml, DefaultYamlHoldsTheCliDefaults) {
   EXPECT_EQ(p.mesh, d.mesh);
   EXPECT_EQ(p.fz_max, d.fz_max);
   EXPECT_EQ(p.chi_table, d.chi_table);
+  EXPECT_EQ(p.fastsim, d.fastsim);
 }
 
 TEST(ConfigYaml, DefaultYamlListsEveryParameterWithTheDocumentedDefaults) {

@@ -121,11 +121,12 @@ double nssRelaxationLength(const ContactParameters& p, const ChiTable& chi) {
   return worst * lambdaOverA * p.a0 / (2.0 * kPi);
 }
 
-AutoModel::AutoModel(const ContactParameters& p, const ChiTable& chi)
+AutoModel::AutoModel(const ContactParameters& p, const ChiTable& chi,
+                     const SteadyCalibration& calibration)
     : p_(p),
       n_(meshForTolerance(p.tolerance)),
       l_(nssRelaxationLength(p, chi)),
-      nss_(withMesh(p, n_, "nss"), chi),
+      nss_(withMesh(p, n_, "nss"), chi, calibration),
       monitor_(l_, peakWindow(l_, p.tolerance), kalkerCoefficients(p.a0 / p.b0, p.nu),
                std::sqrt(p.a0 * p.b0), p.nu) {}
 

@@ -43,7 +43,8 @@ class SteadinessMonitor {
 class AutoModel : public ContactModel {
  public:
   /// p.model must be "auto"; p.nx, p.ny are replaced by meshForTolerance(p.tolerance).
-  AutoModel(const ContactParameters& p, const ChiTable& chi);
+  AutoModel(const ContactParameters& p, const ChiTable& chi,
+            const SteadyCalibration& calibration = SteadyCalibration());
   StepOutput step(const StepInput& in) override;
   void reset() override;
   /// "auto:steady", "auto:nss" or "auto:blend": what produced the last step.

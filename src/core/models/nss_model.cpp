@@ -10,10 +10,13 @@
 
 namespace wheel_rail_contact {
 
-NssModel::NssModel(const ContactParameters& p, const ChiTable& chi)
+NssModel::NssModel(const ContactParameters& p, const ChiTable& chi,
+                   const SteadyCalibration& calibration)
     : p_(p),
       ref_{p.a0, p.b0, p.fz0},
       kalker_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
+      calibrationTable_(calibration),
+      calibration_(calibration.at(p.a0 / p.b0)),
       adaptive_(p.mesh != "fixed"),  // "auto": fitted to the patch, moved only when fz changes
       dynamic_(p.model == "nss"),
       chiTable_(dynamic_ ? chi.forMesh(p.nx) : ChiTable::uniform({})),  // chi is fitted per mesh
@@ -55,6 +58,7 @@ bool NssModel::followAOverB(double ab) {
   // with 1 / C11, 1 / C22 as well as with a: carry u along each direction.
   if (lastA_ > 0.0) state_.scaleDirections(c.c11 / kalker_.c11, c.c22 / kalker_.c22);
   kalker_ = c;
+  calibration_ = calibrationTable_.at(ab);
   for (int k = 0; k < 3; ++k) {
     chi_[k] = chi[k];
     secondKind_[k] = second[k];
@@ -144,6 +148,14 @@ void NssModel::coverTrailingNodes() {
   }
 }
 
+Flexibilities NssModel::flexibilities(const HertzEllipse& h, const StepInput& in,
+                                      const Creepages& c) const {
+  // Calibrated: a new flexibility each step from its creepages, constant over the patch during the
+  // step. The history stays traction (the state the bound limits); only the drive w / L changes,
+  // as it does with the creepages themselves.
+  return calibration_.flexibilities(h.a, h.b, p_.G, kalker_, stepMu(in, p_.mu) * in.fz, c);
+}
+
 double NssModel::historyScale(double a) const {
   // What persists in the material is the elastic displacement u = L tau (paper eq. 3), and every
   // flexibility L scales with a at a given a/b: carry u, not tau, into the new patch size, i.e.
@@ -217,7 +229,7 @@ CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool m
   const Creepages c{in.xi, in.eta, in.phi};
   keepRatePerTravel(in.V);
   chooseFilters(c, h.a, h.b, in.V, in.dt);
-  const Flexibilities L = kalkerFlexibilities(h.a, h.b, p_.G, kalker_);
+  const Flexibilities L = flexibilities(h, in, c);
   const double r = historyScale(h.a);
   lastA_ = h.a;
   const CreepForces f =
@@ -293,8 +305,7 @@ StepOutput NssModel::settle(const StepInput& given) {
   updateWeights(c, h.a, h.b);
   lastSpeed_ = in.V;
   lastA_ = h.a;
-  const CreepForces f =
-      steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_), c, &field_);
+  const CreepForces f = steadyFastSim(mesh_, flexibilities(h, in, c), c, &field_);
   // Under constant input the time-term march's fixed point is this traction with the filter at
   // rest (zero traction rate), so the next step() starts from it without a jump.
   state_.tx() = field_.tx.transpose();
@@ -310,8 +321,8 @@ StepOutput NssModel::steadyAlongside(const StepInput& given) {
   const HertzEllipse h = stepPatch(in, ref_);
   scratch_.bound = field_.bound;
   scratch_.entry = field_.entry;
-  const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, kalker_),
-                                      {in.xi, in.eta, in.phi}, &scratch_);
+  const Creepages c{in.xi, in.eta, in.phi};
+  const CreepForces f = steadyFastSim(mesh_, flexibilities(h, in, c), c, &scratch_);
   StepOutput out = stepOutput(f, in.fz, h.a, h.b);
   frame_.toContact(&out);
   return out;

@@ -9,6 +9,7 @@
 
 #include <vector>
 
+#include "core/fastsim/steady_calibration.hpp"
 #include "core/fastsim/transient_fastsim.hpp"
 #include "core/models/rolling_direction.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
@@ -22,7 +23,9 @@ class NssModel : public ContactModel {
  public:
   /// `chi` is used when p.model == "nss" (shen-li ignores it). Allocates everything here: step()
   /// allocates nothing.
-  NssModel(const ContactParameters& p, const ChiTable& chi);
+  /// `calibration`: the calibrated FastSim's table (empty: classic FastSim).
+  NssModel(const ContactParameters& p, const ChiTable& chi,
+           const SteadyCalibration& calibration = SteadyCalibration());
   StepOutput step(const StepInput& in) override;
   void reset() override;
   std::string name() const override { return p_.model; }
@@ -62,6 +65,10 @@ class NssModel : public ContactModel {
   ContactParameters p_;
   ReferencePatch ref_;
   CreepCoefficients kalker_;
+  SteadyCalibration calibrationTable_;
+  FlexibilityCalibration calibration_;  // calibrationTable_ at a/b ab_
+  /// The step's flexibilities: Kalker's, scaled by the calibration for these creepages.
+  Flexibilities flexibilities(const HertzEllipse& h, const StepInput& in, const Creepages& c) const;
   bool adaptive_ = false;
   bool dynamic_ = false;  // nss (else shen-li)
   ChiTable chiTable_;     // for this mesh (nss), to re-pick chi when a/b changes

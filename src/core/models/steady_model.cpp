@@ -5,12 +5,15 @@
 
 namespace wheel_rail_contact {
 
-SteadyModel::SteadyModel(const ContactParameters& p, Mesh mesh)
+SteadyModel::SteadyModel(const ContactParameters& p, Mesh mesh,
+                         const SteadyCalibration& calibration)
     : p_(p),
       ref_{p.a0, p.b0, p.fz0},
       c_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
       ab0_(p.a0 / p.b0),
       ab_(ab0_),
+      calibrationTable_(calibration),
+      calibration_(calibration.at(ab0_)),
       fitted_(mesh == Mesh::kFittedToPatch) {
   const HertzEllipse sized = ref_.at(fitted_ ? p.fz0 : effectiveFzMax(p));
   mesh_ = PatchMesh(p.nx, p.ny, sized.a, sized.b);
@@ -36,12 +39,15 @@ StepOutput SteadyModel::step(const StepInput& in) {
   const double ab = stepAOverB(fwd, ab0_);
   if (ab != ab_) {  // per-step geometry: Kalker's coefficients at this a/b
     c_ = kalkerCoefficients(ab, p_.nu);
+    calibration_ = calibrationTable_.at(ab);
     ab_ = ab;
   }
   if (fitted_) mesh_.scale(h.a, h.b);
   parabolicBound(mesh_, h.a, h.b, fwd.fz, stepMu(fwd, p_.mu), &field_);
-  const CreepForces f = steadyFastSim(mesh_, kalkerFlexibilities(h.a, h.b, p_.G, c_),
-                                      {fwd.xi, fwd.eta, fwd.phi}, &field_);
+  const Creepages c{fwd.xi, fwd.eta, fwd.phi};
+  const CreepForces f = steadyFastSim(
+      mesh_, calibration_.flexibilities(h.a, h.b, p_.G, c_, stepMu(fwd, p_.mu) * fwd.fz, c), c,
+      &field_);
   out = stepOutput(f, fwd.fz, h.a, h.b);
   if (backwards) mirrorForces(&out);
   last_ = out;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/fastsim/fastsim.hpp"
+#include "core/fastsim/steady_calibration.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
 
@@ -16,7 +17,9 @@ class SteadyModel : public ContactModel {
   /// nodes outside it skipped (the same-mesh reference for nss on the fixed mesh in the
   /// benchmarks).
   enum class Mesh { kFittedToPatch, kSizedForFzMax };
-  explicit SteadyModel(const ContactParameters& p, Mesh mesh = Mesh::kFittedToPatch);
+  /// `calibration`: the calibrated FastSim's table (empty: classic FastSim).
+  explicit SteadyModel(const ContactParameters& p, Mesh mesh = Mesh::kFittedToPatch,
+                       const SteadyCalibration& calibration = SteadyCalibration());
   StepOutput step(const StepInput& in) override;
   void reset() override { last_ = StepOutput(); }
   std::string name() const override { return "steady"; }
@@ -31,6 +34,8 @@ class SteadyModel : public ContactModel {
   CreepCoefficients c_;  // Kalker's, at a/b ab_
   double ab0_;           // a0/b0: the a/b of every step without per-step geometry
   double ab_;
+  SteadyCalibration calibrationTable_;
+  FlexibilityCalibration calibration_;  // calibrationTable_ at a/b ab_
   PatchMesh mesh_;
   TractionField field_;
   bool fitted_;      // mesh_ follows the patch

@@ -1,0 +1,162 @@
+#include "core/fastsim/steady_calibration.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#ifndef WRC_DEFAULT_STEADY_CALIBRATION
+#define WRC_DEFAULT_STEADY_CALIBRATION "config/steady_calibration.csv"
+#endif
+
+namespace wheel_rail_contact {
+
+double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
+                                                  const CreepCoefficients& k, double muFz,
+                                                  const Creepages& c, double* squares) {
+  const double ab = a * b, s = G * ab / muFz;
+  const double e1 = s * k.c11 * c.xi, e2 = s * k.c22 * c.eta,
+               e3 = s * std::sqrt(ab) * k.c23 * c.phi;
+  if (squares) {
+    squares[0] = e1 * e1;
+    squares[1] = e2 * e2;
+    squares[2] = e3 * e3;
+  }
+  if (!(muFz > 0.0)) return std::numeric_limits<double>::infinity();
+  return std::sqrt(e1 * e1 + e2 * e2 + e3 * e3);
+}
+
+double FlexibilityCalibration::logRatio(int kind, double e) const {
+  const std::vector<double>& x = eps_[kind];
+  const std::vector<double>& r = logRatio_[kind];
+  if (x.empty()) return 0.0;
+  if (!(e < x.back())) return r.back();  // beyond the last knot (or NaN): held
+  // A short table (17 knots): a forward scan is as fast as bisection and branch-predictable.
+  std::size_t i = 1;
+  while (x[i] <= e) ++i;
+  const double t = (e - x[i - 1]) / (x[i] - x[i - 1]);
+  return r[i - 1] + t * (r[i] - r[i - 1]);
+}
+
+double FlexibilityCalibration::ratio(int kind, double e) const {
+  return std::exp(logRatio(kind, e));
+}
+
+Flexibilities FlexibilityCalibration::flexibilities(double a, double b, double G,
+                                                    const CreepCoefficients& k, double muFz,
+                                                    const Creepages& c) const {
+  Flexibilities L = kalkerFlexibilities(a, b, G, k);
+  if (classic()) return L;
+  double e2[3];
+  const double e = normalisedCreepage(a, b, G, k, muFz, c, e2);
+  if (!(e > 0.0)) return L;  // no creepage: linear theory
+  // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
+  // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
+  // curves better than the arithmetic one (identify_steady's combined rays,
+  // doc/calibrated_fastsim.md).
+  const double logRho =
+      std::isfinite(e)
+          ? (e2[0] * logRatio(0, e) + e2[1] * logRatio(1, e) + e2[2] * logRatio(2, e)) / (e * e)
+          : logRatio(0, e);  // no friction: full slip, last knot
+  const double rho = std::exp(logRho);
+  // Towards full slip the flexibilities blend into one, L_crss (Vollebregt and Voltr 2023,
+  // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
+  // theory, not along (xi / L1, eta / L2). A single creepage has L_crss = its own L, unchanged.
+  // Weight min(1, e / 5): of e / 1.5, 3, 5, 10, 20 the one nearest the combined exact curves.
+  const double kphi = 3.0 * M_PI * a / 32.0 * c.phi, x2 = c.xi * c.xi, y2 = c.eta * c.eta,
+               s2 = kphi * kphi, den = x2 / L.L1 + y2 / L.L2 + s2 / L.L3;
+  const double w = std::isfinite(e) ? std::min(1.0, e / 5.0) : 1.0;
+  const double crss = den > 0.0 ? (x2 + y2 + s2) / den : L.L1;
+  L.L1 = rho * ((1.0 - w) * L.L1 + w * crss);
+  L.L2 = rho * ((1.0 - w) * L.L2 + w * crss);
+  L.L3 = rho * ((1.0 - w) * L.L3 + w * crss);
+  return L;
+}
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, long line, const std::string& why) {
+  throw std::runtime_error("steady calibration " + path + ":" + std::to_string(line) + ": " + why);
+}
+
+double number(const std::string& path, long line, const std::string& s) {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || !std::isfinite(v)) fail(path, line, "not a finite number: " + s);
+  return v;
+}
+
+}  // namespace
+
+std::string SteadyCalibration::defaultPath() {
+  return WRC_DEFAULT_STEADY_CALIBRATION;
+}
+
+SteadyCalibration SteadyCalibration::load(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("steady calibration " + path + ": cannot open");
+  SteadyCalibration t;
+  std::string line;
+  long n = 0;
+  bool header = false;
+  while (std::getline(in, line)) {
+    ++n;
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      if (line.rfind("a_over_b,kind,epsilon,ratio", 0) != 0)
+        fail(path, n, "expected header a_over_b,kind,epsilon,ratio");
+      header = true;
+      continue;
+    }
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
+    if (f.size() < 4) fail(path, n, "expected a_over_b,kind,epsilon,ratio");
+    const double ab = number(path, n, f[0]), e = number(path, n, f[2]), r = number(path, n, f[3]);
+    const int kind = f[1] == "11" ? 0 : f[1] == "22" ? 1 : f[1] == "23" ? 2 : -1;
+    if (kind < 0) fail(path, n, "kind must be 11, 22 or 23, got '" + f[1] + "'");
+    if (!(ab > 0.0)) fail(path, n, "a_over_b must be > 0");
+    if (!(r > 0.0)) fail(path, n, "ratio must be > 0");
+    const double logAB = std::log(ab);
+    if (t.rows_.empty() || t.rows_.back().logAB != logAB) {
+      if (!t.rows_.empty() && !(logAB > t.rows_.back().logAB))
+        fail(path, n, "a_over_b must increase from one block to the next");
+      t.rows_.push_back(Row{logAB, {}, {}});
+    }
+    Row& row = t.rows_.back();
+    std::vector<double>& x = row.eps[kind];
+    if (x.empty() ? (e != 0.0 || r != 1.0) : !(e > x.back()))
+      fail(path, n, "the knots of a kind start at epsilon 0, ratio 1 and increase");
+    x.push_back(e);
+    row.ratio[kind].push_back(r);
+  }
+  if (!header) fail(path, n, "no header");
+  for (const Row& row : t.rows_)
+    for (int k = 0; k < 3; ++k)
+      if (row.eps[k].empty() || row.eps[k] != t.rows_.front().eps[k])
+        fail(path, n, "every a/b must hold every kind, with the same epsilon knots");
+  return t;
+}
+
+FlexibilityCalibration SteadyCalibration::at(double a_over_b) const {
+  FlexibilityCalibration c;
+  if (rows_.empty()) return c;
+  const double x = std::log(a_over_b);
+  std::size_t i = 0;
+  while (i + 1 < rows_.size() && rows_[i + 1].logAB <= x) ++i;
+  const Row& lo = rows_[i];
+  const Row& hi = rows_[std::min(i + 1, rows_.size() - 1)];
+  const double t =
+      (&lo == &hi || !(x > lo.logAB)) ? 0.0 : std::min(1.0, (x - lo.logAB) / (hi.logAB - lo.logAB));
+  for (int k = 0; k < 3; ++k) {
+    c.eps_[k] = lo.eps[k];
+    c.logRatio_[k].resize(lo.ratio[k].size());
+    for (std::size_t j = 0; j < lo.ratio[k].size(); ++j)
+      c.logRatio_[k][j] = std::log(lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]));
+  }
+  return c;
+}
+
+}  // namespace wheel_rail_contact

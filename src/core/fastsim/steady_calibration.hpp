@@ -1,0 +1,76 @@
+/// Calibrated FastSim (issue 19): Kalker's flexibilities scaled, per creepage kind, by a ratio that
+/// depends on how far the contact is from linear theory, the ratio identified against our exact
+/// half-space solver (src/tools/identify_steady.cpp) so that FastSim's steady creep curves follow
+/// the exact ones. The ratio is 1 at zero creepage, so linear theory (Kalker's coefficients) stays
+/// exact, and it is chosen once per step from that step's creepages and load: the march then runs
+/// unchanged with the scaled flexibilities, on a traction field bounded by mu p; the time term
+/// marches that field as it always does (its history is traction, which a change of flexibility
+/// between steps leaves standing, like the drive's change with the creepage).
+///
+/// Normalised creepage: each kind's linear force over mu fz,
+///   e1 = G a b C11 |xi| / (mu fz), e2 = G a b C22 |eta| / (mu fz), e3 = G (ab)^1.5 C23 |phi| / (mu
+///   fz),
+/// and e = sqrt(e1^2 + e2^2 + e3^2). The step's flexibilities are
+///   L_i = rho(e) ((1 - w) L_i,Kalker + w L_crss),   ln rho = sum_k e_k^2 ln ratio_k(e) / e^2,
+/// w = min(1, e / 5), L_crss = (xi^2 + eta^2 + (k phi)^2) / (xi^2/L1 + eta^2/L2 + (k phi)^2/L3),
+/// k = 3 pi a / 32 (CONTACT's FASTSIM, Vollebregt and Voltr 2023): a single
+/// creepage of kind k gets L_k ratio_k(e) exactly, so the table is identified on single creepages.
+///
+/// Table (CSV, '#' comment lines: command, Poisson ratio, grids, fit errors):
+///   a_over_b,kind,epsilon,ratio[,...]   kind in {11, 22, 23}
+/// Every a/b holds the same epsilon knots per kind (increasing, the first 0 with ratio 1); ln
+/// ratio is interpolated linearly in epsilon and held beyond the last knot; the ratio linearly in
+/// ln(a/b) between rows, clamped at the table's ends. The table is identified at nu = 0.28: at
+/// another nu the same ratios apply to that nu's Kalker flexibilities (the normalisation by
+/// C_ij(nu) carries the first-order effect of nu).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/fastsim/fastsim.hpp"
+
+namespace wheel_rail_contact {
+
+/// The three ratio curves at one a/b; empty (the default) is classic FastSim: every ratio 1.
+class FlexibilityCalibration {
+ public:
+  bool classic() const { return eps_[0].empty(); }
+  /// Kalker's flexibilities at patch (a, b), scaled for creepages c at mu fz = muFz. Classic:
+  /// exactly kalkerFlexibilities(a, b, G, k).
+  Flexibilities flexibilities(double a, double b, double G, const CreepCoefficients& k, double muFz,
+                              const Creepages& c) const;
+  /// Ratio of kind k (0: 11, 1: 22, 2: 23) at normalised creepage e, and its logarithm.
+  double ratio(int kind, double e) const;
+  double logRatio(int kind, double e) const;
+  /// Normalised creepage e (above) at patch (a, b); infinity where muFz <= 0. `squares`, if
+  /// given, receives e1^2, e2^2, e3^2 (each kind's share; finite only where muFz > 0).
+  static double normalisedCreepage(double a, double b, double G, const CreepCoefficients& k,
+                                   double muFz, const Creepages& c, double* squares = nullptr);
+
+ private:
+  friend class SteadyCalibration;
+  std::vector<double> eps_[3], logRatio_[3];  // knots, ln ratio at them
+};
+
+/// The identified table over a/b.
+class SteadyCalibration {
+ public:
+  /// Reads a table. Throws std::runtime_error naming the file and line on a malformed,
+  /// non-finite or non-positive ratio, knots not increasing or not starting at (0, 1), or a/b rows
+  /// whose knots differ.
+  static SteadyCalibration load(const std::string& path);
+  /// The table shipped with the package (config/steady_calibration.csv).
+  static std::string defaultPath();
+  FlexibilityCalibration at(double a_over_b) const;
+  bool empty() const { return rows_.empty(); }
+
+ private:
+  struct Row {
+    double logAB;
+    std::vector<double> eps[3], ratio[3];
+  };
+  std::vector<Row> rows_;  // sorted by a/b
+};
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,369 @@
+// identify_steady: identifies the calibrated FastSim's flexibility ratios
+// (config/steady_calibration.csv, steady_calibration.hpp) against our exact half-space solver, and
+// writes the steady creep curves exact / classic / calibrated for plots and tests.
+// Exact creep curves are cached (--exact, doc/data/steady_exact_curves.csv): a point found there
+// is read, not recomputed; missing points are solved and the cache rewritten.
+// Curves: along a ray of normalised creepage (e1, e2, e3) (steady_calibration.hpp), kinds 11, 22,
+// 23 one creepage each; combined rays xe (1, 1, 0), xep (1, 1, 1), opp (1, -1, 1) and spin
+// (0.3, -0.3, 1) (large spin, opposite signs).
+// Identification, per a/b and kind: at each knot epsilon the ratio r minimising FastSim's error
+// against the exact point, max(|dFx|, |dFy|) / (mu fz) plus, for spin, 0.2 |dMz| / peak |Mz|
+// (the 0.01 mu fz and 5 % of the peak weighed alike), scanned over r in [0.05, 50].
+// Options: identify_steady --help.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "core/exact/halfspace_solver.hpp"
+#include "core/fastsim/fastsim.hpp"
+#include "core/fastsim/steady_calibration.hpp"
+#include "tool_args.hpp"
+#include "validation/steady_curves.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+struct Options {
+  std::string out, exact = "doc/data/steady_exact_curves.csv", curves, table;
+  int grid = 20, nx = 20;
+  double nu = 0.28, G = 8.2e10, mu = 0.3, fz = 1e4;
+  std::vector<double> ratios = {0.2, 0.5, 1, 2, 5};
+  std::vector<double> knots = {0,    0.1, 0.2, 0.35, 0.5, 0.6, 0.75, 0.9, 1,
+                               1.25, 1.5, 2,   3,    4.5, 7,   10,   15};
+  std::vector<double> points = {0.05, 0.15, 0.3, 0.6, 0.9, 1.25, 1.75, 2.5, 4, 6, 9, 13};
+};
+
+const char* const kUsage =
+    "usage: identify_steady [--out config/steady_calibration.csv]\n"
+    "                       [--exact doc/data/steady_exact_curves.csv]\n"
+    "                       [--curves doc/data/steady_curves.csv] [--table FILE]\n"
+    "                       [--grid 20] [--nx 20] [--nu 0.28] [--ab 0.2,0.5,1,2,5]\n"
+    "                       [--knots 0,0.1,...] [--points 0.05,0.15,...]\n"
+    "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
+    "          --table classic: no table)\n"
+    "--curves: write exact / classic / calibrated curves at --points for every ray\n"
+    "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis\n";
+
+void readOption(tools::Args& a, Options* o) {
+  if (a.is("--out"))
+    o->out = a.text();
+  else if (a.is("--exact"))
+    o->exact = a.text();
+  else if (a.is("--curves"))
+    o->curves = a.text();
+  else if (a.is("--table"))
+    o->table = a.text();
+  else if (a.is("--grid"))
+    o->grid = a.integer();
+  else if (a.is("--nx"))
+    o->nx = a.integer();
+  else if (a.is("--nu"))
+    o->nu = a.real();
+  else if (a.is("--ab"))
+    o->ratios = a.reals();
+  else if (a.is("--knots"))
+    o->knots = a.reals();
+  else if (a.is("--points"))
+    o->points = a.reals();
+  else
+    a.unknown();
+}
+
+struct Ray {
+  const char* name;
+  double e[3];
+};
+const Ray kRays[] = {{"11", {1, 0, 0}},       {"22", {0, 1, 0}},  {"23", {0, 0, 1}},
+                     {"xe", {1, 1, 0}},       {"xep", {1, 1, 1}}, {"opp", {1, -1, 1}},
+                     {"spin", {0.3, -0.3, 1}}};
+
+// Normalised forces: fx, fy over mu fz, mz over mu fz sqrt(ab).
+struct Point {
+  double fx = 0.0, fy = 0.0, mz = 0.0;
+};
+
+// The patch of a/b = g at the tool's load: sqrt(ab) = 5 mm (the curves are scale free).
+struct Setup {
+  double a, b, G, nu, mu, fz;
+  CreepCoefficients k;
+  Setup(const Options& o, double g)
+      : a(5e-3 * std::sqrt(g)),
+        b(5e-3 / std::sqrt(g)),
+        G(o.G),
+        nu(o.nu),
+        mu(o.mu),
+        fz(o.fz),
+        k(kalkerCoefficients(g, o.nu)) {}
+  // The creepages at normalised creepage e along ray r (|e_ray| scaled to e).
+  Creepages creepages(const Ray& r, double e) const {
+    const double n = std::sqrt(r.e[0] * r.e[0] + r.e[1] * r.e[1] + r.e[2] * r.e[2]);
+    const double s = e / n * mu * fz / (G * a * b);
+    return {s * r.e[0] / k.c11, s * r.e[1] / k.c22, s * r.e[2] / (k.c23 * std::sqrt(a * b))};
+  }
+  Point normalised(double fx, double fy, double mz) const {
+    const double m = mu * fz;
+    return {fx / m, fy / m, mz / (m * std::sqrt(a * b))};
+  }
+};
+
+using Key = std::tuple<double, std::string, double>;  // a/b, ray, epsilon
+
+class ExactCache {
+ public:
+  ExactCache(const std::string& path, const Options& o) : path_(path), o_(o) {
+    for (const SteadyCurvePoint& p : readSteadyCurves(path))
+      map_[Key{p.aOverB, p.ray, p.epsilon}] = {p.fx, p.fy, p.mz};
+  }
+  Point at(double g, const Ray& r, double e) {
+    const Key key{g, r.name, e};
+    auto it = map_.find(key);
+    if (it != map_.end()) return it->second;
+    const Setup s(o_, g);
+    Point p;
+    if (e > 0.0) {
+      if (!solver_ || solverAB_ != g) {  // one influence kernel per a/b
+        solver_ = std::make_unique<HalfspaceSolver>(
+            HalfspaceGrid::covering(s.a, s.b, o_.grid, o_.grid), s.G, s.nu);
+        solver_->setHertzPressure(s.a, s.b, s.fz);
+        solverAB_ = g;
+      }
+      const HalfspaceSolution& x = solver_->solve(RollingMode::kSteady, s.creepages(r, e), s.mu);
+      if (!x.converged)
+        std::cerr << "warning: exact not converged at " << g << " " << r.name << " " << e << "\n";
+      p = s.normalised(x.fx, x.fy, x.mz);
+    }
+    map_[key] = p;
+    dirty_ = true;
+    return p;
+  }
+  void save() const {
+    if (!dirty_) return;
+    std::ofstream out = tools::writeFile(path_);
+    out << "# Exact steady creep curves (our half-space solver, " << o_.grid << "x" << o_.grid
+        << " elements over 1.1a x 1.1b, Hertz pressure; G " << o_.G << " Pa, nu " << o_.nu
+        << ", mu " << o_.mu << ", fz " << o_.fz << " N, sqrt(ab) 5 mm)\n"
+        << "# made by: identify_steady (src/tools/identify_steady.cpp); a cache: its points are "
+           "read, not recomputed\n"
+        << "# epsilon: normalised creepage (steady_calibration.hpp); fx, fy over mu fz; mz over "
+           "mu fz sqrt(ab)\n"
+        << "a_over_b,ray,epsilon,xi,eta,phi,fx,fy,mz\n";
+    char line[256];
+    for (const auto& [key, p] : map_) {
+      const Ray* r = nullptr;
+      for (const Ray& q : kRays)
+        if (std::get<1>(key) == q.name) r = &q;
+      const Creepages c = Setup(o_, std::get<0>(key)).creepages(*r, std::get<2>(key));
+      std::snprintf(line, sizeof line, "%g,%s,%g,%.6g,%.6g,%.6g,%.6f,%.6f,%.6f\n", std::get<0>(key),
+                    std::get<1>(key).c_str(), std::get<2>(key), c.xi, c.eta, c.phi, p.fx, p.fy,
+                    p.mz);
+      out << line;
+    }
+  }
+
+ private:
+  std::string path_;
+  Options o_;
+  std::map<Key, Point> map_;
+  bool dirty_ = false;
+  std::unique_ptr<HalfspaceSolver> solver_;
+  double solverAB_ = 0.0;
+};
+
+// Steady FastSim at a/b = g along ray r at e, flexibilities scaled by `cal`.
+Point fastsimAt(const Options& o, double g, const Ray& r, double e,
+                const FlexibilityCalibration& cal) {
+  const Setup s(o, g);
+  const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
+  TractionField f;
+  f.resize(mesh.size());
+  parabolicBound(mesh, s.a, s.b, s.fz, s.mu, &f);
+  const Creepages c = s.creepages(r, e);
+  const CreepForces x =
+      steadyFastSim(mesh, cal.flexibilities(s.a, s.b, s.G, s.k, s.mu * s.fz, c), c, &f);
+  return s.normalised(x.fx, x.fy, x.mz);
+}
+
+// FastSim along pure kind `kind` with L_kind scaled by ratio.
+Point fastsimScaled(const Options& o, double g, int kind, double e, double ratio) {
+  const Setup s(o, g);
+  const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
+  TractionField f;
+  f.resize(mesh.size());
+  parabolicBound(mesh, s.a, s.b, s.fz, s.mu, &f);
+  const Creepages c = s.creepages(kRays[kind], e);
+  Flexibilities L = kalkerFlexibilities(s.a, s.b, s.G, s.k);
+  (kind == 0 ? L.L1 : kind == 1 ? L.L2 : L.L3) *= ratio;
+  const CreepForces x = steadyFastSim(mesh, L, c, &f);
+  return s.normalised(x.fx, x.fy, x.mz);
+}
+
+double pointError(const Point& p, const Point& x, double mzPeak) {
+  const double f = std::max(std::abs(p.fx - x.fx), std::abs(p.fy - x.fy));
+  return mzPeak > 0.0 ? f + 0.2 * std::abs(p.mz - x.mz) / mzPeak : f;
+}
+
+struct KindFit {
+  std::vector<double> ratio, error;
+};
+
+KindFit identifyKind(const Options& o, ExactCache* exact, double g, int kind) {
+  double mzPeak = 0.0;
+  if (kind == 2)
+    for (double e : o.knots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, kRays[2], e).mz));
+  KindFit fit;
+  double previous = 1.0;
+  for (double e : o.knots) {
+    if (e == 0.0) {
+      fit.ratio.push_back(1.0);
+      fit.error.push_back(0.0);
+      continue;
+    }
+    const Point x = exact->at(g, kRays[kind], e);
+    // Scan ln r, then refine around the best by golden section. A small pull towards r = 1 picks
+    // the ratio nearest Kalker's where many fit alike (in full slip every large enough ratio
+    // saturates a single creepage; a combined step weighs the kinds' ratios, so they must not
+    // wander there).
+    auto cost = [&](double lr) {
+      return pointError(fastsimScaled(o, g, kind, e, std::exp(lr)), x, mzPeak) +
+             1e-3 * std::abs(lr);
+    };
+    // Within a factor e^0.6 of the previous knot's ratio: one continuous curve, no jump to the
+    // other branch of a creep curve that rises and falls (spin).
+    const double lo = std::max(std::log(0.05), std::log(previous) - 0.6),
+                 hi = std::min(std::log(50.0), std::log(previous) + 0.6);
+    const int n = 400;
+    double best = 0.0, bestCost = 1e300;
+    for (int i = 0; i <= n; ++i) {
+      const double lr = lo + (hi - lo) * i / n, c = cost(lr);
+      if (c < bestCost) bestCost = c, best = lr;
+    }
+    double a = best - (hi - lo) / n, b = best + (hi - lo) / n;
+    const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int it = 0; it < 40; ++it) {
+      const double c1 = b - phi * (b - a), c2 = a + phi * (b - a);
+      if (cost(c1) < cost(c2))
+        b = c2;
+      else
+        a = c1;
+    }
+    const double lr = cost(0.5 * (a + b)) < bestCost ? 0.5 * (a + b) : best;
+    previous = std::exp(lr);
+    fit.ratio.push_back(previous);
+    fit.error.push_back(pointError(fastsimScaled(o, g, kind, e, previous), x, mzPeak));
+  }
+  return fit;
+}
+
+void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
+  std::ostringstream rows, notes;
+  for (double g : o.ratios)
+    for (int kind = 0; kind < 3; ++kind) {
+      const KindFit fit = identifyKind(o, exact, g, kind);
+      double worst = 0.0;
+      for (std::size_t i = 0; i < o.knots.size(); ++i) {
+        char line[160];
+        std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f\n", g, kRays[kind].name, o.knots[i],
+                      fit.ratio[i], fit.error[i]);
+        rows << line;
+        worst = std::max(worst, fit.error[i]);
+      }
+      char note[120];
+      std::snprintf(note, sizeof note, "#   a/b %g kind %s: worst knot error %.4f\n", g,
+                    kRays[kind].name, worst);
+      notes << note;
+    }
+  std::ofstream out = tools::writeFile(o.out);
+  std::string command = "identify_steady";
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+  out << "# Calibrated FastSim: flexibility ratio per creepage kind against normalised creepage\n"
+      << "# (src/core/fastsim/steady_calibration.hpp). Identified " << date << " by: " << command
+      << "\n# against our exact solver (" << o.grid << "x" << o.grid << ", nu " << o.nu
+      << "; exact curves cached in " << o.exact << ") on FastSim " << o.nx << "x" << o.nx
+      << "; other nu: the same ratios.\n"
+      << "# fit_error: max(|dFx|, |dFy|) / (mu fz) at the knot (spin: + 0.2 |dMz| / peak |Mz|)\n"
+      << notes.str() << "a_over_b,kind,epsilon,ratio,fit_error\n"
+      << rows.str();
+  std::cout << notes.str();
+}
+
+// Curves and their errors per a/b and ray: exact, classic, calibrated.
+void writeCurves(const Options& o, ExactCache* exact, const SteadyCalibration& table) {
+  std::ofstream out;
+  if (!o.curves.empty()) {
+    out = tools::writeFile(o.curves);
+    out << "# Steady creep curves, exact (" << o.grid << "x" << o.grid << ") / classic FastSim / "
+        << "calibrated FastSim (" << o.nx << "x" << o.nx << "); made by identify_steady --curves\n"
+        << "# fx, fy over mu fz; mz over mu fz sqrt(ab); epsilon: normalised creepage\n"
+        << "a_over_b,ray,epsilon,xi,eta,phi,fx_exact,fy_exact,mz_exact,fx_classic,fy_classic,"
+           "mz_classic,fx_calibrated,fy_calibrated,mz_calibrated\n";
+  }
+  std::printf("%-5s %-5s %9s %9s %9s %9s   (force: max |dF| / mu fz; Mz: max |dMz| / peak |Mz|)\n",
+              "a/b", "ray", "F clas", "F cal", "Mz clas", "Mz cal");
+  for (double g : o.ratios) {
+    const FlexibilityCalibration cal = table.at(g);
+    for (const Ray& r : kRays) {
+      double fErr[2] = {0, 0}, mErr[2] = {0, 0}, peak = 0.0;
+      std::vector<Point> x, c[2];
+      for (double e : o.points) {
+        x.push_back(exact->at(g, r, e));
+        c[0].push_back(fastsimAt(o, g, r, e, FlexibilityCalibration()));
+        c[1].push_back(fastsimAt(o, g, r, e, cal));
+        peak = std::max(peak, std::abs(x.back().mz));
+      }
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        for (int v = 0; v < 2; ++v) {
+          fErr[v] = std::max(fErr[v], pointError(c[v][i], x[i], 0.0));
+          mErr[v] = std::max(mErr[v], std::abs(c[v][i].mz - x[i].mz) / peak);
+        }
+        if (out) {
+          const Creepages k = Setup(o, g).creepages(r, o.points[i]);
+          char line[400];
+          std::snprintf(line, sizeof line,
+                        "%g,%s,%g,%.6g,%.6g,%.6g,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", g,
+                        r.name, o.points[i], k.xi, k.eta, k.phi, x[i].fx, x[i].fy, x[i].mz,
+                        c[0][i].fx, c[0][i].fy, c[0][i].mz, c[1][i].fx, c[1][i].fy, c[1][i].mz);
+          out << line;
+        }
+      }
+      if (peak > 1e-3)
+        std::printf("%-5g %-5s %9.4f %9.4f %9.4f %9.4f\n", g, r.name, fErr[0], fErr[1], mErr[0],
+                    mErr[1]);
+      else  // no spin moment to speak of (xi alone)
+        std::printf("%-5g %-5s %9.4f %9.4f %9s %9s\n", g, r.name, fErr[0], fErr[1], "-", "-");
+    }
+  }
+}
+
+int run(const Options& o, int argc, char** argv) {
+  ExactCache exact(o.exact, o);
+  struct Saver {  // keeps what was solved even when a later step throws
+    ExactCache* c;
+    ~Saver() { c->save(); }
+  } saver{&exact};
+  if (!o.out.empty()) writeTable(o, &exact, argc, argv);
+  const std::string path = !o.out.empty()     ? o.out
+                           : !o.table.empty() ? o.table
+                                              : SteadyCalibration::defaultPath();
+  writeCurves(o, &exact, path == "classic" ? SteadyCalibration() : SteadyCalibration::load(path));
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return tools::runMain<Options>("identify_steady", kUsage, argc, argv, readOption,
+                                 [&](const Options& o) { return run(o, argc, argv); });
+}

@@ -1,0 +1,25 @@
+/// The cached exact steady creep curves (doc/data/steady_exact_curves.csv, written by
+/// identify_steady): one point per line, a_over_b,ray,epsilon,xi,eta,phi,fx,fy,mz with fx, fy over
+/// mu fz and mz over mu fz sqrt(ab) (the setup is in the file's comment lines).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/fastsim/fastsim.hpp"
+
+namespace wheel_rail_contact {
+
+struct SteadyCurvePoint {
+  double aOverB = 0.0;
+  std::string ray;     ///< 11, 22, 23 (one creepage) or a combination (identify_steady.cpp)
+  double epsilon = 0;  ///< normalised creepage (steady_calibration.hpp)
+  Creepages c;
+  double fx = 0.0, fy = 0.0, mz = 0.0;
+};
+
+/// The points of `path` in file order; none if the file does not exist. Throws std::runtime_error
+/// naming the file on a line with fewer than 9 fields or a field that is not a number.
+std::vector<SteadyCurvePoint> readSteadyCurves(const std::string& path);
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,164 @@
+// The calibrated FastSim's table (steady_calibration.hpp) and the `fastsim` parameter.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "core/fastsim/steady_calibration.hpp"
+#include "wheel_rail_contact/contact_model.hpp"
+#include "wheel_rail_contact/contact_parameters.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+std::string writeTable(const std::string& body) {
+  const std::string path = testing::TempDir() + "steady_calibration_test.csv";
+  std::ofstream(path) << body;
+  return path;
+}
+
+const char* const kTwoRows =
+    "# test table\n"
+    "a_over_b,kind,epsilon,ratio,fit_error\n"
+    "0.5,11,0,1,0\n0.5,11,1,2,0\n0.5,22,0,1,0\n0.5,22,1,0.5,0\n0.5,23,0,1,0\n0.5,23,2,3,0\n"
+    "2,11,0,1,0\n2,11,1,4,0\n2,22,0,1,0\n2,22,1,0.5,0\n2,23,0,1,0\n2,23,2,1,0\n";
+
+std::string message(const std::string& body) {
+  try {
+    SteadyCalibration::load(writeTable(body));
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(SteadyCalibration, InterpolatesInCreepageAndLogAOverBAndHoldsBeyondTheLastKnot) {
+  const SteadyCalibration t = SteadyCalibration::load(writeTable(kTwoRows));
+  const FlexibilityCalibration lo = t.at(0.5), mid = t.at(1.0), below = t.at(0.1);
+  EXPECT_DOUBLE_EQ(lo.ratio(0, 0.0), 1.0);
+  EXPECT_DOUBLE_EQ(lo.ratio(0, 0.5), std::sqrt(2.0));  // ln ratio linear in e
+  EXPECT_DOUBLE_EQ(lo.ratio(0, 7.0), 2.0);             // held
+  EXPECT_NEAR(lo.ratio(2, 1.0), std::sqrt(3.0), 1e-15);
+  EXPECT_DOUBLE_EQ(mid.ratio(0, 1.0), 3.0);  // ln(1) halfway between ln(0.5) and ln(2)
+  EXPECT_DOUBLE_EQ(mid.ratio(2, 2.0), 2.0);
+  EXPECT_DOUBLE_EQ(below.ratio(0, 1.0), 2.0);  // clamped at the table's end
+  EXPECT_DOUBLE_EQ(t.at(9.0).ratio(0, 1.0), 4.0);
+}
+
+TEST(SteadyCalibration, ScalesEachFlexibilityByItsKindsRatioAtTheNormalisedCreepage) {
+  const SteadyCalibration t = SteadyCalibration::load(writeTable(kTwoRows));
+  const FlexibilityCalibration c = t.at(0.5);
+  const double a = 4e-3, b = 8e-3, G = 8.2e10, muFz = 3e3;
+  const CreepCoefficients k = kalkerCoefficients(0.5, 0.28);
+  // e = G a b C11 xi / (mu fz) = 0.5 for xi alone: ratio sqrt(2) (ln ratio halfway to ln 2).
+  const Creepages c1{0.5 * muFz / (G * a * b * k.c11), 0.0, 0.0};
+  EXPECT_NEAR(FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, c1), 0.5, 1e-12);
+  const Flexibilities L0 = kalkerFlexibilities(a, b, G, k),
+                      L = c.flexibilities(a, b, G, k, muFz, c1);
+  // A single creepage: its kind's ratio, the others blended towards L_crss = L1 with w = e / 5.
+  const double r = std::sqrt(2.0);
+  EXPECT_NEAR(L.L1, r * L0.L1, 1e-12 * L0.L1);
+  EXPECT_NEAR(L.L2, r * (0.9 * L0.L2 + 0.1 * L0.L1), 1e-12 * L0.L2);
+  EXPECT_NEAR(L.L3, r * (0.9 * L0.L3 + 0.1 * L0.L1), 1e-12 * L0.L3);
+  // Two kinds at e = 1 (e1 = e2): ln rho is the mean of their ln ratios, 2 and 0.5: rho = 1.
+  const Creepages c12{c1.xi / 0.5 / std::sqrt(2.0), c1.xi / 0.5 / std::sqrt(2.0) * k.c11 / k.c22,
+                      0.0};
+  EXPECT_NEAR(FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, c12), 1.0, 1e-12);
+  const Flexibilities L12 = c.flexibilities(a, b, G, k, muFz, c12);
+  const double x2 = c12.xi * c12.xi, y2 = c12.eta * c12.eta;
+  const double crss = (x2 + y2) / (x2 / L0.L1 + y2 / L0.L2);
+  EXPECT_NEAR(L12.L1, 0.8 * L0.L1 + 0.2 * crss, 1e-12 * L0.L1);
+  // Spin and signs: e is the norm of the three linear forces over mu fz.
+  const Creepages c3{-c1.xi, 0.0, 0.5 * muFz / (G * std::pow(a * b, 1.5) * k.c23)};
+  EXPECT_NEAR(FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, c3), std::sqrt(0.5),
+              1e-12);
+  // No friction: full slip, the last knots.
+  const Flexibilities Lf = c.flexibilities(a, b, G, k, 0.0, c1);
+  EXPECT_NEAR(Lf.L1, 2.0 * L0.L1, 1e-12 * L0.L1);
+}
+
+TEST(SteadyCalibration, EmptyIsClassicFastSimExactly) {
+  const FlexibilityCalibration c = SteadyCalibration().at(1.0);
+  EXPECT_TRUE(c.classic());
+  const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
+  const Flexibilities L = c.flexibilities(5e-3, 5e-3, 8.2e10, k, 3e3, {0.01, 0.02, 1.0}),
+                      L0 = kalkerFlexibilities(5e-3, 5e-3, 8.2e10, k);
+  EXPECT_EQ(L.L1, L0.L1);
+  EXPECT_EQ(L.L2, L0.L2);
+  EXPECT_EQ(L.L3, L0.L3);
+}
+
+TEST(SteadyCalibration, RefusesMalformedTablesNamingTheLine) {
+  const std::string h = "a_over_b,kind,epsilon,ratio\n";
+  EXPECT_NE(message("").find("no header"), std::string::npos);
+  EXPECT_NE(message("a,b\n").find(":1: expected header"), std::string::npos);
+  EXPECT_NE(message(h + "1,11,0.1,1\n").find(":2: the knots"), std::string::npos);
+  EXPECT_NE(message(h + "1,11,0,1\n1,11,1,0\n").find(":3: ratio must be > 0"), std::string::npos);
+  EXPECT_NE(message(h + "1,11,0,1\n1,11,1,nan\n").find(":3: not a finite"), std::string::npos);
+  EXPECT_NE(message(h + "1,12,0,1\n").find("kind must be"), std::string::npos);
+  EXPECT_NE(message(h + "1,11,0,1\n1,22,0,1\n").find("every a/b must hold every kind"),
+            std::string::npos);
+  EXPECT_NE(message(h + "1,11,0,1\n1,11,1,2\n1,22,0,1\n1,23,0,1\n2,11,0,1\n2,11,2,2\n2,22,0,1\n"
+                        "2,23,0,1\n")
+                .find("same epsilon knots"),
+            std::string::npos);
+  EXPECT_EQ(message(kTwoRows), "");
+}
+
+TEST(SteadyCalibration, ShippedTableKeepsLinearTheory) {
+  // Ratio 1 at zero creepage: Kalker's coefficients hold exactly in the linear limit. Near it
+  // (e = 0.01, where the force is 1 % of mu fz) every ratio is within 1 % of 1.
+  const SteadyCalibration t = SteadyCalibration::load(SteadyCalibration::defaultPath());
+  for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0}) {
+    const FlexibilityCalibration c = t.at(ab);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(c.ratio(k, 0.0), 1.0);
+      EXPECT_NEAR(c.ratio(k, 0.01), 1.0, 0.01) << ab << " " << k;
+    }
+  }
+}
+
+TEST(FastSimParameter, ClassicUnlessAskedForByName) {
+  ContactParameters p;
+  for (const char* m : {"steady", "shen-li", "nss", "auto"}) {
+    p.model = m;
+    p.fastsim.clear();
+    EXPECT_FALSE(calibratedFastSim(p)) << m;
+    setParameter(&p, "fastsim", "calibrated");
+    EXPECT_TRUE(calibratedFastSim(p)) << m;
+    setParameter(&p, "fastsim", "classic");
+    EXPECT_FALSE(calibratedFastSim(p)) << m;
+  }
+  p.fastsim = "exact";
+  try {
+    validate(p);
+    FAIL() << "fastsim: exact accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("fastsim:", 0), 0u) << e.what();
+  }
+}
+
+TEST(FastSimParameter, CalibratedSteadyDiffersFromClassicOnlyBeyondLinearTheory) {
+  ContactParameters p;
+  p.model = "steady";
+  StepInput in;
+  in.V = 20.0;
+  in.dt = 1e-4;
+  in.fz = p.fz0;
+  for (double xi : {1e-6, 3e-3}) {  // linear; e = 1, partial slip
+    in.xi = xi;
+    p.fastsim = "classic";
+    const double classic = makeContactModel(p)->step(in).fx;
+    p.fastsim = "calibrated";
+    const double calibrated = makeContactModel(p)->step(in).fx;
+    if (xi < 1e-5)
+      EXPECT_NEAR(calibrated, classic, 1e-3 * std::abs(classic));
+    else
+      EXPECT_GT(std::abs(calibrated - classic), 1e-3 * p.mu * p.fz0);
+  }
+}

@@ -1,0 +1,132 @@
+// The calibrated FastSim's steady creep curves against our exact solver (issue 19, item 3), on the
+// cached exact curves doc/data/steady_exact_curves.csv (20x20 elements; identify_steady made them
+// and checks one point of them live here, so the cache cannot drift from the solver). FastSim on
+// 20x20 nodes. Errors: max over each curve of max(|dFx|, |dFy|) / (mu fz), and for spin
+// max |dMz| / peak |Mz|. Tolerances: the issue's targets where the calibration meets them (single
+// creepages 0.01, xi with eta 0.02); where it does not (combined with spin, Mz), the measured
+// error with a margin, and never worse than classic FastSim where the table in
+// doc/calibrated_fastsim.md says it is better.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/exact/halfspace_solver.hpp"
+#include "core/fastsim/steady_calibration.hpp"
+#include "validation/steady_curves.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+// The tool's setup (identify_steady.cpp): G, nu, mu, fz, sqrt(ab) = 5 mm.
+constexpr double kG = 8.2e10, kNu = 0.28, kMu = 0.3, kFz = 1e4;
+
+struct CurvePoint {
+  double e;
+  Creepages c;
+  double fx, fy, mz;  // exact, fx, fy over mu fz, mz over mu fz sqrt(ab)
+};
+
+std::map<std::pair<double, std::string>, std::vector<CurvePoint>> readExact() {
+  std::map<std::pair<double, std::string>, std::vector<CurvePoint>> curves;
+  for (const SteadyCurvePoint& p :
+       readSteadyCurves(std::string(WRC_SOURCE_DIR) + "/doc/data/steady_exact_curves.csv"))
+    if (p.epsilon > 0.0) curves[{p.aOverB, p.ray}].push_back({p.epsilon, p.c, p.fx, p.fy, p.mz});
+  return curves;
+}
+
+struct CurveError {
+  double force = 0.0, moment = 0.0;
+};
+
+CurveError fastsimError(double ab, const std::vector<CurvePoint>& curve,
+                        const FlexibilityCalibration& cal) {
+  const double a = 5e-3 * std::sqrt(ab), b = 5e-3 / std::sqrt(ab);
+  const CreepCoefficients k = kalkerCoefficients(ab, kNu);
+  const PatchMesh mesh(20, 20, a, b);
+  TractionField f;
+  f.resize(mesh.size());
+  parabolicBound(mesh, a, b, kFz, kMu, &f);
+  double peak = 0.0;
+  for (const CurvePoint& p : curve) peak = std::max(peak, std::abs(p.mz));
+  CurveError err;
+  const double m = kMu * kFz;
+  for (const CurvePoint& p : curve) {
+    const CreepForces x = steadyFastSim(mesh, cal.flexibilities(a, b, kG, k, m, p.c), p.c, &f);
+    err.force = std::max({err.force, std::abs(x.fx / m - p.fx), std::abs(x.fy / m - p.fy)});
+    err.moment = std::max(err.moment, std::abs(x.mz / (m * std::sqrt(a * b)) - p.mz) / peak);
+  }
+  return err;
+}
+
+class CalibratedSteady : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    curves_ = readExact();
+    table_ = SteadyCalibration::load(SteadyCalibration::defaultPath());
+  }
+  CurveError error(double ab, const char* ray, bool calibrated) const {
+    const auto it = curves_.find({ab, ray});
+    EXPECT_NE(it, curves_.end()) << ab << " " << ray;
+    if (it == curves_.end()) return {1.0, 1.0};
+    EXPECT_GE(it->second.size(), 12u) << ab << " " << ray;
+    return fastsimError(ab, it->second, calibrated ? table_.at(ab) : SteadyCalibration().at(ab));
+  }
+  static std::map<std::pair<double, std::string>, std::vector<CurvePoint>> curves_;
+  static SteadyCalibration table_;
+};
+std::map<std::pair<double, std::string>, std::vector<CurvePoint>> CalibratedSteady::curves_;
+SteadyCalibration CalibratedSteady::table_;
+
+}  // namespace
+
+TEST_F(CalibratedSteady, TheCachedExactCurvesAreTheSolversOwn) {
+  // One partial-slip point per kind at a/b = 1, re-solved (about a second).
+  const double ab = 1.0, a = 5e-3, b = 5e-3;
+  HalfspaceSolver s(HalfspaceGrid::covering(a, b, 20, 20), kG, kNu);
+  s.setHertzPressure(a, b, kFz);
+  for (const char* ray : {"11", "23"}) {
+    const auto& curve = curves_.at({ab, std::string(ray)});
+    const CurvePoint& p = curve[curve.size() / 3];
+    const HalfspaceSolution& x = s.solve(RollingMode::kSteady, p.c, kMu);
+    EXPECT_NEAR(x.fx / (kMu * kFz), p.fx, 2e-5) << ray;
+    EXPECT_NEAR(x.fy / (kMu * kFz), p.fy, 2e-5) << ray;
+  }
+}
+
+TEST_F(CalibratedSteady, SingleCreepageCurvesWithinOnePercentOfMuFz) {
+  for (double ab : {0.2, 1.0, 5.0})
+    for (const char* ray : {"11", "22", "23"}) {
+      const CurveError cal = error(ab, ray, true), classic = error(ab, ray, false);
+      EXPECT_LT(cal.force, 0.01) << ab << " " << ray;
+      EXPECT_GT(classic.force, 0.02) << ab << " " << ray;  // what the calibration removes
+    }
+}
+
+TEST_F(CalibratedSteady, LongitudinalWithLateralWithinTwoPercentOfMuFz) {
+  for (double ab : {0.2, 1.0, 5.0}) EXPECT_LT(error(ab, "xe", true).force, 0.02) << ab;
+}
+
+TEST_F(CalibratedSteady, CombinedWithSpinBetterThanClassicWhereTheSignsOppose) {
+  // Measured 0.037 / 0.058 / 0.064 against classic 0.146 / 0.172 / 0.140: the issue's 0.02 is not
+  // met with spin (doc/calibrated_fastsim.md).
+  for (double ab : {0.2, 1.0, 5.0}) {
+    const double cal = error(ab, "opp", true).force;
+    EXPECT_LT(cal, 0.07) << ab;
+    EXPECT_LT(cal, 0.5 * error(ab, "opp", false).force) << ab;
+  }
+  // All three of one sign: 0.042 / 0.060 / 0.041 against classic 0.074 / 0.027 / 0.050.
+  for (double ab : {0.2, 1.0, 5.0}) EXPECT_LT(error(ab, "xep", true).force, 0.065) << ab;
+}
+
+TEST_F(CalibratedSteady, SpinMomentNoWorseThanClassic) {
+  // Pure spin: Mz within 14 % of the peak (classic 10-18 %); the issue's 5 % is not met.
+  for (double ab : {0.2, 1.0, 5.0}) {
+    const double cal = error(ab, "23", true).moment, classic = error(ab, "23", false).moment;
+    EXPECT_LT(cal, 0.14) << ab;
+    EXPECT_LE(cal, classic + 1e-3) << ab;
+  }
+}
