@@ -3,6 +3,7 @@
 // Private parameters: ns (the contact's namespace), scene (scenario CSV), config (the node's YAML).
 #include <fstream>
 
+#include "../../src/ros/contact_stepper.hpp"
 #include "rostest_helpers.hpp"
 #include "wheel_rail_contact/scenario.hpp"
 
@@ -48,6 +49,7 @@ void expectMatches(size_t k, const Out& o) {
 /// published in alternating order (load first, then creepage first): the node pairs them by stamp.
 std::vector<ContactState> viaTopics(ContactClient& c, size_t n) {
   std::vector<ContactState> out;
+  EXPECT_TRUE(c.oneOutputPerInput());  // earlier Step calls' outputs are all in
   EXPECT_TRUE(c.reset());
   for (size_t k = 0; k < n; ++k) {
     const auto& row = rows[k];
@@ -107,8 +109,8 @@ TEST_F(NodeVsCli, ContactCliReadsTheNodeConfiguration) {
 TEST_F(NodeVsCli, TopicsGiveContactCliForces) {
   const auto out = viaTopics(*client, rows.size());
   ASSERT_EQ(out.size(), rows.size());
-  std::string frame;
-  ros::param::get(ns + "/contact_node/frame_id", frame);
+  std::string frame = wheel_rail_contact::frameIdForNamespace(ros::names::resolve(ns));
+  ros::param::get(ns + "/contact_node/frame_id", frame);  // an explicit one overrides
   EXPECT_EQ(client->forces.back().header.frame_id, frame);
   EXPECT_EQ(out[0].dt, 0.0);
   EXPECT_NEAR(out[1].dt, rows[1].t - rows[0].t, 1e-9);
