@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "wheel_rail_contact/Reset.h"
 #include "wheel_rail_contact/Step.h"
 #include "wheel_rail_contact/contact_parameters.hpp"
+#include "wheel_rail_contact/scenario.hpp"
 
 namespace wrc_test {
 
@@ -281,6 +283,45 @@ inline std::string cliOptionsOf(const std::string& nodeName) {
     opts += " --" + d.name + " '" + text + "'";
   }
   return opts;
+}
+
+/// The scene of a node-vs-CLI test: its rows, and `contact_cli run` on them with the config file
+/// and every shared parameter the node really runs with (read back from the parameter server).
+/// False, with a failure added, if contact_cli fails.
+inline bool sceneAndCliReference(const std::string& ns, const std::string& scene,
+                                 const std::string& config,
+                                 std::vector<wheel_rail_contact::ScenarioRow>* rows,
+                                 std::vector<Row>* reference) {
+  std::ifstream in(scene);
+  *rows = wheel_rail_contact::readScenario(in, scene);
+  std::string out;
+  const std::string command = std::string(WRC_CONTACT_CLI) + " run --scenario '" + scene +
+                              "' --config '" + config + "'" + cliOptionsOf(ns + "/contact_node");
+  if (run(command, &out) != 0) {
+    ADD_FAILURE() << command << "\n" << out;
+    return false;
+  }
+  *reference = parseCliOutput(out);
+  return true;
+}
+
+/// A node's shared parameters, read back from the parameter server.
+inline wheel_rail_contact::ContactParameters parametersOf(const std::string& node) {
+  wheel_rail_contact::ContactParameters p;
+  for (const auto& d : wheel_rail_contact::parameterDocs()) {
+    XmlRpc::XmlRpcValue v;
+    if (!ros::param::get(node + "/" + d.name, v)) continue;
+    std::string text;
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeString) text = static_cast<std::string>(v);
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) text = std::to_string(static_cast<int>(v));
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.17g", static_cast<double>(v));
+      text = buf;
+    }
+    wheel_rail_contact::setParameter(&p, d.name, text);
+  }
+  return p;
 }
 
 }  // namespace wrc_test

@@ -157,16 +157,6 @@ int main(int argc, char** argv) {
   pnh.getParam("ns", ns);
   pnh.getParam("scene", scene);
   pnh.getParam("config", config);
-  std::ifstream in(scene);
-  rows = wheel_rail_contact::readScenario(in, scene);
-  // contact_cli with the node's YAML and every shared parameter the node really runs with.
-  std::string out;
-  const std::string command = std::string(WRC_CONTACT_CLI) + " run --scenario '" + scene +
-                              "' --config '" + config + "'" + cliOptionsOf(ns + "/contact_node");
-  if (run(command, &out) != 0) {
-    ADD_FAILURE() << command << "\n" << out;
-    return 1;
-  }
-  reference = parseCliOutput(out);
+  if (!sceneAndCliReference(ns, scene, config, &rows, &reference)) return 1;
   return RUN_ALL_TESTS();
 }

@@ -174,20 +174,7 @@ TEST_F(Pairing, ARecordedBagPlayedTwiceGivesBitIdenticalContactCliForces) {
 
 TEST_F(Pairing, PerStepGeometryAndFrictionReachTheModel) {
   // The node's model, rebuilt here from its parameters, fed what the node must pass it.
-  wheel_rail_contact::ContactParameters p;
-  for (const auto& d : wheel_rail_contact::parameterDocs()) {
-    XmlRpc::XmlRpcValue v;
-    if (!ros::param::get(ns + "/contact_node/" + d.name, v)) continue;
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeString)
-      wheel_rail_contact::setParameter(&p, d.name, static_cast<std::string>(v));
-    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt)
-      wheel_rail_contact::setParameter(&p, d.name, std::to_string(static_cast<int>(v)));
-    else if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%.17g", static_cast<double>(v));
-      wheel_rail_contact::setParameter(&p, d.name, buf);
-    }
-  }
+  const wheel_rail_contact::ContactParameters p = parametersOf(ns + "/contact_node");
   auto model = wheel_rail_contact::makeContactModel(p);
   const double fz = 500.0, V = 0.025, xi = 0.01, eta = 0.004, phi = 0.5;
   // Step 1 (topics): a, b and mu given; the load comes after the creepage.
@@ -246,15 +233,6 @@ int main(int argc, char** argv) {
   pnh.getParam("ns", ns);
   pnh.getParam("scene", scene);
   pnh.getParam("config", config);
-  std::ifstream in(scene);
-  rows = wheel_rail_contact::readScenario(in, scene);
-  std::string out;
-  const std::string command = std::string(WRC_CONTACT_CLI) + " run --scenario '" + scene +
-                              "' --config '" + config + "'" + cliOptionsOf(ns + "/contact_node");
-  if (run(command, &out) != 0) {
-    ADD_FAILURE() << command << "\n" << out;
-    return 1;
-  }
-  reference = parseCliOutput(out);
+  if (!sceneAndCliReference(ns, scene, config, &rows, &reference)) return 1;
   return RUN_ALL_TESTS();
 }

@@ -14,8 +14,9 @@ TEST(ScenePlayer, ThePlayedSceneGivesContactCliForces) {
   double offset = 0.0;
   ASSERT_TRUE(pnh.getParam("ns", ns) && pnh.getParam("scene", scene) &&
               pnh.getParam("config", config) && pnh.getParam("stamp_offset", offset));
-  std::ifstream in(scene);
-  const auto rows = wheel_rail_contact::readScenario(in, scene);
+  std::vector<wheel_rail_contact::ScenarioRow> rows;
+  std::vector<Row> ref;
+  ASSERT_TRUE(sceneAndCliReference(ns, scene, config, &rows, &ref));
   std::vector<ContactState> got;
   ros::Subscriber sub = nh.subscribe<ContactState>(
       ns + "/contact_state", 10000, [&](const ContactState::ConstPtr& m) { got.push_back(*m); });
@@ -31,11 +32,6 @@ TEST(ScenePlayer, ThePlayedSceneGivesContactCliForces) {
   ASSERT_TRUE(spinUntil([&] { return got.size() >= rows.size(); }, 40.0))
       << got.size() << " of " << rows.size() << " steps arrived";
   ASSERT_EQ(got.size(), rows.size());
-  std::string out;
-  const std::string command = std::string(WRC_CONTACT_CLI) + " run --scenario '" + scene +
-                              "' --config '" + config + "'" + cliOptionsOf(ns + "/contact_node");
-  ASSERT_EQ(run(command, &out), 0) << command << "\n" << out;
-  const auto ref = parseCliOutput(out);
   ASSERT_EQ(ref.size(), rows.size());
   double scale = 0.0;
   for (const auto& r : ref) scale = std::max({scale, std::fabs(r.fx), std::fabs(r.fy)});

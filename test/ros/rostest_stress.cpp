@@ -143,25 +143,6 @@ std::string seconds(int64_t ns) {
   return std::to_string(static_cast<double>(ns) * 1e-9);
 }
 
-/// The node's shared parameters, read back from the parameter server.
-ContactParameters parametersOf(const std::string& node) {
-  ContactParameters p;
-  for (const auto& d : wheel_rail_contact::parameterDocs()) {
-    XmlRpc::XmlRpcValue v;
-    if (!ros::param::get(node + "/" + d.name, v)) continue;
-    std::string text;
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeString) text = static_cast<std::string>(v);
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) text = std::to_string(static_cast<int>(v));
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%.17g", static_cast<double>(v));
-      text = buf;
-    }
-    wheel_rail_contact::setParameter(&p, d.name, text);
-  }
-  return p;
-}
-
 /// The pid of a node, from its own XML-RPC getPid (never by process name: other rostests may run
 /// contact_nodes on this machine at the same time). -1 if it cannot be found.
 int nodePid(const std::string& node) {

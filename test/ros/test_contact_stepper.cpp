@@ -763,3 +763,11 @@ TEST(StepperOptions, ValidationNamesTheParameter) {
     EXPECT_EQ(std::string(e.what()).rfind("load_pairing", 0), 0u);
   }
 }
+
+TEST(FrameId, DefaultFromTheNamespace) {
+  EXPECT_EQ(frameIdForNamespace("/bogie1/wheelset1/left"), "bogie1_wheelset1_left_contact");
+  EXPECT_EQ(frameIdForNamespace("/bogie1/wheelset1/right"), "bogie1_wheelset1_right_contact");
+  EXPECT_EQ(frameIdForNamespace("/sim"), "sim_contact");
+  EXPECT_EQ(frameIdForNamespace("/"), "contact");
+  EXPECT_EQ(frameIdForNamespace(""), "contact");
+}
