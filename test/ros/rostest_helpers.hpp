@@ -8,6 +8,7 @@
 #include <ros/ros.h>
 #include <xmlrpcpp/XmlRpcClient.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -262,27 +263,39 @@ inline bool sameBits(const ContactState& a, const ContactState& b) {
          a.load_stamp == b.load_stamp && a.held == b.held && a.message == b.message;
 }
 
+/// A parameter of `node` as the text setParameter() parses; false if unset or not a scalar.
+inline bool parameterTextOf(const std::string& node, const std::string& name, std::string* text) {
+  XmlRpc::XmlRpcValue v;
+  if (!ros::param::get(node + "/" + name, v)) return false;
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeString) {
+    *text = static_cast<std::string>(v);
+  } else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) {
+    *text = std::to_string(static_cast<int>(v));
+  } else if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", static_cast<double>(v));
+    *text = buf;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 /// The contact_node's shared parameters as contact_cli options (--name value ...), read back from
 /// the parameter server, so contact_cli runs exactly the node's configuration.
 inline std::string cliOptionsOf(const std::string& nodeName) {
-  std::string opts;
-  for (const auto& d : wheel_rail_contact::parameterDocs()) {
-    XmlRpc::XmlRpcValue v;
-    if (!ros::param::get(nodeName + "/" + d.name, v)) continue;
-    std::string text;
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeString)
-      text = static_cast<std::string>(v);
-    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt)
-      text = std::to_string(static_cast<int>(v));
-    else if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%.17g", static_cast<double>(v));
-      text = buf;
-    }
-    if (text.empty()) continue;
-    opts += " --" + d.name + " '" + text + "'";
-  }
+  std::string opts, text;
+  for (const auto& d : wheel_rail_contact::parameterDocs())
+    if (parameterTextOf(nodeName, d.name, &text) && !text.empty())
+      opts += " --" + d.name + " '" + text + "'";
   return opts;
+}
+
+/// The largest magnitude of one field over rows (the scale of a relative tolerance).
+inline double largest(const std::vector<Row>& rows, double Row::*field) {
+  double s = 1e-300;
+  for (const auto& r : rows) s = std::max(s, std::fabs(r.*field));
+  return s;
 }
 
 /// The scene of a node-vs-CLI test: its rows, and `contact_cli run` on them with the config file
@@ -308,19 +321,9 @@ inline bool sceneAndCliReference(const std::string& ns, const std::string& scene
 /// A node's shared parameters, read back from the parameter server.
 inline wheel_rail_contact::ContactParameters parametersOf(const std::string& node) {
   wheel_rail_contact::ContactParameters p;
-  for (const auto& d : wheel_rail_contact::parameterDocs()) {
-    XmlRpc::XmlRpcValue v;
-    if (!ros::param::get(node + "/" + d.name, v)) continue;
-    std::string text;
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeString) text = static_cast<std::string>(v);
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) text = std::to_string(static_cast<int>(v));
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%.17g", static_cast<double>(v));
-      text = buf;
-    }
-    wheel_rail_contact::setParameter(&p, d.name, text);
-  }
+  std::string text;
+  for (const auto& d : wheel_rail_contact::parameterDocs())
+    if (parameterTextOf(node, d.name, &text)) wheel_rail_contact::setParameter(&p, d.name, text);
   return p;
 }
 

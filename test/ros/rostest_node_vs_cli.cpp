@@ -21,9 +21,7 @@ ros::Time stampOf(double t) {
 }
 
 double scaleOf(double Row::*field) {
-  double s = 1e-300;
-  for (const auto& r : reference) s = std::max(s, std::fabs(r.*field));
-  return s;
+  return largest(reference, field);
 }
 
 /// The node's k-th step against contact_cli's k-th row, each field to 1e-9 of its largest value.

@@ -29,12 +29,6 @@ ros::Time stampOf(double t) {
   return ros::Time(kOffset + t);
 }
 
-double scale(double Row::*field) {
-  double s = 1e-300;
-  for (const auto& r : reference) s = std::max(s, std::fabs(r.*field));
-  return s;
-}
-
 void expectCli(const std::vector<ContactState>& out, const char* what) {
   ASSERT_EQ(out.size(), reference.size()) << what;
   for (size_t k = 0; k < out.size(); ++k) {
@@ -43,9 +37,9 @@ void expectCli(const std::vector<ContactState>& out, const char* what) {
     EXPECT_EQ(s.header.stamp, stampOf(rows[k].t)) << what << " row " << k;
     EXPECT_EQ(s.load_match, ContactState::LOAD_SAME_STAMP) << what << " row " << k << s.message;
     EXPECT_EQ(s.fz, rows[k].fz) << what << " row " << k;
-    EXPECT_NEAR(s.fx, r.fx, 1e-9 * scale(&Row::fx)) << what << " row " << k;
-    EXPECT_NEAR(s.fy, r.fy, 1e-9 * scale(&Row::fy)) << what << " row " << k;
-    EXPECT_NEAR(s.a, r.a, 1e-9 * scale(&Row::a)) << what << " row " << k;
+    EXPECT_NEAR(s.fx, r.fx, 1e-9 * largest(reference, &Row::fx)) << what << " row " << k;
+    EXPECT_NEAR(s.fy, r.fy, 1e-9 * largest(reference, &Row::fy)) << what << " row " << k;
+    EXPECT_NEAR(s.a, r.a, 1e-9 * largest(reference, &Row::a)) << what << " row " << k;
     EXPECT_NEAR(s.adhesion_fraction, r.adhesion, 1e-9) << what << " row " << k;
     EXPECT_EQ(statusText(s.status), r.status) << what << " row " << k;
   }
