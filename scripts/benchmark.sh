@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Latency and throughput of contact_node on this machine (a measurement, not a test): for 1 and 8
-# contacts (default config: steady FastSim, 20x20 mesh), p50/p99 publish->contact_state round trip
+# contacts (default config: nss, 20x20 fixed mesh, load pairing by stamp: each tick sends its load
+# and its creepage), p50/p99 publish->contact_state round trip
 # and the sustained message rate. Needs a build (bash scripts/quickstart.sh build).
 # usage: scripts/benchmark.sh [CONTACT_COUNTS...]   (default: 1 8)
 set -eo pipefail

@@ -18,6 +18,7 @@ packages=(g++ make cmake catkin libroscpp-dev ros-message-generation
   libdiagnostic-updater-dev libnodeletlib-dev libnodeletlib-tools
   libyaml-cpp-dev libbenchmark-dev libfftw3-dev
   python3-matplotlib python3-yaml python3-numpy clang-format
+  librosbag-storage-dev python3-rosbag  # rostest pairing: writes a bag, plays it
   clang libclang-rt-14-dev)  # clang + its runtime: libFuzzer (scripts/run_fuzz.sh)
 
 install_missing() {

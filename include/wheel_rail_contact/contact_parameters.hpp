@@ -8,16 +8,17 @@
 namespace wheel_rail_contact {
 
 struct ContactParameters {
-  double G = 8.2e10;             ///< shear modulus of wheel and rail [Pa]
-  double nu = 0.28;              ///< Poisson ratio [-]
-  double mu = 0.3;               ///< Coulomb friction coefficient [-]
-  double a0 = 6.0e-3;            ///< reference semi-axis along x at fz0 [m]
-  double b0 = 4.0e-3;            ///< reference semi-axis along y at fz0 [m]
-  double fz0 = 8.0e4;            ///< reference normal load [N]
-  int nx = 20;                   ///< FastSim nodes per strip [-]
-  int ny = 20;                   ///< FastSim strips [-]
-  std::string model = "steady";  ///< steady | shen-li | nss | exact | auto
-  std::string mesh = "fixed";    ///< fixed | adaptive | auto
+  double G = 8.2e10;   ///< shear modulus of wheel and rail [Pa]
+  double nu = 0.28;    ///< Poisson ratio [-]
+  double mu = 0.3;     ///< Coulomb friction coefficient [-]
+  double a0 = 6.0e-3;  ///< reference semi-axis along x at fz0 [m]
+  double b0 = 4.0e-3;  ///< reference semi-axis along y at fz0 [m]
+  double fz0 = 8.0e4;  ///< reference normal load [N]
+  int nx = 20;         ///< FastSim nodes per strip [-]
+  int ny = 20;         ///< FastSim strips [-]
+  /// steady | shen-li | nss | exact | auto; nss (NSS-FastSim) is the package's method.
+  std::string model = "nss";
+  std::string mesh = "fixed";  ///< fixed | adaptive | auto
   /// Error the "auto" model may spend, as a fraction of the peak force [-]: it sets the mesh size
   /// (nx, ny are then chosen, not read) and when steady FastSim is enough.
   double tolerance = 0.05;

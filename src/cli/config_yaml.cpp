@@ -8,7 +8,14 @@ namespace wheel_rail_contact {
 
 std::vector<ParameterDoc> nodeParameterDocs() {
   return {
-      {"frame_id", "", "contact", "frame_id of the outputs (the contact frame)"},
+      {"frame_id", "", "<namespace>_contact",
+       "frame_id of the outputs (the contact frame); default from the namespace, e.g. "
+       "/bogie1/wheelset1/left -> bogie1_wheelset1_left_contact"},
+      {"load_pairing", "", "stamp",
+       "stamp (a creepage steps with the normal load of its stamp) | latest (the latest load)"},
+      {"load_wait", "s", "0.1",
+       "stamp pairing: longest wall time a creepage waits for its load, [0, 60]; then the latest "
+       "load is used and flagged"},
       {"queue_size", "-", "100", "subscriber queue length of creepage and normal_load (>= 1)"},
       {"publish_queue_size", "-", "100", "publisher queue length of the outputs (>= 1)"},
       {"max_dt", "s", "1", "a creepage stamp more than this after the previous one is rejected"},

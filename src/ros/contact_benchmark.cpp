@@ -25,9 +25,14 @@ struct Contact {
   uint64_t next = 0;  // stamp counter
 };
 
+/// One simulator tick: the load and the creepage with the same stamp (the node pairs them).
 void publish(Contact& c) {
   wheel_rail_contact::Creepage m;
   m.header.stamp = ros::Time(1.0) + ros::Duration(1e-4 * static_cast<double>(++c.next));
+  wheel_rail_contact::NormalLoad l;
+  l.header.stamp = m.header.stamp;
+  l.force = 8e4;
+  c.load.publish(l);
   m.longitudinal = 1e-3;
   m.lateral = -5e-4;
   m.spin = 0.5;

@@ -2,6 +2,7 @@
 
 #include <geometry_msgs/WrenchStamped.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <set>
@@ -16,6 +17,11 @@ namespace wheel_rail_contact {
 static_assert(ContactState::STATUS_OK == 0 && ContactState::STATUS_NO_LOAD == 1 &&
                   ContactState::STATUS_STANDSTILL == 2 && ContactState::STATUS_REJECTED == 3,
               "contactStateStatus() follows ContactState.msg");
+static_assert(ContactState::LOAD_SAME_STAMP == static_cast<int>(LoadMatch::kSameStamp) &&
+                  ContactState::LOAD_LATEST == static_cast<int>(LoadMatch::kLatest) &&
+                  ContactState::LOAD_UNMATCHED == static_cast<int>(LoadMatch::kUnmatched) &&
+                  ContactState::LOAD_NONE == static_cast<int>(LoadMatch::kNone),
+              "LoadMatch follows ContactState.msg");
 
 namespace {
 
@@ -34,6 +40,18 @@ void fillState(const StepResult& r, const std::string& model, State* m) {
   m->solver_time = r.solverTime;
   m->status = contactStateStatus(r.out.status);
   m->message = r.message;
+  m->load_match = static_cast<uint8_t>(r.loadMatch);
+  m->load_stamp.fromNSec(static_cast<uint64_t>(r.loadStampNs));
+  m->held = r.held;
+}
+
+int64_t steadyNowNs() {
+  return static_cast<int64_t>(ros::SteadyTime::now().toNSec());
+}
+
+/// A header stamp in ns; 0 (unstamped) stays 0.
+int64_t stampNs(const ros::Time& t) {
+  return static_cast<int64_t>(t.toNSec());
 }
 
 /// A parameter value as the text setParameter() parses, so node and CLI share one rule.
@@ -105,10 +123,17 @@ bool ContactNode::readParameters() {
     o.max_dt = numberParameter(pnh_, "max_dt", o.max_dt);
     o.time_jump_reset = numberParameter(pnh_, "time_jump_reset", o.time_jump_reset);
     o.max_load_age = numberParameter(pnh_, "max_load_age", o.max_load_age);
-    validate(o);
+    o.load_wait = numberParameter(pnh_, "load_wait", o.load_wait);
+    XmlRpc::XmlRpcValue pairing;
+    if (pnh_.getParam("load_pairing", pairing))
+      o.load_pairing = parseLoadPairing(parameterText("load_pairing", pairing));
     XmlRpc::XmlRpcValue frame;
+    frameId_ = frameIdForNamespace(nh_.getNamespace());
     if (pnh_.getParam("frame_id", frame)) frameId_ = parameterText("frame_id", frame);
+    if (frameId_.empty()) throw std::invalid_argument("frame_id: must not be empty");
     queueSize_ = countParameter(pnh_, "queue_size", queueSize_);
+    o.pairing_buffer = queueSize_;
+    validate(o);
     publishQueueSize_ = countParameter(pnh_, "publish_queue_size", publishQueueSize_);
     diagnosticPeriod_ = numberParameter(pnh_, "diagnostic_period", diagnosticPeriod_);
     // ros::(Wall)Duration throws beyond 2^31 s (see start()); a day is plenty.
@@ -119,12 +144,12 @@ bool ContactNode::readParameters() {
                                   v);
     }
 
-    stepper_ = std::make_unique<ContactStepper>(makeContactModel(p), o);
+    stepper_ = std::make_unique<ContactStepper>(makeContactModel(p), o, p);
     ROS_INFO(
         "contact_node %s: model %s, G %g Pa, nu %g, mu %g, a0 %g m, b0 %g m, fz0 %g N, "
-        "mesh %s %dx%d, frame '%s'",
+        "mesh %s %dx%d, frame '%s', load pairing %s (load_wait %g s)",
         nh_.getNamespace().c_str(), p.model.c_str(), p.G, p.nu, p.mu, p.a0, p.b0, p.fz0,
-        p.mesh.c_str(), p.nx, p.ny, frameId_.c_str());
+        p.mesh.c_str(), p.nx, p.ny, frameId_.c_str(), toString(o.load_pairing), o.load_wait);
     const std::string chosen = stepper_->modelChoices();
     if (!chosen.empty())
       ROS_INFO("contact_node %s: %s", nh_.getNamespace().c_str(), chosen.c_str());
@@ -143,6 +168,8 @@ void ContactNode::start() {
   const auto hints = ros::TransportHints().tcpNoDelay();
   loadSub_ = nh_.subscribe("normal_load", queueSize_, &ContactNode::loadCallback, this, hints);
   creepageSub_ = nh_.subscribe("creepage", queueSize_, &ContactNode::creepageCallback, this, hints);
+  loadWaitTimer_ = nh_.createSteadyTimer(ros::WallDuration(1.0), &ContactNode::onLoadWait, this,
+                                         true /*oneshot*/, false /*autostart*/);
 
   // Made only now: its constructor reads ~diagnostic_period itself and throws (uncaught: abort)
   // on a value ros::Duration cannot hold, so readParameters() must have checked it first.
@@ -158,6 +185,34 @@ void ContactNode::start() {
 
 void ContactNode::reset() {
   stepper_->reset();
+  flush();  // the creepages that were still waiting for their load, answered rejected
+}
+
+void ContactNode::flush() {
+  for (const StepResult& r : stepper_->takeReady()) {
+    report(r);
+    publish(r);
+  }
+  int64_t deadline = 0;
+  if (!stepper_->nextDeadline(&deadline)) {
+    if (loadWaitArmed_) loadWaitTimer_.stop();
+    loadWaitArmed_ = false;
+    return;
+  }
+  if (loadWaitArmed_ && deadline == loadWaitDeadlineNs_) return;
+  // At least 1 us: a zero period would make the timer fire in a loop.
+  const int64_t wait = std::max<int64_t>(deadline - steadyNowNs(), 1000);
+  loadWaitTimer_.stop();
+  loadWaitTimer_.setPeriod(ros::WallDuration(static_cast<double>(wait) * 1e-9));
+  loadWaitTimer_.start();
+  loadWaitArmed_ = true;
+  loadWaitDeadlineNs_ = deadline;
+}
+
+void ContactNode::onLoadWait(const ros::SteadyTimerEvent&) {
+  loadWaitArmed_ = false;
+  stepper_->release(steadyNowNs());
+  flush();
 }
 
 void ContactNode::creepageCallback(const ros::MessageEvent<const Creepage>& event) {
@@ -173,35 +228,52 @@ void ContactNode::creepageCallback(const ros::MessageEvent<const Creepage>& even
                       queueSize_);
   }
   lastSeq_[event.getPublisherName()] = msg->header.seq;
-  const StepResult r = stepper_->step(static_cast<int64_t>(msg->header.stamp.toNSec()),
-                                      msg->velocity, msg->longitudinal, msg->lateral, msg->spin);
-  report(r);
-  publish(msg->header.stamp, r);
+  StepInput in;
+  in.V = msg->velocity;
+  in.xi = msg->longitudinal;
+  in.eta = msg->lateral;
+  in.phi = msg->spin;
+  in.a = msg->a;
+  in.b = msg->b;
+  in.mu = msg->mu;
+  stepper_->addCreepage(stampNs(msg->header.stamp), in, steadyNowNs(),
+                        {msg->curvature_x, msg->curvature_y});
+  flush();
 }
 
 void ContactNode::loadCallback(const NormalLoadConstPtr& msg) {
-  // An unstamped load is taken as received now.
-  const ros::Time stamp = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
-  const std::string why = stepper_->setLoad(static_cast<int64_t>(stamp.toNSec()), msg->force);
+  // Stamp 0 = unstamped: it never pairs by stamp, and never stands for "now" (that would make
+  // every later stamped load look out of order under sim time).
+  const std::string why = stepper_->addLoad(stampNs(msg->header.stamp), msg->force, steadyNowNs());
   if (!why.empty())
     ROS_WARN_THROTTLE(1.0, "%s: normal_load rejected: %s", nh_.getNamespace().c_str(), why.c_str());
+  flush();
 }
 
 bool ContactNode::resetService(Reset::Request&, Reset::Response& res) {
   reset();
   res.success = true;
-  res.message = "state reset (traction history, filter state, time base, latest load)";
+  res.message = "state reset (traction history, filter state, time base, loads, held output)";
   ROS_INFO("%s: %s", nh_.getNamespace().c_str(), res.message.c_str());
   return true;
 }
 
 bool ContactNode::stepService(Step::Request& req, Step::Response& res) {
+  StepInput in;
+  in.V = req.velocity;
+  in.xi = req.longitudinal;
+  in.eta = req.lateral;
+  in.phi = req.spin;
+  in.fz = req.normal_force;
+  in.a = req.a;
+  in.b = req.b;
+  in.mu = req.mu;
   const StepResult r =
-      stepper_->stepWithLoad(static_cast<int64_t>(req.stamp.toNSec()), req.velocity,
-                             req.longitudinal, req.lateral, req.spin, req.normal_force);
+      stepper_->stepWithLoad(stampNs(req.stamp), in, {req.curvature_x, req.curvature_y});
+  flush();  // older creepages this call released come out first
   report(r);
   fillState(r, stepper_->modelName(), &res);
-  publish(req.stamp, r);
+  publish(r);
   return true;
 }
 
@@ -218,14 +290,22 @@ void ContactNode::report(const StepResult& r) {
     case StepEvent::kDtTooLarge:
       ROS_WARN_THROTTLE(1.0, "%s: creepage rejected: %s", ns, r.message.c_str());
       return;
+    case StepEvent::kBadGeometry:
+      ROS_WARN_THROTTLE(1.0, "%s: creepage rejected (geometry): %s", ns, r.message.c_str());
+      return;
+    case StepEvent::kDroppedByReset:
+      ROS_WARN_THROTTLE(1.0, "%s: creepage rejected: %s", ns, r.message.c_str());
+      return;
     case StepEvent::kNoLoadYet:
-      ROS_WARN_THROTTLE(5.0, "%s: no normal_load received yet: zero forces", ns);
+      ROS_WARN_THROTTLE(5.0, "%s: no normal_load for this step: zero forces", ns);
       return;
     case StepEvent::kStepped:
       break;
   }
   if (r.out.status == StepStatus::kRejected)
     ROS_WARN_THROTTLE(1.0, "%s: model refused the step: %s", ns, r.message.c_str());
+  else if (r.loadMatch == LoadMatch::kUnmatched)
+    ROS_WARN_THROTTLE(5.0, "%s: %s", ns, r.message.c_str());
   else if (r.out.status == StepStatus::kOk && !r.message.empty())  // clipped or coarse patch
     ROS_WARN_THROTTLE(5.0, "%s: %s", ns, r.message.c_str());
   if (r.staleLoad)
@@ -233,9 +313,9 @@ void ContactNode::report(const StepResult& r) {
                       r.loadAge);
 }
 
-void ContactNode::publish(const ros::Time& stamp, const StepResult& r) {
+void ContactNode::publish(const StepResult& r) {
   geometry_msgs::WrenchStamped w;
-  w.header.stamp = stamp;
+  w.header.stamp.fromNSec(static_cast<uint64_t>(r.stampNs));
   w.header.frame_id = frameId_;
   w.wrench.force.x = r.out.fx;
   w.wrench.force.y = r.out.fy;
@@ -257,6 +337,7 @@ void ContactNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   const uint64_t newRejected = c.rejected - lastDiag_.rejected;
   const uint64_t newLoadRejected = c.loadsRejected - lastDiag_.loadsRejected;
   const uint64_t newStale = c.staleLoad - lastDiag_.staleLoad;
+  const uint64_t newUnmatched = c.unmatched - lastDiag_.unmatched;
   const bool newLost = lostCreepages_ > lastLost_;
   lastLost_ = lostCreepages_;
   if (newLost)
@@ -265,6 +346,10 @@ void ContactNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   else if (newRejected + newLoadRejected > 0)
     stat.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "%lu inputs rejected in the last %.1f s",
                   static_cast<unsigned long>(newRejected + newLoadRejected), span);
+  else if (newUnmatched > 0)
+    stat.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
+                  "%lu steps without the load of their stamp in the last %.1f s",
+                  static_cast<unsigned long>(newUnmatched), span);
   else if (newStale > 0)
     stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "normal load older than max_load_age");
   else if (!stepper_->hasLoad())
@@ -280,13 +365,23 @@ void ContactNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("solver not converged (exact model)", c.notConverged);
   stat.add("rejected", c.rejected);
   stat.add("rejected: non-finite", c.nonFinite);
+  stat.add("rejected: geometry", c.badGeometry);
   stat.add("rejected: creepage stamp out of order", c.outOfOrder);
   stat.add("rejected: dt > max_dt", c.dtTooLarge);
   stat.add("rejected: by the model", c.rejectedByModel);
+  stat.add("rejected: reset while waiting for the load", c.droppedByReset);
   stat.add("creepage lost before the node (queue_size)", lostCreepages_);
   stat.add("normal_load messages", c.loads);
   stat.add("normal_load rejected", c.loadsRejected);
   stat.add("normal_load stamp out of order", c.loadsOutOfOrder);
+  stat.add("normal_load unstamped", c.loadsUnstamped);
+  stat.add("load pairing", toString(stepper_->options().load_pairing));
+  stat.add("unmatched load steps", c.unmatched);
+  stat.add("unmatched: a later load came first", c.unmatchedLaterLoad);
+  stat.add("unmatched: load_wait expired", c.unmatchedWaitExpired);
+  stat.add("unmatched: pairing buffer full", c.unmatchedBufferFull);
+  stat.add("waiting for their load now", stepper_->pending());
+  stat.add("waiting for their load, most", c.pendingMax);
   stat.add("stale load steps", c.staleLoad);
   stat.add("latest load [N]", stepper_->load());
   stat.add("resets", c.resets);

@@ -1,6 +1,6 @@
-/// contact_node: a thin ROS wrapper over one ContactModel (via ContactStepper). Topics, services
-/// and parameters are documented in the README ("ROS node"); every name is relative, so several
-/// contacts run side by side under namespaces.
+/// contact_node: a thin ROS wrapper over one ContactModel (via ContactStepper). Topics, services,
+/// parameters and rules: doc/ros_interface.md. Every name is relative, so several contacts run side
+/// by side under namespaces.
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -36,13 +36,16 @@ class ContactNode {
   void loadCallback(const NormalLoadConstPtr& msg);
   bool resetService(Reset::Request& req, Reset::Response& res);
   bool stepService(Step::Request& req, Step::Response& res);
+  void onLoadWait(const ros::SteadyTimerEvent&);
+  /// Publishes what the stepper has released and arms the load-wait timer for what still waits.
+  void flush();
   void report(const StepResult& r);
-  void publish(const ros::Time& stamp, const StepResult& r);
+  void publish(const StepResult& r);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
 
   ros::NodeHandle nh_, pnh_;
   std::unique_ptr<ContactStepper> stepper_;
-  std::string frameId_ = "contact";
+  std::string frameId_;  // default: from the namespace (frameIdForNamespace)
   int queueSize_ = 100;
   int publishQueueSize_ = 100;
   double diagnosticPeriod_ = 1.0;
@@ -52,6 +55,11 @@ class ContactNode {
   ros::ServiceServer resetSrv_, stepSrv_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;  // made in start()
   ros::WallTimer diagnosticTimer_;
+  /// Load pairing: fires when the oldest waiting creepage's load_wait expires (steady clock: it
+  /// runs while sim time is paused, so a lock-step simulator is always answered).
+  ros::SteadyTimer loadWaitTimer_;
+  bool loadWaitArmed_ = false;
+  int64_t loadWaitDeadlineNs_ = 0;
   StepperCounters lastDiag_;
   ros::WallTime lastDiagTime_;
   /// Creepage header.seq per publisher: a gap means the subscriber queue (queue_size) overflowed.

@@ -78,7 +78,10 @@ TEST(ConfigYaml, DefaultYamlHoldsTheCliDefaults) {
 TEST(ConfigYaml, DefaultYamlListsEveryParameterWithTheDocumentedDefaults) {
   const YAML::Node root = YAML::LoadFile(kDefaultYaml);
   for (const auto& d : parameterDocs()) EXPECT_TRUE(root[d.name]) << d.name;
+  // frame_id is left out so that each contact's default comes from its namespace.
+  EXPECT_FALSE(root["frame_id"]) << "a frame_id in default.yaml would give every contact one frame";
   for (const auto& d : nodeParameterDocs()) {
+    if (d.name == "frame_id") continue;
     ASSERT_TRUE(root[d.name]) << d.name;
     if (d.unit == "s" || d.unit == "-")
       EXPECT_EQ(root[d.name].as<double>(), std::stod(d.default_value)) << d.name;
@@ -89,6 +92,8 @@ TEST(ConfigYaml, DefaultYamlListsEveryParameterWithTheDocumentedDefaults) {
   EXPECT_EQ(root["max_dt"].as<double>(), o.max_dt);
   EXPECT_EQ(root["time_jump_reset"].as<double>(), o.time_jump_reset);
   EXPECT_EQ(root["max_load_age"].as<double>(), o.max_load_age);
+  EXPECT_EQ(root["load_wait"].as<double>(), o.load_wait);
+  EXPECT_EQ(root["load_pairing"].as<std::string>(), toString(o.load_pairing));
 }
 
 TEST(ConfigYaml, ErrorsNameTheKey) {

@@ -102,6 +102,10 @@ TEST(BadParameters, EveryParameterOutOfRange) {
               "max_load_age: must be a finite number >= 0 s (0 = off), got -1");
   expectFatal("_time_jump_reset:=nan",
               "time_jump_reset: must be a finite number >= 0 s (0 = off), got nan");
+  expectFatal("_load_wait:=-0.1", "load_wait: must be in [0, 60] s, got -0.1");
+  expectFatal("_load_wait:=nan", "load_wait: must be in [0, 60] s, got nan");
+  expectFatal("_load_pairing:=nearest", "load_pairing: must be stamp or latest, got 'nearest'");
+  expectFatal("_frame_id:=''", "frame_id: must not be empty");
   expectFatal("_diagnostic_period:=0", "diagnostic_period: must be in (0, 86400] s, got 0");
   // Once crashed: diagnostic_updater's constructor, before the checks, threw from ros::Duration.
   expectFatal("_diagnostic_period:=1e10", "diagnostic_period: must be in (0, 86400] s, got 1e+10");
@@ -125,6 +129,8 @@ TEST(BadParameters, EveryParameterOfAWrongType) {
   expectFatal("_time_jump_reset:=never", "time_jump_reset: expected a number, got 'never'");
   expectFatal("_max_load_age:=old", "max_load_age: expected a number, got 'old'");
   expectFatal("_diagnostic_period:=fast", "diagnostic_period: expected a number, got 'fast'");
+  expectFatal("_load_wait:=long", "load_wait: expected a number, got 'long'");
+  expectFatalWith("load_pairing", list(1, 2), "load_pairing: expected a number or a name");
   expectFatal("_model:=3", "model: must be one of steady, shen-li, nss, exact, auto; got '3'");
   expectFatal("_tolerance:=tight", "tolerance: expected a finite number, got 'tight'");
   // Booleans, lists and maps (YAML in a launch file, rosparam set) for every kind of parameter.

@@ -3,10 +3,15 @@
 
 #include <geometry_msgs/WrenchStamped.h>
 #include <gtest/gtest.h>
+#include <ros/master.h>
+#include <ros/network.h>
 #include <ros/ros.h>
+#include <xmlrpcpp/XmlRpcClient.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -17,6 +22,7 @@
 #include "wheel_rail_contact/Reset.h"
 #include "wheel_rail_contact/Step.h"
 #include "wheel_rail_contact/contact_parameters.hpp"
+#include "wheel_rail_contact/scenario.hpp"
 
 namespace wrc_test {
 
@@ -39,6 +45,47 @@ inline void spinFor(double seconds) {
   spinUntil([] { return false; }, seconds);
 }
 
+/// True when every node publishing `topic` (a resolved name) holds an established connection to
+/// this node for it, read from the publisher's own XML-RPC getBusInfo. A subscriber counts a
+/// publisher (getNumPublishers) as soon as it starts connecting; the publisher adds the link only
+/// once the handshake is done, and from then on every message it publishes reaches us. So this,
+/// not getNumPublishers, says that nothing published from now on is lost.
+inline bool publishersConnectedToUs(const std::string& topic) {
+  XmlRpc::XmlRpcValue req, res, state;
+  req[0] = ros::this_node::getName();
+  if (!ros::master::execute("getSystemState", req, res, state, false)) return false;
+  std::vector<std::string> nodes;
+  const XmlRpc::XmlRpcValue& publishers = state[0];
+  for (int i = 0; i < publishers.size(); ++i)
+    if (static_cast<std::string>(publishers[i][0]) == topic)
+      for (int j = 0; j < publishers[i][1].size(); ++j)
+        nodes.push_back(static_cast<std::string>(publishers[i][1][j]));
+  if (nodes.empty()) return false;
+  for (const auto& node : nodes) {
+    XmlRpc::XmlRpcValue lookup, lookupRes, uri;
+    lookup[0] = ros::this_node::getName();
+    lookup[1] = node;
+    if (!ros::master::execute("lookupNode", lookup, lookupRes, uri, false)) return false;
+    std::string host;
+    uint32_t port = 0;
+    if (!ros::network::splitURI(static_cast<std::string>(uri), host, port)) return false;
+    XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+    XmlRpc::XmlRpcValue args, info;
+    args[0] = ros::this_node::getName();
+    if (!client.execute("getBusInfo", args, info) ||
+        info.getType() != XmlRpc::XmlRpcValue::TypeArray || info.size() < 3)
+      return false;
+    bool linked = false;
+    const XmlRpc::XmlRpcValue& links = info[2];
+    for (int i = 0; i < links.size() && !linked; ++i)
+      linked = links[i].size() > 4 && static_cast<std::string>(links[i][2]) == "o" &&
+               static_cast<std::string>(links[i][4]) == topic &&
+               static_cast<std::string>(links[i][1]) == ros::this_node::getName();
+    if (!linked) return false;
+  }
+  return true;
+}
+
 /// One contact_node seen from outside: publishes inputs, collects both outputs, calls services.
 class ContactClient {
  public:
@@ -55,19 +102,21 @@ class ContactClient {
     step_ = nh.serviceClient<wheel_rail_contact::Step>(ns + "/step", true);
   }
 
-  bool connect(double timeout = 20.0) {
+  /// Waits (to `timeout` wall seconds) until both directions are connected end to end and both
+  /// services are up: from then on nothing published on either side is lost.
+  bool connect(double timeout = 30.0) {
+    // Our publishers count a subscriber once its handshake is done (deterministic); for the
+    // node's outputs only the node's side knows (publishersConnectedToUs).
     const bool topics = spinUntil(
         [&] {
           return creepPub_.getNumSubscribers() > 0 && loadPub_.getNumSubscribers() > 0 &&
-                 stateSub_.getNumPublishers() > 0 && forceSub_.getNumPublishers() > 0;
+                 stateSub_.getNumPublishers() > 0 && forceSub_.getNumPublishers() > 0 &&
+                 publishersConnectedToUs(stateSub_.getTopic()) &&
+                 publishersConnectedToUs(forceSub_.getTopic());
         },
         timeout);
-    const bool services = topics && reset_.waitForExistence(ros::Duration(timeout)) &&
-                          step_.waitForExistence(ros::Duration(timeout));
-    // A subscriber counts a publisher before their TCP link has finished its handshake: what the
-    // node publishes in between is lost (seen with the nodelet manager on a loaded machine).
-    spinFor(0.3);
-    return services;
+    return topics && reset_.waitForExistence(ros::Duration(timeout)) &&
+           step_.waitForExistence(ros::Duration(timeout));
   }
 
   bool reset() {
@@ -75,21 +124,18 @@ class ContactClient {
     return reset_.call(srv) && srv.response.success;
   }
 
-  /// Publishes a load and gives the node `settle` wall seconds to take it (topics are not ordered
-  /// across connections; the contact_state's fz shows which load was used).
-  void load(const ros::Time& stamp, double fz, double settle = 0.02) {
+  /// Publishes a normal load (the node pairs it with the creepage of the same stamp).
+  void load(const ros::Time& stamp, double fz) {
     wheel_rail_contact::NormalLoad m;
     m.header.stamp = stamp;
     m.force = fz;
     loadPub_.publish(m);
-    if (settle > 0.0) spinFor(settle);
   }
 
-  /// Publishes one creepage and waits for exactly one message on each output.
-  ::testing::AssertionResult creep(const ros::Time& stamp, double xi, double eta, double phi,
-                                   double V, ContactState* out = nullptr) {
-    const size_t s0 = states.size(), f0 = forces.size();
-    wheel_rail_contact::Creepage m;
+  /// Publishes one creepage (optional geometry and friction in `m`'s a, b, curvature_x,
+  /// curvature_y, mu) without waiting for its output.
+  void publishCreepage(const ros::Time& stamp, double xi, double eta, double phi, double V,
+                       wheel_rail_contact::Creepage m = {}) {
     m.header.stamp = stamp;
     m.longitudinal = xi;
     m.lateral = eta;
@@ -97,7 +143,16 @@ class ContactClient {
     m.velocity = V;
     creepPub_.publish(m);
     ++sent;
-    if (!spinUntil([&] { return states.size() > s0 && forces.size() > f0; }))
+  }
+
+  /// Publishes one creepage and waits for exactly one message on each output (its load must be
+  /// on its way already, or a later one: otherwise it waits the node's load_wait).
+  ::testing::AssertionResult creep(const ros::Time& stamp, double xi, double eta, double phi,
+                                   double V, ContactState* out = nullptr,
+                                   const wheel_rail_contact::Creepage& geometry = {}) {
+    const size_t s0 = states.size(), f0 = forces.size();
+    publishCreepage(stamp, xi, eta, phi, V, geometry);
+    if (!spinUntil([&] { return states.size() > s0 && forces.size() > f0; }, 20.0))
       return ::testing::AssertionFailure() << ns_ << ": no output for the creepage at " << stamp;
     if (states.size() != s0 + 1 || forces.size() != f0 + 1)
       return ::testing::AssertionFailure() << ns_ << ": more than one output per input";
@@ -114,9 +169,12 @@ class ContactClient {
     return ::testing::AssertionSuccess();
   }
 
+  /// One Step call; `request` may carry the optional geometry and friction.
   bool step(const ros::Time& stamp, double xi, double eta, double phi, double V, double fz,
-            wheel_rail_contact::Step::Response* out) {
+            wheel_rail_contact::Step::Response* out,
+            wheel_rail_contact::Step::Request request = {}) {
     wheel_rail_contact::Step srv;
+    srv.request = request;
     srv.request.stamp = stamp;
     srv.request.longitudinal = xi;
     srv.request.lateral = eta;
@@ -129,9 +187,10 @@ class ContactClient {
     return true;
   }
 
-  /// After a short wait: exactly one message on each output per creepage and step call.
-  ::testing::AssertionResult oneOutputPerInput() {
-    spinFor(0.2);
+  /// Waits until both outputs have as many messages as creepages and step calls were sent (an
+  /// extra message, already received, fails too).
+  ::testing::AssertionResult oneOutputPerInput(double timeout = 20.0) {
+    spinUntil([&] { return states.size() >= sent && forces.size() >= sent; }, timeout);
     if (states.size() == sent && forces.size() == sent) return ::testing::AssertionSuccess();
     return ::testing::AssertionFailure() << ns_ << ": " << sent << " inputs, " << states.size()
                                          << " contact_state, " << forces.size() << " creep_force";
@@ -196,27 +255,76 @@ inline std::string statusText(int status) {
   return status >= 0 && status < 4 ? names[status] : "?";
 }
 
+/// Every output field of two steps, bit for bit.
+inline bool sameBits(const ContactState& a, const ContactState& b) {
+  return a.header.stamp == b.header.stamp && a.fx == b.fx && a.fy == b.fy && a.fz == b.fz &&
+         a.mz == b.mz && a.a == b.a && a.b == b.b && a.adhesion_fraction == b.adhesion_fraction &&
+         a.dt == b.dt && a.status == b.status && a.load_match == b.load_match &&
+         a.load_stamp == b.load_stamp && a.held == b.held && a.message == b.message;
+}
+
+/// A parameter of `node` as the text setParameter() parses; false if unset or not a scalar.
+inline bool parameterTextOf(const std::string& node, const std::string& name, std::string* text) {
+  XmlRpc::XmlRpcValue v;
+  if (!ros::param::get(node + "/" + name, v)) return false;
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeString) {
+    *text = static_cast<std::string>(v);
+  } else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) {
+    *text = std::to_string(static_cast<int>(v));
+  } else if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", static_cast<double>(v));
+    *text = buf;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 /// The contact_node's shared parameters as contact_cli options (--name value ...), read back from
 /// the parameter server, so contact_cli runs exactly the node's configuration.
 inline std::string cliOptionsOf(const std::string& nodeName) {
-  std::string opts;
-  for (const auto& d : wheel_rail_contact::parameterDocs()) {
-    XmlRpc::XmlRpcValue v;
-    if (!ros::param::get(nodeName + "/" + d.name, v)) continue;
-    std::string text;
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeString)
-      text = static_cast<std::string>(v);
-    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt)
-      text = std::to_string(static_cast<int>(v));
-    else if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%.17g", static_cast<double>(v));
-      text = buf;
-    }
-    if (text.empty()) continue;
-    opts += " --" + d.name + " '" + text + "'";
-  }
+  std::string opts, text;
+  for (const auto& d : wheel_rail_contact::parameterDocs())
+    if (parameterTextOf(nodeName, d.name, &text) && !text.empty())
+      opts += " --" + d.name + " '" + text + "'";
   return opts;
+}
+
+/// The largest magnitude of one field over rows (the scale of a relative tolerance).
+inline double largest(const std::vector<Row>& rows, double Row::*field) {
+  double s = 1e-300;
+  for (const auto& r : rows) s = std::max(s, std::fabs(r.*field));
+  return s;
+}
+
+/// The scene of a node-vs-CLI test: its rows, and `contact_cli run` on them with the config file
+/// and every shared parameter the node really runs with (read back from the parameter server).
+/// False, with a failure added, if contact_cli fails.
+inline bool sceneAndCliReference(const std::string& ns, const std::string& scene,
+                                 const std::string& config,
+                                 std::vector<wheel_rail_contact::ScenarioRow>* rows,
+                                 std::vector<Row>* reference) {
+  std::ifstream in(scene);
+  *rows = wheel_rail_contact::readScenario(in, scene);
+  std::string out;
+  const std::string command = std::string(WRC_CONTACT_CLI) + " run --scenario '" + scene +
+                              "' --config '" + config + "'" + cliOptionsOf(ns + "/contact_node");
+  if (run(command, &out) != 0) {
+    ADD_FAILURE() << command << "\n" << out;
+    return false;
+  }
+  *reference = parseCliOutput(out);
+  return true;
+}
+
+/// A node's shared parameters, read back from the parameter server.
+inline wheel_rail_contact::ContactParameters parametersOf(const std::string& node) {
+  wheel_rail_contact::ContactParameters p;
+  std::string text;
+  for (const auto& d : wheel_rail_contact::parameterDocs())
+    if (parameterTextOf(node, d.name, &text)) wheel_rail_contact::setParameter(&p, d.name, text);
+  return p;
 }
 
 }  // namespace wrc_test

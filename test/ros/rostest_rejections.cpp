@@ -1,5 +1,6 @@
 // rostest: every input contact_node must refuse gives exactly one output on both topics with the
-// documented status, finite zero forces, and the node stays up. Contacts: "r" (max_dt 0.5 s,
+// documented status and the held output (the last accepted step's forces, bit for bit, or zero
+// forces before any), and the node stays up. Contacts: "r" (max_dt 0.5 s,
 // time_jump_reset 5 s, max_load_age 0.2 s) and "nojump" (time_jump_reset off).
 #include <diagnostic_msgs/DiagnosticArray.h>
 
@@ -25,6 +26,19 @@ void expectZero(const ContactState& s) {
   EXPECT_EQ(s.fx, 0.0);
   EXPECT_EQ(s.fy, 0.0);
   EXPECT_EQ(s.mz, 0.0);
+}
+
+/// A rejected step: the forces of the last accepted step `accepted`, on both outputs.
+void expectHeld(const ContactState& s, const ContactState& accepted) {
+  EXPECT_EQ(s.status, ContactState::STATUS_REJECTED);
+  EXPECT_TRUE(s.held);
+  EXPECT_EQ(s.fx, accepted.fx);
+  EXPECT_EQ(s.fy, accepted.fy);
+  EXPECT_EQ(s.fz, accepted.fz);
+  EXPECT_EQ(s.mz, accepted.mz);
+  EXPECT_EQ(s.a, accepted.a);
+  EXPECT_EQ(s.b, accepted.b);
+  EXPECT_EQ(s.adhesion_fraction, accepted.adhesion_fraction);
 }
 
 class Rejections : public ::testing::Test {
@@ -59,17 +73,27 @@ TEST_F(Rejections, NoLoadYetAndNonPositiveLoadGiveZeroForcesWithNoLoadStatus) {
   EXPECT_EQ(s.status, kNoLoad);
   EXPECT_NE(s.message.find("no normal load"), std::string::npos) << s.message;
   expectZero(s);
+  EXPECT_EQ(s.load_match, ContactState::LOAD_NONE);
   for (double fz : {0.0, -50.0}) {
-    r->load(at(0.01), fz);
-    ASSERT_TRUE(r->creep(at(0.01 + (fz < 0 ? 0.01 : 0.0)), 0.01, 0.0, 0.0, 0.025, &s));
+    const double t = fz < 0 ? 0.02 : 0.01;
+    r->load(at(t), fz);
+    ASSERT_TRUE(r->creep(at(t), 0.01, 0.0, 0.0, 0.025, &s));
     EXPECT_EQ(s.status, kNoLoad);
+    EXPECT_EQ(s.load_match, ContactState::LOAD_SAME_STAMP);
     expectZero(s);
   }
 }
 
 TEST_F(Rejections, NonFiniteFieldsAreRejectedAndTheNodeGoesOn) {
+  // Before any accepted step: zero creep forces, fz = the step's own load.
+  ContactState first, accepted;
   r->load(at(0.0), 470.5);
-  good(0.0);
+  ASSERT_TRUE(r->creep(at(0.0), kNan, 0, 0, 0.025, &first));
+  EXPECT_EQ(first.status, kRejected);
+  EXPECT_FALSE(first.held);
+  expectZero(first);
+  EXPECT_EQ(first.fz, 470.5);
+  good(0.0, &accepted);
   const double bad[][4] = {{kNan, 0, 0, 0.025},
                            {0.01, kInf, 0, 0.025},
                            {0.01, 0, -kInf, 0.025},
@@ -78,41 +102,47 @@ TEST_F(Rejections, NonFiniteFieldsAreRejectedAndTheNodeGoesOn) {
   ContactState s;
   for (const auto& b : bad) {
     ASSERT_TRUE(r->creep(at(0.1), b[0], b[1], b[2], b[3], &s));
-    EXPECT_EQ(s.status, kRejected);
     EXPECT_NE(s.message.find("not finite"), std::string::npos) << s.message;
-    expectZero(s);
+    expectHeld(s, accepted);
   }
-  r->load(at(0.05), kNan);  // a NaN load is dropped: the previous one stays
-  good(0.1, &s);
+  r->load(at(0.05), kNan);      // a NaN load is dropped: the previous one stays
+  good(0.1, &s);                // no load stamped 0.1 s: after load_wait, the latest one, flagged
   EXPECT_DOUBLE_EQ(s.dt, 0.1);  // from the last accepted message
   EXPECT_EQ(s.fz, 470.5);
+  EXPECT_EQ(s.load_match, ContactState::LOAD_UNMATCHED);
+  EXPECT_EQ(s.load_stamp, at(0.0));
+  EXPECT_NE(s.message.find("load_wait"), std::string::npos) << s.message;
   wheel_rail_contact::Step::Response res;
   ASSERT_TRUE(r->step(at(0.2), 0.01, 0, 0, 0.025, kNan, &res));
   EXPECT_EQ(res.status, kRejected);
-  EXPECT_EQ(res.fx, 0.0);
+  EXPECT_TRUE(res.held);
+  EXPECT_EQ(res.fx, s.fx);
+  EXPECT_EQ(res.fz, s.fz);
+  EXPECT_EQ(r->states.back().fx, s.fx);  // published held too
 }
 
 TEST_F(Rejections, OlderOrEqualStampsAreRejected) {
-  r->load(at(0.0), 470.5);
-  good(1.0);
-  ContactState s;
+  r->load(at(1.0), 470.5);
+  ContactState accepted, s;
+  good(1.0, &accepted);
   for (double t : {1.0, 0.5}) {
     ASSERT_TRUE(r->creep(at(t), 0.01, 0, 0, 0.025, &s));
-    EXPECT_EQ(s.status, kRejected);
     EXPECT_NE(s.message.find("not after"), std::string::npos) << s.message;
-    expectZero(s);
+    expectHeld(s, accepted);
   }
+  r->load(at(1.1), 470.5);
   good(1.1);
 }
 
 TEST_F(Rejections, AbsurdDtIsRejectedAndTheNextMessageSteps) {
   r->load(at(0.0), 470.5);
-  good(0.0);
-  ContactState s;
+  ContactState accepted, s;
+  good(0.0, &accepted);
+  r->load(at(3.0), 470.5);
   ASSERT_TRUE(r->creep(at(3.0), 0.01, 0, 0, 0.025, &s));  // dt 3 s > max_dt 0.5 s
-  EXPECT_EQ(s.status, kRejected);
   EXPECT_NE(s.message.find("max_dt"), std::string::npos) << s.message;
-  expectZero(s);
+  expectHeld(s, accepted);
+  r->load(at(3.1), 470.5);
   good(3.1, &s);
   EXPECT_NEAR(s.dt, 0.1, 1e-9);
 }
@@ -121,14 +151,17 @@ TEST_F(Rejections, StandstillHoldsTheForcesAndBackwardsRollingIsMirrored) {
   r->load(at(0.0), 470.5);
   ContactState before, s;
   good(0.0, &before);
+  r->load(at(0.1), 470.5);
   ASSERT_TRUE(r->creep(at(0.1), 0.02, 0.0, 0.0, 0.0, &s));  // V = 0
   EXPECT_EQ(s.status, kStandstill);
   EXPECT_EQ(s.fx, before.fx);
   EXPECT_EQ(s.fy, before.fy);
+  r->load(at(0.2), 470.5);
   ASSERT_TRUE(r->creep(at(0.2), 0.01, 0.0, 0.0, -0.025, &s));  // V < 0: rolls backwards
   EXPECT_EQ(s.status, kOk);
   EXPECT_GT(s.fx,
             0.0);  // creepage / signed V: V xi < 0 slides backwards, the force pushes forwards
+  r->load(at(0.3), 470.5);
   good(0.3);
 }
 
@@ -137,6 +170,7 @@ TEST_F(Rejections, BackwardsTimeJumpResetsOnlyWhenEnabled) {
   // start fed the same load and message.
   r->load(at(10.0), 470.5);
   good(10.0);
+  r->load(at(10.1), 470.5);
   good(10.1);
   r->load(at(0.0), 400.0);  // the simulator restarted: its load comes first
   ContactState jumped, fresh;
@@ -153,12 +187,33 @@ TEST_F(Rejections, BackwardsTimeJumpResetsOnlyWhenEnabled) {
   ContactClient nojump(nh, "nojump");
   ASSERT_TRUE(nojump.connect());
   nojump.load(at(10.0), 470.5);
-  ContactState s;
-  ASSERT_TRUE(nojump.creep(at(10.0), 0.01, 0, 0, 0.025, &s));
-  EXPECT_EQ(s.status, kOk);
-  ASSERT_TRUE(nojump.creep(at(0.0), 0.01, 0, 0, 0.025, &s));
-  EXPECT_EQ(s.status, kRejected);
-  expectZero(s);
+  ContactState accepted, s;
+  ASSERT_TRUE(nojump.creep(at(10.0), 0.01, 0, 0, 0.025, &accepted));
+  EXPECT_EQ(accepted.status, kOk);
+  ASSERT_TRUE(nojump.creep(at(0.0), 0.01, 0, 0, 0.025, &s));  // answered at once: a later load
+  expectHeld(s, accepted);
+}
+
+TEST_F(Rejections, ConflictingGeometryIsRejectedAndHeld) {
+  r->load(at(0.0), 470.5);
+  ContactState accepted, s;
+  good(0.0, &accepted);
+  wheel_rail_contact::Creepage both;  // semi-axes and curvatures at once
+  both.a = 0.02;
+  both.b = 0.02;
+  both.curvature_x = 10.0;
+  both.curvature_y = 10.0;
+  wheel_rail_contact::Creepage half;  // a without b
+  half.a = 0.02;
+  wheel_rail_contact::Creepage negative;
+  negative.mu = -0.1;
+  for (const auto& g : {both, half, negative}) {
+    ASSERT_TRUE(r->creep(at(0.0), 0.01, 0, 0, 0.025, &s, g));  // its load came already
+    expectHeld(s, accepted);
+  }
+  EXPECT_NE(r->states[r->states.size() - 3].message.find("both"), std::string::npos);
+  EXPECT_NE(r->states[r->states.size() - 2].message.find("together"), std::string::npos);
+  EXPECT_NE(r->states.back().message.find("mu is negative"), std::string::npos);
 }
 
 TEST_F(Rejections, DiagnosticsCountTheRejections) {

@@ -143,25 +143,6 @@ std::string seconds(int64_t ns) {
   return std::to_string(static_cast<double>(ns) * 1e-9);
 }
 
-/// The node's shared parameters, read back from the parameter server.
-ContactParameters parametersOf(const std::string& node) {
-  ContactParameters p;
-  for (const auto& d : wheel_rail_contact::parameterDocs()) {
-    XmlRpc::XmlRpcValue v;
-    if (!ros::param::get(node + "/" + d.name, v)) continue;
-    std::string text;
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeString) text = static_cast<std::string>(v);
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) text = std::to_string(static_cast<int>(v));
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%.17g", static_cast<double>(v));
-      text = buf;
-    }
-    wheel_rail_contact::setParameter(&p, d.name, text);
-  }
-  return p;
-}
-
 /// The pid of a node, from its own XML-RPC getPid (never by process name: other rostests may run
 /// contact_nodes on this machine at the same time). -1 if it cannot be found.
 int nodePid(const std::string& node) {
@@ -335,6 +316,7 @@ class StressContact {
     if (!reset_.call(srv) || !srv.response.success) t->error(ns_ + ": reset call failed");
     mirror_->reset();
     hasStamp_ = false;
+    hasAccepted_ = false;
     noLoadAllowed_ = true;
     loads_.clear();
     ++t->resets;
@@ -354,8 +336,9 @@ class StressContact {
     for (double v : {st.fx, st.fy, st.fz, st.mz, st.a, st.b, st.adhesion_fraction, st.dt})
       if (!std::isfinite(v)) return t->error(at + "non-finite output");
     if (s.kind != Kind::kCanonical) {
-      if (st.status != ContactState::STATUS_REJECTED || st.fx != 0.0 || st.fy != 0.0)
+      if (st.status != ContactState::STATUS_REJECTED)
         t->error(at + "a fault message was not rejected: " + st.message);
+      checkHeld(st, at, t);
       const char* why = s.kind == Kind::kNonFinite ? "not finite" : "not after";
       if (st.message.find(why) == std::string::npos) t->error(at + "rejected for " + st.message);
       ++t->rejected;
@@ -365,11 +348,22 @@ class StressContact {
       if (!s.overtaken || st.status != ContactState::STATUS_REJECTED ||
           st.message.find("not after") == std::string::npos)
         t->error(at + "only the overtaken half of a swapped pair is rejected: " + st.message);
+      checkHeld(st, at, t);
       ++t->rejected;
       return;
     }
+    accepted_ = st;
+    hasAccepted_ = true;
     checkDt(s, st, at, t);
     mirrorStep(s, st, at, t);
+  }
+
+  /// A rejected step publishes the last accepted step's output (zero forces before any).
+  void checkHeld(const ContactState& st, const std::string& at, Tally* t) const {
+    const bool same = hasAccepted_ ? st.held && st.fx == accepted_.fx && st.fy == accepted_.fy &&
+                                         st.fz == accepted_.fz && st.mz == accepted_.mz
+                                   : !st.held && st.fx == 0.0 && st.fy == 0.0 && st.mz == 0.0;
+    if (!same) t->error(at + "a rejected step does not hold the last accepted output");
   }
 
   void checkDt(const Sent& s, const ContactState& st, const std::string& at, Tally* t) {
@@ -453,7 +447,8 @@ class StressContact {
   std::vector<ContactState> states_;
   std::vector<geometry_msgs::WrenchStamped> forces_;
   std::map<int64_t, double> loads_;  // the last few loads published, by tick
-  bool hasStamp_ = false, noLoadAllowed_ = true;
+  bool hasStamp_ = false, noLoadAllowed_ = true, hasAccepted_ = false;
+  ContactState accepted_;  // the last output that was not rejected
   int64_t lastStampNs_ = 0, nextTick_ = 0, firstPerturbed_ = -1, lastPerturbed_ = -1;
   double rolled_ = 0.0;  // distance rolled since the last perturbed tick [m]
 };
