@@ -320,14 +320,6 @@ StepResult ContactStepper::stepImpl(int64_t stampNs, const StepInput& input, con
   in.fz = choice.load.valid ? choice.load.fz : 0.0;
   r.loadMatch = choice.match;
   r.loadStampNs = choice.load.valid ? choice.load.stampNs : 0;
-  const char* bad = checkStepInput(in);
-  if (*bad) {
-    r.event = StepEvent::kNonFinite;
-    r.out.status = StepStatus::kRejected;
-    r.out.message = bad;
-    ++counters_.nonFinite;
-    return finish(r, in.fz);
-  }
   const std::string geometry = checkGeometry(in, k);
   if (!geometry.empty() || (k.A > 0.0 && !hasMaterial_)) {
     r.event = StepEvent::kBadGeometry;
@@ -336,6 +328,18 @@ StepResult ContactStepper::stepImpl(int64_t stampNs, const StepInput& input, con
                                   : "curvature_x, curvature_y: this stepper has no material (G, "
                                     "nu) for Hertz";
     ++counters_.badGeometry;
+    return finish(r, in.fz);
+  }
+  // The geometry's own reasons (pairs, curvatures) first; the core screens the motion fields here
+  // and the geometry's ranges in the model.
+  StepInput motion = in;
+  motion.a = motion.b = motion.mu = 0.0;
+  const char* bad = checkStepInput(motion);
+  if (*bad) {
+    r.event = StepEvent::kNonFinite;
+    r.out.status = StepStatus::kRejected;
+    r.out.message = bad;
+    ++counters_.nonFinite;
     return finish(r, in.fz);
   }
   int64_t diff = 0;

@@ -157,7 +157,7 @@ void expectEqualState(const ContactState& s, const Ref& r, const std::string& wh
 }
 
 /// The vehicle node's configuration of one contact, read back from the parameter server.
-wheel_rail_contact::ContactParameters parametersOf(const std::string& name) {
+wheel_rail_contact::ContactParameters contactParametersOf(const std::string& name) {
   wheel_rail_contact::ContactParameters p;
   for (const auto& d : wheel_rail_contact::parameterDocs()) {
     XmlRpc::XmlRpcValue v;
@@ -241,7 +241,7 @@ TEST(Vehicle, PerTickGeometryAndFrictionEqualAStepperGivenTheSame) {
   std::map<std::string, std::unique_ptr<wheel_rail_contact::ContactStepper>> steppers;
   std::map<std::string, wheel_rail_contact::ContactParameters> params;
   for (const auto& n : names) {
-    params[n] = parametersOf(n);
+    params[n] = contactParametersOf(n);
     steppers[n] = std::make_unique<wheel_rail_contact::ContactStepper>(
         wheel_rail_contact::makeContactModel(params[n]), wheel_rail_contact::StepperOptions{});
   }
