@@ -309,6 +309,13 @@ StepResult ContactStepper::stepWithLoad(int64_t stampNs, double V, double xi, do
   return stepWithLoad(stampNs, in);
 }
 
+StepResult ContactStepper::refuse(std::string why, double load) {
+  StepResult r;
+  r.out.status = StepStatus::kRejected;
+  r.message = std::move(why);
+  return finish(r, load);
+}
+
 StepResult ContactStepper::stepImpl(int64_t stampNs, const StepInput& input, const GapCurvatures& k,
                                     const Choice& paired) {
   ++counters_.creepages;

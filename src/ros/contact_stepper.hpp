@@ -157,6 +157,10 @@ class ContactStepper {
   StepResult stepWithLoad(int64_t stampNs, const StepInput& in,
                           const GapCurvatures& curvatures = {});
   StepResult stepWithLoad(int64_t stampNs, double V, double xi, double eta, double phi, double fz);
+  /// A step its caller refuses without stepping (the vehicle interface: a contact named twice in a
+  /// tick or missing from it): rejected with `why` and held like every rejected step; the model,
+  /// the time base and the loads are untouched. `load` is the caller's load for it (0 if none).
+  StepResult refuse(std::string why, double load);
 
   /// Clears everything a fresh stepper does not have: model state, time base, loads, held
   /// output. Creepages still waiting for their load are answered first, rejected (takeReady()).

@@ -86,23 +86,15 @@ class VehicleStepper {
   struct Contact {
     VehicleContactConfig config;
     std::unique_ptr<ContactStepper> stepper;
-    StepOutput lastAccepted;  ///< zero until the first accepted step and after a reset
     VehicleContactCounters counters;
   };
-  /// Applies the hold rule to a result of contact `i` and records an accepted one.
-  void settle(Contact* c, VehicleContactResult* r);
+  /// Records the hold of a result of contact `c` (ContactStepper holds every rejected step).
+  static void countHeld(Contact* c, VehicleContactResult* r);
 
   std::vector<Contact> contacts_;
   std::map<std::string, int> index_;
   std::vector<int> seen_;  ///< entries per contact in the current tick
   VehicleCounters counters_;
 };
-
-/// Checks a tick entry's optional fields and fills in.a, in.b from the curvatures (Hertz, with G
-/// and nu of `p`). Returns "" if the entry may be stepped, else why it is rejected. With a load
-/// that makes no contact (fz < kMinLoad) or is not finite the curvatures are left unused: the
-/// stepper then reports no load or a rejected input, as it does without them.
-std::string resolveGeometry(const VehicleContactInput& entry, const ContactParameters& p,
-                            StepInput* in);
 
 }  // namespace wheel_rail_contact

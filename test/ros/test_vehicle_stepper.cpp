@@ -171,42 +171,48 @@ TEST(VehicleStepper, CurvaturesGiveTheHertzPatchOfTheTicksLoad) {
   in.a = h.a;
   in.b = h.b;
   expectSame(out[0].step, s->stepWithLoad(0, in));
-  StepInput resolved;
-  ASSERT_EQ(resolveGeometry(e, cfg[0].parameters, &resolved), "");
-  EXPECT_EQ(resolved.a, h.a);
-  EXPECT_EQ(resolved.b, h.b);
+  EXPECT_EQ(out[0].step.out.a, h.a);
+  EXPECT_EQ(out[0].step.out.b, h.b);
   EXPECT_GT(h.a, h.b);  // the smaller curvature along x: the longer axis along x
 }
 
 TEST(VehicleStepper, MalformedGeometryIsRejectedAndHeld) {
-  const ContactParameters p;
-  StepInput in;
   struct Case {
     double a, b, cx, cy, mu;
     const char* why;
   } cases[] = {
-      {1e-3, 0, 0, 0, 0, "a and b are given together"},
-      {0, 0, 0, 3.0, 0, "curvature_x and curvature_y are given together"},
-      {1e-3, 1e-3, 2.0, 3.0, 0, "not both"},
+      {1e-3, 0, 0, 0, 0, "a and b must be given together"},
+      {0, 0, 0, 3.0, 0, "curvature_x and curvature_y must be given together"},
+      {1e-3, 1e-3, 2.0, 3.0, 0, "both a, b and curvature_x, curvature_y given"},
       {-1e-3, 1e-3, 0, 0, 0, "a is negative"},
       {0, 0, 0, 0, std::numeric_limits<double>::infinity(), "mu is not finite"},
       {0, 0, std::numeric_limits<double>::quiet_NaN(), 1.0, 0, "curvature_x is not finite"},
       {0, 0, 1e13, 1.0, 0, "curvature_x exceeds"},
   };
+  int64_t t = 0;
   for (const auto& c : cases) {
+    VehicleStepper v(configs({"c"}));
+    std::vector<VehicleContactResult> out;
     auto e = entry("c", 1e-3, 8e4);
     e.in.a = c.a;
     e.in.b = c.b;
     e.in.mu = c.mu;
     e.curvatureX = c.cx;
     e.curvatureY = c.cy;
-    EXPECT_NE(resolveGeometry(e, p, &in).find(c.why), std::string::npos) << c.why;
+    v.step(t += kMs, {e}, &out);
+    EXPECT_EQ(out[0].event, VehicleEvent::kBadGeometry) << c.why;
+    EXPECT_NE(out[0].step.message.find(c.why), std::string::npos) << out[0].step.message;
   }
-  // Curvatures with no load: left to the stepper, which reports no load as without them.
-  auto e = entry("c", 1e-3, 0.0);
-  e.curvatureX = e.curvatureY = 2.0;
-  EXPECT_EQ(resolveGeometry(e, p, &in), "");
-  EXPECT_EQ(in.a, 0.0);
+  {
+    // Curvatures with no load: the stepper reports no load, as it does without them.
+    VehicleStepper v(configs({"c"}));
+    std::vector<VehicleContactResult> out;
+    auto e = entry("c", 1e-3, 0.0);
+    e.curvatureX = e.curvatureY = 2.0;
+    v.step(0, {e}, &out);
+    EXPECT_EQ(out[0].event, VehicleEvent::kStepped);
+    EXPECT_EQ(out[0].step.out.status, StepStatus::kNoLoad);
+  }
 
   VehicleStepper v(configs({"c"}));
   std::vector<VehicleContactResult> out;
