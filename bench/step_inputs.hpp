@@ -37,7 +37,7 @@ inline std::unique_ptr<ContactModel> makeModel(const std::string& model, const s
     return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kSizedForFzMax);
   if (p.model == "steady") return std::make_unique<SteadyModel>(p);
   return std::make_unique<NssModel>(
-      p, shippedChi ? ChiTable::load(ChiTable::defaultPath()) : ChiTable::uniform({0.4, 1.1, 0.6}));
+      p, shippedChi ? ChiTable::shipped() : ChiTable::uniform({0.4, 1.1, 0.6}));
 }
 
 }  // namespace bench

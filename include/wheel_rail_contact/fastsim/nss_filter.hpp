@@ -50,8 +50,8 @@ FilterZ discretise(const SecondOrderChi& chi, double a, double V, double dt);
 /// Paper eq. 15: per direction, the Z coefficients of the two creepage kinds acting along it,
 /// weighted by w1 and w2 (|xi| and |phi| sqrt(ab) along x; |eta| and |phi| sqrt(ab) along y).
 /// Both weights zero would be 0/0: the caller keeps its previous weights instead. All five
-/// coefficients are mixed (second order: the denominators' convex combination stays stable, README
-/// "Spin: a second-order F").
+/// coefficients are mixed (second order: the denominators' convex combination stays stable,
+/// doc/validation.md "Spin: a second-order F").
 FilterZ weightedFilter(const FilterZ& z1, double w1, const FilterZ& z2, double w2);
 
 }  // namespace wheel_rail_contact
