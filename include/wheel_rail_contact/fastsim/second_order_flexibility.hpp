@@ -3,8 +3,8 @@
 /// exact solver"):
 ///   F(k) = (chi2 + s chi1 + s^2 chi4) / (1 + s chi3 + s^2 chi5),  s = i k,  k = 2 pi a / lambda,
 /// with s <-> (a/V) d/dt as for the first-order F of nss_filter.hpp, which it contains
-/// (chi4 = chi5 = 0). All chi dimensionless. The march discretises it with discretise() of
-/// nss_filter.hpp (doc/method.md#second-order-flexibility).
+/// (chi4 = chi5 = 0). All chi dimensionless. The march discretises it inside
+/// the core (Tustin, doc/method.md#second-order-flexibility).
 #pragma once
 
 #include <complex>

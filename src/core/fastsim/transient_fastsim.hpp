@@ -9,8 +9,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/fastsim/discrete_filter.hpp"
 #include "core/fastsim/fastsim.hpp"
-#include "wheel_rail_contact/fastsim/nss_filter.hpp"
 
 namespace wheel_rail_contact {
 
