@@ -1,9 +1,10 @@
 # Tables shipped inside the core library: each config/<name>.csv is compiled in as text, so an
 # installed package (or a copied binary) never looks for a data file in a source tree. Read through
-# wheel_rail_contact::shippedTable("<name>") (shipped_tables.hpp). To ship another table, append its
-# name to WRC_SHIPPED_TABLES before calling wrc_generate_shipped_tables.
+# wheel_rail_contact::shippedTable("<name>") (shipped_tables.hpp). To ship another table, add its
+# name to WRC_SHIPPED_TABLES here: the package and the fuzz build (test/fuzz) both read this list.
 #   wrc_generate_shipped_tables(<out .cpp> <directory of the CSVs> <name>...)
 # The CSVs are configure dependencies: editing one regenerates the source.
+set(WRC_SHIPPED_TABLES chi_table)
 function(wrc_generate_shipped_tables out dir)
   set(entries "")
   foreach(name ${ARGN})
