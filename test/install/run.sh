@@ -27,6 +27,11 @@ check() {  # name, log, command...
   fi
 }
 
+# The install space lies inside the package's directory, where roslaunch's search for a launch file
+# would find a second copy ("multiple files named contact.launch"): it exists only while this
+# script runs, after the rostests (scripts/run_tests.sh).
+trap 'rm -rf "$prefix"' EXIT
+
 install_space() {
   rm -rf "$prefix"
   make -C build install
