@@ -7,8 +7,8 @@
 // with steady FastSim on the same mesh: the adaptive mesh with Steady (SteadyModel, mesh fitted to
 // the patch), the fixed mesh with SteadyFixedMesh (steady FastSim on nss's fixed mesh). The nss
 // rows run a uniform first-order chi; the *Shipped rows the shipped table (second order with spin).
-// The README's table with ratios, least over whole sweeps: scripts/step_time.sh. Instruction
-// counts, which do not depend on the load: scripts/step_cost.sh.
+// doc/performance.md's table with ratios, least over whole sweeps: scripts/step_time.sh.
+// Instruction counts, which do not depend on the load: scripts/step_cost.sh.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>

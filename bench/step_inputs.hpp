@@ -37,15 +37,13 @@ inline std::unique_ptr<ContactModel> makeModel(const std::string& model, const s
   p.model = calibrated ? model.substr(0, model.size() - suffix.size()) : model;
   p.mesh = mesh;
   p.nx = p.ny = n;
-  const SteadyCalibration cal =
-      calibrated ? SteadyCalibration::load(SteadyCalibration::defaultPath()) : SteadyCalibration();
+  const SteadyCalibration cal = calibrated ? SteadyCalibration::shipped() : SteadyCalibration();
   if (p.model == "steady" && p.mesh == "fixed")
     return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kSizedForFzMax, cal);
   if (p.model == "steady")
     return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kFittedToPatch, cal);
   return std::make_unique<NssModel>(
-      p, shippedChi ? ChiTable::load(ChiTable::defaultPath()) : ChiTable::uniform({0.4, 1.1, 0.6}),
-      cal);
+      p, shippedChi ? ChiTable::shipped() : ChiTable::uniform({0.4, 1.1, 0.6}), cal);
 }
 
 }  // namespace bench

@@ -6,7 +6,7 @@ on a circular patch a = b = 20 mm at Fz0 = 470.5 N, G = 1 MPa, nu = 0.28, mu = 0
 V = 25 mm/s (see config/paper.yaml). lambda = 10 a. One row per step of V dt = 2a/20 (one
 FastSim element at nx = 20), two wavelengths.
 Spin: the paper gives phi = 0.001 without units; we read it in CONTACT's unit 1/mm, i.e.
-phi = 1 1/m (choice, the same as src/validation/paper_scenes.cpp and the README).
+phi = 1 1/m (choice, the same as src/validation/paper_scenes.cpp and doc/validation.md).
 usage: make_scenes.py [OUT_DIR]   (default: scenes/)
 """
 import math

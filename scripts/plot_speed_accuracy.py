@@ -4,7 +4,7 @@
 doc/figures/speed_accuracy.png: error against cost per step, log-log, one marker per model and mesh (the
 mesh n of n x n written beside it), two panels: the worst and the mean error over the scenes. The
 Pareto front (no other point is both cheaper and more accurate) is drawn in grey and its points are
-printed, so that the README can be read against them.
+printed, so that doc/validation.md can be read against them.
 Usage: python3 scripts/plot_speed_accuracy.py [doc/data/speed_accuracy.csv] [doc/figures/speed_accuracy.png]
 """
 import csv

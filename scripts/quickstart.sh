@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # One entry point for a fresh Debian 12 machine: installs what is missing, builds, then
-#   demo  runs the demo scene through the real node (the README's main job)
-#   test  runs every test and ends with "N passed, N failed" (non-zero exit on any failure)
+#   demo  runs the demo scene through the real node (the README's first command)
+#   test       unit, validation at coarse settings, CLI, rostests and the install space; ends with
+#              "N passed, N failed" (non-zero exit on any failure)
+#   test-fast  the gtest binaries only (unit, validation, CLI, the node's ROS-free part)
+#   test-full  test, then the stress rostests, sanitizers and fuzzing (CI: .ci/run)
 #   build only installs and builds
 set -eo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -38,7 +41,7 @@ build() {
   # /usr/bin first: a pyenv python3 elsewhere on PATH lacks catkin_pkg and rospy.
   export PATH="/usr/bin:$PATH"
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-    -DCATKIN_ENABLE_TESTING=ON -DWRC_WERROR="${WRC_WERROR:-OFF}" > build.log 2>&1 || { cat build.log; exit 1; }
+    -DCATKIN_ENABLE_TESTING=ON -DCMAKE_INSTALL_PREFIX="$here/build/install" -DWRC_WERROR="${WRC_WERROR:-OFF}" > build.log 2>&1 || { cat build.log; exit 1; }
   make_retry build.log -C build -j"$(nproc)" all tests || { tail -60 build.log; exit 1; }
   echo "[quickstart] built (log: build.log)"
 }
@@ -56,10 +59,12 @@ install_missing
 build
 case "$mode" in
   build) ;;
-  test) exec bash scripts/run_tests.sh ;;
+  test) exec bash scripts/run_tests.sh standard ;;
+  test-fast) exec bash scripts/run_tests.sh fast ;;
+  test-full) exec bash scripts/run_tests.sh full ;;
   demo)
     if [ -x scripts/demo.sh ]; then ros_env; exec bash scripts/demo.sh; fi
     echo "[quickstart] no ROS demo yet: replaying scenes/demo.csv through contact_cli"
     build/devel/lib/wheel_rail_contact/contact_cli run --scenario scenes/demo.csv --model steady ;;
-  *) echo "usage: $0 {demo|test|build}" >&2; exit 2 ;;
+  *) echo "usage: $0 {demo|test|test-fast|test-full|build}" >&2; exit 2 ;;
 esac

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Splits each model's error on the varying-load scenes (paper section 4.2) into a static and a
-dynamic part (README, "Why nss and shen-li tie under a varying load").
+dynamic part (doc/validation.md, "Why nss and shen-li tie under a varying load").
 
   static  = F_qs,model(Fz(t)) - F_qs,exact(Fz(t))     (the model's steady force at the current load
                                                        against the exact steady force)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Time per step of every FastSim model and mesh (bench_fastsim) and its ratio to steady FastSim on
-# the same mesh, as the README's "Cost per step" table. The least CPU time over ROUNDS whole sweeps
+# the same mesh, as doc/performance.md's "Cost per step" table. The least CPU time over ROUNDS whole sweeps
 # of 25 short repetitions each: this machine's host interrupts it in spells that only ever add
 # time, so the least is what the code costs; whole sweeps spread a slow spell over every model.
 # usage: scripts/step_time.sh [ROUNDS]   (default 4, about a minute a round); needs a Release build.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Prints the accuracy tables of the README from accuracy_report's CSVs (doc/data)."""
+"""Prints the accuracy tables of doc/validation.md from accuracy_report's CSVs (doc/data)."""
 import csv
 import os
 import sys

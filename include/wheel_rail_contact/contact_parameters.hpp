@@ -24,7 +24,8 @@ struct ContactParameters {
   double tolerance = 0.05;
   /// Largest normal load the fixed mesh must cover [N]; 0 = 1.5 * fz0.
   double fz_max = 0.0;
-  /// chi table file for nss; empty = the table shipped in the package (config/chi_table.csv).
+  /// chi table file for nss; empty = the table shipped in the library (config/chi_table.csv,
+  /// compiled in).
   std::string chi_table;
   /// FastSim's steady part in steady, shen-li, nss and auto: "calibrated" (flexibilities
   /// identified against the exact solver, config/steady_calibration.csv) or "classic" (Kalker's

@@ -51,8 +51,8 @@ FrequencyResponse frequencyResponse(const ContactParameters& p, CreepageKind kin
   // (fastsim_frequency.hpp).
   SecondOrderChi chi;  // shen-li: F == 1; nss: first or second order, as the table holds
   if (p.model == "nss") {
-    const std::string path = p.chi_table.empty() ? ChiTable::defaultPath() : p.chi_table;
-    chi = ChiTable::load(path).forMesh(p.nx).secondOrderAt(kind, ab);
+    const ChiTable table = p.chi_table.empty() ? ChiTable::shipped() : ChiTable::load(p.chi_table);
+    chi = table.forMesh(p.nx).secondOrderAt(kind, ab);
   }
   FrequencyResponse r;
   r.steady = fastsimSteadyCoefficient(kind, ab, p.nu, p.nx, p.ny);

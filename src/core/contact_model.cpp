@@ -85,7 +85,7 @@ namespace {
 SteadyCalibration steadyCalibration(const ContactParameters& p) {
   if (p.model == "exact" || !calibratedFastSim(p)) return SteadyCalibration();
   try {
-    return SteadyCalibration::load(SteadyCalibration::defaultPath());
+    return SteadyCalibration::shipped();
   } catch (const std::runtime_error& e) {
     throw std::invalid_argument(std::string("fastsim: ") + e.what());
   }
@@ -102,10 +102,9 @@ std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
   if (p.model == "shen-li")
     return std::make_unique<NssModel>(p, ChiTable::uniform({}), calibration);
   if (p.model == "nss" || p.model == "auto") {
-    const std::string path = p.chi_table.empty() ? ChiTable::defaultPath() : p.chi_table;
     ChiTable chi;
     try {
-      chi = ChiTable::load(path);
+      chi = p.chi_table.empty() ? ChiTable::shipped() : ChiTable::load(p.chi_table);
     } catch (const std::runtime_error& e) {
       throw std::invalid_argument(std::string("chi_table: ") + e.what());
     }

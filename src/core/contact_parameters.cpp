@@ -57,7 +57,8 @@ std::vector<ParameterDoc> parameterDocs() {
       {"tolerance", "-", str(d.tolerance),
        "model auto: force error allowed, fraction of the peak force, (0, 1)"},
       {"fz_max", "N", str(d.fz_max), "largest load the fixed mesh covers; 0 = 1.5 fz0"},
-      {"chi_table", "", "(shipped)", "chi table CSV for nss; empty = config/chi_table.csv"},
+      {"chi_table", "", "(shipped)",
+       "chi table CSV for nss; empty = the shipped config/chi_table.csv"},
       {"fastsim", "", "(classic)",
        "calibrated | classic: FastSim's steady part for steady, shen-li, nss and auto; "
        "empty = classic (Kalker 1982)"},

@@ -194,7 +194,7 @@ void readOption(tools::Args& a, Options* o) {
 
 int run(const Options& o) {
   tools::requireFolder(o.out);
-  const ChiTable table = ChiTable::load(ChiTable::defaultPath()).forMesh(o.nx);
+  const ChiTable table = ChiTable::shipped().forMesh(o.nx);
   if (o.parts != "scenes") frequencyErrors(o, table);
   if (o.parts != "freq") sceneErrors(o);
   return 0;

@@ -354,10 +354,11 @@ int run(const Options& o, int argc, char** argv) {
     ~Saver() { c->save(); }
   } saver{&exact};
   if (!o.out.empty()) writeTable(o, &exact, argc, argv);
-  const std::string path = !o.out.empty()     ? o.out
-                           : !o.table.empty() ? o.table
-                                              : SteadyCalibration::defaultPath();
-  writeCurves(o, &exact, path == "classic" ? SteadyCalibration() : SteadyCalibration::load(path));
+  const std::string path = !o.out.empty() ? o.out : o.table;  // empty: the shipped table
+  writeCurves(o, &exact,
+              path == "classic" ? SteadyCalibration()
+              : path.empty()    ? SteadyCalibration::shipped()
+                                : SteadyCalibration::load(path));
   return 0;
 }
 

@@ -1,6 +1,6 @@
 /// The validation scenes of Guiral et al. (2013) as scenarios for any ContactModel, and the error
 /// measure we judge models by. Units SI (the paper works in mm: its spin values are read in 1/mm,
-/// as CONTACT's, i.e. phi = 0.0001 /mm = 0.1 1/m — our choice, stated in the README).
+/// as CONTACT's, i.e. phi = 0.0001 /mm = 0.1 1/m — our choice, stated in doc/validation.md).
 #pragma once
 
 #include <string>

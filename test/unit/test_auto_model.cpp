@@ -67,7 +67,7 @@ TEST(AutoModel, MeshGrowsAsTheToleranceTightens) {
 TEST(AutoModel, RelaxationLengthIsAboutThePatchSize) {
   // Non-steady theory: the creep force relaxes over a distance of the order of a.
   const ContactParameters p;
-  const double l = nssRelaxationLength(p, ChiTable::load(ChiTable::defaultPath()));
+  const double l = nssRelaxationLength(p, ChiTable::shipped());
   EXPECT_GT(l, 0.3 * p.a0);
   EXPECT_LT(l, 3.0 * p.a0);
 }
@@ -166,7 +166,7 @@ TEST(AutoModel, MeetsItsToleranceOnWavesTheChartDidNotSee) {
         ContactParameters p = h.scene.params;
         p.model = "auto";
         p.tolerance = tolerance;
-        AutoModel m(p, ChiTable::load(ChiTable::defaultPath()));
+        AutoModel m(p, ChiTable::shipped());
         std::vector<StepOutput> out;
         int nssScored = 0, scored = 0;
         const double from = h.scene.rows.back().t - h.scene.period;

@@ -1,4 +1,4 @@
-// Regression tests of the fuzzing findings (test/fuzz/, README "Fuzzing and sanitizers"): each
+// Regression tests of the fuzzing findings (test/fuzz/, doc/hardening.md): each
 // failed before its fix.
 #include <gtest/gtest.h>
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <complex>
 
+#include "core/fastsim/discrete_filter.hpp"
 #include "wheel_rail_contact/fastsim/nss_filter.hpp"
 #include "wheel_rail_contact/fastsim/second_order_flexibility.hpp"
 

@@ -273,18 +273,18 @@ TEST(NssModel, StaysBoundedForExtremeSteps) {
 }
 
 TEST(NssModel, SettledStateContinuesWithoutAJump) {
-  // settle() leaves the steady traction as the history: a step() with the same input reproduces it
-  // where the patch adheres. At slipping nodes the march's own fixed point differs a little where
-  // the two directions' filters differ (the time term tilts the slip direction): within 1e-6 mu fz
-  // at small creepage (only the trailing-edge nodes slip), 1e-3 mu fz in partial slip.
+  // steadyStep() leaves the steady traction as the history: a step() with the same input reproduces
+  // it where the patch adheres. At slipping nodes the march's own fixed point differs a little
+  // where the two directions' filters differ (the time term tilts the slip direction): within 1e-6
+  // mu fz at small creepage (only the trailing-edge nodes slip), 1e-3 mu fz in partial slip.
   for (const char* mesh : {"fixed", "adaptive", "auto"})
     for (const double scale : {0.01, 1.0}) {
       ContactParameters p;
       p.model = "nss";
       p.mesh = mesh;
-      NssModel m(p, ChiTable::load(ChiTable::defaultPath()));
+      NssModel m(p, ChiTable::shipped());
       const StepInput in{1e-4, 10.0, 2e-3 * scale, -1e-3 * scale, 0.5 * scale, 0.9 * p.fz0};
-      const StepOutput settled = m.settle(in), stepped = m.step(in);
+      const StepOutput settled = m.steadyStep(in), stepped = m.step(in);
       const double tol = (scale < 1.0 ? 1e-6 : 1e-3) * p.mu * in.fz;
       EXPECT_NEAR(stepped.fx, settled.fx, tol) << mesh << " " << scale;
       EXPECT_NEAR(stepped.fy, settled.fy, tol) << mesh << " " << scale;
@@ -295,8 +295,8 @@ TEST(NssModel, SettledStateContinuesWithoutAJump) {
 
 // A table with the fitted second-order F for kind 23 and first-order 11, 22: spin switches the
 // march to second order, no spin back to first (s2 handed on into s1). Every path that touches the
-// state (adaptive carry, reversal, speed change, settle) must stay finite and bounded, and a model
-// that never spins must not see the second order at all.
+// state (adaptive carry, reversal, speed change, steadyStep) must stay finite and bounded, and a
+// model that never spins must not see the second order at all.
 TEST(NssModel, SecondOrderSpinSurvivesEveryStatePath) {
   const ChiTable table = secondOrderSpinTable();
   const std::string path = ::testing::TempDir() + "chi_first.csv";
@@ -309,7 +309,7 @@ TEST(NssModel, SecondOrderSpinSurvivesEveryStatePath) {
       StepInput in = scene(k);
       in.phi = (k / 100) % 2 ? 0.0 : 3.0;                          // second order, then first, ...
       if (k >= 300) in.V = -in.V * (1 + 0.5 * std::sin(0.1 * k));  // reversal, varying speed
-      const StepOutput o = k == 450 ? m.settle(in) : m.step(in);
+      const StepOutput o = k == 450 ? m.steadyStep(in) : m.step(in);
       ASSERT_TRUE(std::isfinite(o.fx) && std::isfinite(o.fy) && std::isfinite(o.mz)) << k;
       ASSERT_LE(std::hypot(o.fx, o.fy), 0.3 * in.fz * (1 + 1e-9)) << mesh << " " << k;
     }

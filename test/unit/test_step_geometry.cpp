@@ -145,7 +145,7 @@ TEST(StepGeometry, NssCarriesItsHistoryAcrossAStepOfAOverB) {
   for (const char* mesh : {"fixed", "adaptive"}) {
     ContactParameters p = params("nss", mesh);
     p.fz_max = 3.5 * p.fz0;  // the fixed mesh covers both patches (b2 = 1.46 b0)
-    NssModel m(p, ChiTable::load(ChiTable::defaultPath()));
+    NssModel m(p, ChiTable::shipped());
     SteadyModel steady(params("steady"));
     StepOutput before, after, last;
     for (int k = 0; k < 200; ++k) before = m.step(withPatch(rolling(1e-3, 1e-3), a1, b1));
@@ -165,7 +165,7 @@ TEST(StepGeometry, NssCarriesItsHistoryAcrossAStepOfAOverB) {
 }
 
 TEST(StepGeometry, AChangeOfMuRescalesTheBoundAndKeepsTheHistory) {
-  NssModel m(params("nss"), ChiTable::load(ChiTable::defaultPath()));
+  NssModel m(params("nss"), ChiTable::shipped());
   StepOutput before, after;
   for (int k = 0; k < 200; ++k) before = m.step(rolling(2e-4));  // nearly full adhesion
   after = m.step(withPatch(rolling(2e-4), 0.0, 0.0, 0.6));
@@ -179,7 +179,7 @@ TEST(StepGeometry, AChangeOfMuRescalesTheBoundAndKeepsTheHistory) {
 }
 
 TEST(StepGeometry, FixedMeshClipsAPatchBeyondItWithAMessage) {
-  NssModel m(params("nss"), ChiTable::load(ChiTable::defaultPath()));
+  NssModel m(params("nss"), ChiTable::shipped());
   const StepOutput out = m.step(withPatch(rolling(1e-3), 6e-3, 9e-3));
   EXPECT_EQ(out.status, StepStatus::kOk);
   EXPECT_NE(std::string(out.message).find("clipped"), std::string::npos);
@@ -212,7 +212,7 @@ TEST(StepGeometry, ExactHonoursTheStepPatchAndRejectsOneBeyondItsGrid) {
 TEST(StepGeometry, ShippedChiIsStableAtEveryAOverB) {
   // nss re-picks chi at each new a/b and rejects the step where the interpolated second-order F
   // is unstable: on the shipped table that must happen nowhere in Kalker's range, on any mesh.
-  const ChiTable table = ChiTable::load(ChiTable::defaultPath());
+  const ChiTable table = ChiTable::shipped();
   for (int n : table.meshes()) {
     ContactParameters p = params("nss", "adaptive");
     p.nx = p.ny = n;

@@ -210,8 +210,9 @@ TEST(TransientFastSim, OutsideStatesHeldDecayedEqualTheFullUpdate) {
   // nodes outside the patch as s / D and updates only the nodes crossing its edge
   // (TransientState). The reference takes every outside node in full: marchSecond with
   // first-order filters runs the same arithmetic with s2 = 0. Under a load that moves the patch's
-  // edge across nodes every few steps, with a mirror, a rate rescale and a settle on the way, both
-  // must give the same forces and states, within rounding (1e-12 of the force, 1e-9 of the state).
+  // edge across nodes every few steps, with a mirror, a rate rescale and a materialize() on the
+  // way, both must give the same forces and states, within rounding (1e-12 of the force, 1e-9 of
+  // the state).
   const double a0 = 6e-3, b0 = 4e-3, fz0 = 8e4, V = 20.0, dt = 5e-5;
   const PatchMesh mesh(16, 12, std::cbrt(1.5) * a0, std::cbrt(1.5) * b0);
   const Flexibilities L = kalkerFlexibilities(a0, b0, 8.2e10, kalkerCoefficients(a0 / b0, 0.28));
@@ -239,7 +240,7 @@ TEST(TransientFastSim, OutsideStatesHeldDecayedEqualTheFullUpdate) {
     const double size = std::hypot(y.fx, y.fy) + 1.0;
     worstForce = std::max({worstForce, std::abs(x.fx - y.fx) / size, std::abs(x.fy - y.fy) / size,
                            std::abs(x.mz - y.mz) / (size * a0)});
-    if (k == 200) {  // a reversal mirrors both (through the named rows: lazy settles first)
+    if (k == 200) {  // a reversal mirrors both (through the named rows: lazy materializes first)
       mirrorAlongX(mesh, &lazy);
       mirrorAlongX(mesh, &full);
     }
@@ -247,7 +248,7 @@ TEST(TransientFastSim, OutsideStatesHeldDecayedEqualTheFullUpdate) {
       lazy.scaleStates(1.3, false);
       full.scaleStates(1.3, false);
     }
-    if (k == 400) lazy.settle();
+    if (k == 400) lazy.materialize();
   }
   EXPECT_GT(crossings, 20);  // the patch's edge did cross nodes
   EXPECT_LT(worstForce, 1e-12);

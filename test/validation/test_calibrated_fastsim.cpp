@@ -66,7 +66,7 @@ class CalibratedSteady : public testing::Test {
  protected:
   static void SetUpTestSuite() {
     curves_ = readExact();
-    table_ = SteadyCalibration::load(SteadyCalibration::defaultPath());
+    table_ = SteadyCalibration::shipped();
   }
   CurveError error(double ab, const char* ray, bool calibrated) const {
     const auto it = curves_.find({ab, ray});

@@ -21,7 +21,7 @@ struct CurveErrors {
 // max over lambda/a >= from, and means over all points, of |C^/C_steady - exact| on log-spaced
 // lambda/a in [from, 100], FastSim on an n x n mesh with the shipped table's chi for it.
 CurveErrors errors(CreepageKind kind, double ab, double from, int n = 20) {
-  const ChiTable table = ChiTable::load(ChiTable::defaultPath()).forMesh(n);
+  const ChiTable table = ChiTable::shipped().forMesh(n);
   const NonSteadyCoefficients exact(kind, ab, 0.28, 20, 20);
   const double ce = exact.steady(), cf = fastsimSteadyCoefficient(kind, ab, 0.28, n, n);
   CurveErrors e;
@@ -51,9 +51,9 @@ TEST(NssAccuracy, LongitudinalAndLateralWithinFivePercentFromLambdaOverA2) {
 }
 
 TEST(NssAccuracy, SpinCoefficientWithinFivePercentFromLambdaOverA2) {
-  // The shipped table's kind 23 is second order (README "Spin: why C23 misses"): the first-order
-  // F missed by 0.08-0.12 between lambda/a = 2 and about 4.5; the second-order one meets the
-  // issue target from lambda/a = 2.
+  // The shipped table's kind 23 is second order (doc/method.md#second-order-flexibility): the
+  // first-order F missed by 0.08-0.12 between lambda/a = 2 and about 4.5; the second-order one
+  // meets the issue target from lambda/a = 2.
   for (double ab : {0.5, 1.0, 2.0}) {
     const CurveErrors e = errors(CreepageKind::kPhi, ab, 2.0);
     EXPECT_LE(e.maxNss, 0.05) << "a/b " << ab;  // issue target
@@ -63,9 +63,9 @@ TEST(NssAccuracy, SpinCoefficientWithinFivePercentFromLambdaOverA2) {
 
 TEST(NssAccuracy, EveryShippedMeshFrom10x10MeetsTheTargetWithItsOwnChi) {
   // chi absorbs the march's discretisation: the 20x20 chi missed C23 by 0.08-0.10 on 10x10 and
-  // 0.06-0.07 on 40x40 (exact 30x30, README "The chi table"). Each mesh's own chi meets the target
-  // (5x5 only against the 30x30 exact grid the table was fitted on: C23 0.033-0.048 there, 0.072
-  // against this test's 20x20). a/b = 1 here; the three a/b at 20x20 above.
+  // 0.06-0.07 on 40x40 (exact 30x30, doc/validation.md, "The χ table"). Each mesh's own chi meets
+  // the target (5x5 only against the 30x30 exact grid the table was fitted on: C23 0.033-0.048
+  // there, 0.072 against this test's 20x20). a/b = 1 here; the three a/b at 20x20 above.
   for (int n : {10, 30, 40})
     for (CreepageKind k : kCreepageKinds) {
       const CurveErrors e = errors(k, 1.0, 2.0, n);

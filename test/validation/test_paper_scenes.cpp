@@ -1,10 +1,10 @@
 // The paper's scenes (Guiral et al. 2013, eqs. 16-18 and section 4.2) against our exact solver at
 // a coarse CI grid (20x20). Tolerance: at this grid the exact reference itself is about 5 % too
 // stiff in adhesion (its steady C11 is 4.43 against Kalker's 4.23), so the CI bound on nss is 8 %
-// of the peak force; the 5 % figures in the README come from the 40x40 run of accuracy_report.
-// What must hold at any grid: nss beats shen-li and steady FastSim on every scene; auto keeps the
-// same bound and is never worse than steady FastSim, which it runs where the chart finds it within
-// auto's tolerance (the varying-load scenes at lambda/a0 = 15).
+// of the peak force; the 5 % figures in doc/validation.md come from the 40x40 run of
+// accuracy_report. What must hold at any grid: nss beats shen-li and steady FastSim on every scene;
+// auto keeps the same bound and is never worse than steady FastSim, which it runs where the chart
+// finds it within auto's tolerance (the varying-load scenes at lambda/a0 = 15).
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -74,10 +74,10 @@ TEST(PaperScenes, VaryingLoad) {
 
 TEST(PaperScenes, VaryingLoadFollowsTheLoad) {
   // Where nss and shen-li tie (above), the RMS is the mean error: FastSim's steady bias against the
-  // exact solution, which both share (README, "Why nss and shen-li tie under a varying load"). The
-  // part that follows the load, the RMS of the error about its mean over the period, is the one
-  // the time term acts on: there nss must beat shen-li on every varying-load case, on the fixed
-  // mesh (measured here: nss at most 0.93 of shen-li, at xi = 0.1, lambda/a0 = 40) and by a
+  // exact solution, which both share (doc/validation.md, "Why nss and shen-li tie under a varying
+  // load"). The part that follows the load, the RMS of the error about its mean over the period, is
+  // the one the time term acts on: there nss must beat shen-li on every varying-load case, on the
+  // fixed mesh (measured here: nss at most 0.93 of shen-li, at xi = 0.1, lambda/a0 = 40) and by a
   // fifth or more on the adaptive one, mesh for mesh (at most 0.75 of it, xi = 0.1, 40).
   for (double xi : {0.002, 0.01, 0.05, 0.1})
     for (double l : {5.0, 15.0, 40.0}) {

@@ -10,6 +10,7 @@
 /// was fitted at; a table without it is one mesh that serves every nx.
 #pragma once
 
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -26,8 +27,11 @@ class ChiTable {
   /// its kind and mesh) entry, a fastsim_nx below 2, on a missing header (an empty file), or if a
   /// mesh lacks a kind.
   static ChiTable load(const std::string& path);
-  /// The table shipped with the package (config/chi_table.csv: meshes 5x5 to 40x40).
-  static std::string defaultPath();
+  /// The same from a stream; `source` names it in messages.
+  static ChiTable parse(std::istream& in, const std::string& source);
+  /// The table shipped with the package: config/chi_table.csv (meshes 5x5 to 40x40), compiled
+  /// into the library (shipped_tables.hpp), so it needs no file at run time.
+  static ChiTable shipped();
   /// A table with the same chi for every kind and a/b (tests; {0, 1, 0} is Shen & Li).
   static ChiTable uniform(const ChiParameters& chi);
   static ChiTable uniformSecondOrder(const SecondOrderChi& chi);

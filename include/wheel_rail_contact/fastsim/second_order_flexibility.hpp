@@ -1,9 +1,10 @@
 /// A second-order dynamic flexibility, the candidate for the spin kind 23 (whose exact response
-/// a first-order F cannot follow at 2 <= lambda/a < 5; README "Accuracy against our exact solver"):
+/// a first-order F cannot follow at 2 <= lambda/a < 5; doc/validation.md, "Accuracy against our
+/// exact solver"):
 ///   F(k) = (chi2 + s chi1 + s^2 chi4) / (1 + s chi3 + s^2 chi5),  s = i k,  k = 2 pi a / lambda,
 /// with s <-> (a/V) d/dt as for the first-order F of nss_filter.hpp, which it contains
-/// (chi4 = chi5 = 0). All chi dimensionless. The march discretises it with discretise() of
-/// nss_filter.hpp (README, "Spin: why C23 misses, and a second-order F").
+/// (chi4 = chi5 = 0). All chi dimensionless. The march discretises it inside
+/// the core (Tustin, doc/method.md#second-order-flexibility).
 #pragma once
 
 #include <complex>

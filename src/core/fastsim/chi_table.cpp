@@ -7,9 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#ifndef WRC_DEFAULT_CHI_TABLE
-#define WRC_DEFAULT_CHI_TABLE "config/chi_table.csv"
-#endif
+#include "wheel_rail_contact/shipped_tables.hpp"
 
 namespace wheel_rail_contact {
 
@@ -27,8 +25,9 @@ int kindIndex(const std::string& s) {
 
 }  // namespace
 
-std::string ChiTable::defaultPath() {
-  return WRC_DEFAULT_CHI_TABLE;
+ChiTable ChiTable::shipped() {
+  std::istringstream in(shippedTable("chi_table"));
+  return parse(in, "(shipped) chi_table.csv");
 }
 
 ChiTable ChiTable::uniform(const ChiParameters& chi) {
@@ -116,6 +115,10 @@ ParsedRow parseRow(const std::string& path, long n, const std::string& line, con
 ChiTable ChiTable::load(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("chi table " + path + ": cannot open");
+  return parse(in, path);
+}
+
+ChiTable ChiTable::parse(std::istream& in, const std::string& path) {
   ChiTable t;
   std::string line;
   long n = 0;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/fastsim/discrete_filter.hpp"
 #include "wheel_rail_contact/fastsim/second_order_flexibility.hpp"
 
 namespace wheel_rail_contact {

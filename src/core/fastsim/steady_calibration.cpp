@@ -1,15 +1,13 @@
 #include "core/fastsim/steady_calibration.hpp"
 
+#include "wheel_rail_contact/shipped_tables.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
-
-#ifndef WRC_DEFAULT_STEADY_CALIBRATION
-#define WRC_DEFAULT_STEADY_CALIBRATION "config/steady_calibration.csv"
-#endif
 
 namespace wheel_rail_contact {
 
@@ -90,13 +88,18 @@ double number(const std::string& path, long line, const std::string& s) {
 
 }  // namespace
 
-std::string SteadyCalibration::defaultPath() {
-  return WRC_DEFAULT_STEADY_CALIBRATION;
+SteadyCalibration SteadyCalibration::shipped() {
+  std::istringstream in(shippedTable("steady_calibration"));
+  return parse(in, "(shipped) steady_calibration.csv");
 }
 
 SteadyCalibration SteadyCalibration::load(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("steady calibration " + path + ": cannot open");
+  return parse(in, path);
+}
+
+SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& path) {
   SteadyCalibration t;
   std::string line;
   long n = 0;

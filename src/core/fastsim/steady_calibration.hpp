@@ -25,6 +25,7 @@
 /// C_ij(nu) carries the first-order effect of nu).
 #pragma once
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -60,12 +61,13 @@ class SteadyCalibration {
   /// non-finite or non-positive ratio, knots not increasing or not starting at (0, 1), or a/b rows
   /// whose knots differ.
   static SteadyCalibration load(const std::string& path);
-  /// The table shipped with the package (config/steady_calibration.csv).
-  static std::string defaultPath();
+  /// The table shipped with the package (config/steady_calibration.csv, compiled in).
+  static SteadyCalibration shipped();
   FlexibilityCalibration at(double a_over_b) const;
   bool empty() const { return rows_.empty(); }
 
  private:
+  static SteadyCalibration parse(std::istream& in, const std::string& path);
   struct Row {
     double logAB;
     std::vector<double> eps[3], ratio[3];

@@ -58,9 +58,11 @@ struct TransientStorage {
   static double* stored(TransientState* s) { return s->history_.data(); }
   static const double* stored(const TransientState& s) { return s.history_.data(); }
   // The state itself, for a march that reads every node.
-  static const double* settled(const TransientState& s) { return s.settledRows().data(); }
+  static const double* materialized(const TransientState& s) { return s.materializedRows().data(); }
   static auto column(TransientState* s, int k) { return s->history_.col(k); }
-  static auto settledColumn(const TransientState& s, int k) { return s.settledRows().col(k); }
+  static auto materializedColumn(const TransientState& s, int k) {
+    return s.materializedRows().col(k);
+  }
   // Per strip, where the outside pass of the march starts (0: every outside node).
   static const int* outsideFrom(const TransientState& s) { return s.from_.data(); }
   // The march's outside pass takes every outside node.
@@ -71,7 +73,7 @@ struct TransientStorage {
   }
   // Every outside node taken in full by the march, nothing held.
   static void eager(int strips, TransientState* s) {
-    s->settle();
+    s->materialize();
     fromZero(strips, s);
   }
   // A march that writes every node of s holds nothing decayed.
@@ -172,7 +174,7 @@ struct InPlace {
     const double* p = strip + kPerNode * i;
     return {pairAt(p + kTraction), pairAt(p + kState), kSecond ? pairAt(p + kSecondState) : Pair()};
   }
-  // Node i of two strips (AlongStrips's interface; the march only takes it for a mapped source).
+  // Node i of two strips (CarriedHistory's interface; the march only takes it for a mapped source).
   template <bool kSecond>
   void atBoth(const double* a, const double* b, int i, History* ha, History* hb) const {
     *ha = at<kSecond>(a, i);
@@ -184,17 +186,17 @@ struct InPlace {
 // march reads it: no pass of its own, and the old state is read where the march needs it. Raw
 // pointers, held in registers: through references they were reloaded after every store of the
 // march's slip flags (a bool store may alias anything).
-struct AlongStrips {
+struct CarriedHistory {
   static constexpr bool kMapped = true;  // every strip reads through the same map
   const std::ptrdiff_t* offsets;         // AlongStripMap::historyOffsets
   const double* weights;
   std::ptrdiff_t nodes;
   const double* history;
-  AlongStrips(const AlongStripMap& map, const TransientState& s)
+  CarriedHistory(const AlongStripMap& map, const TransientState& s)
       : offsets(map.historyOffsets()),
         weights(map.spreadWeights()),
         nodes(map.nodes()),
-        history(TransientStorage::settled(s)) {}
+        history(TransientStorage::materialized(s)) {}
   void writesTo(const TransientState&) {}  // reads `previous`, never the state written
   // The old strip j's first node (old and new patch share the layout): per node the march then
   // only adds the map's offset.
@@ -406,8 +408,8 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
 // (d: the decay of their states per step, -poleOld). A node entering the patch is restored (s =
 // held D); one staying outside only gets its field written; one leaving it is left to the march's
 // outside pass (from_), which takes the full update. A d not safely inside (1e-3, 1e3) in size
-// (shen-li's F = 1 has d = 0), or a D leaving (1e-100, 1e100), settles: the march then takes every
-// outside node in full.
+// (shen-li's F = 1 has d = 0), or a D leaving (1e-100, 1e100), materializes: the march then takes
+// every outside node in full.
 bool TransientStorage::lazyBefore(const PatchMesh& mesh, const std::vector<StripEntry>& entries,
                                   const Eigen::Array2d& d, TransientState* st, TractionField* f) {
   const int nx = mesh.nx(), ny = mesh.ny();
@@ -487,7 +489,7 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
                              const TransientState& previous, TransientState* st, TractionField* f,
                              bool marchSecond) {
   TransientStorage::writtenInFull(mesh.ny(), st);
-  const AlongStrips carried(map, previous);  // reads `previous` settled
+  const CarriedHistory carried(map, previous);  // reads `previous` materialized
   if (marchSecond || zx.secondOrder() || zy.secondOrder())
     return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
   return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
@@ -526,7 +528,7 @@ void AlongStripMap::set(double ratio) {
 
 void remapAlongStrips(const AlongStripMap& map, const TransientState& in, int strips,
                       TransientState* out) {
-  const AlongStrips source(map, in);
+  const CarriedHistory source(map, in);
   for (int j = 0; j < strips; ++j) {
     const double* const strip = source.strip(j, map.nodes());
     for (int i = 0; i < map.nodes(); ++i) {
@@ -557,10 +559,10 @@ namespace {
 // Linear interpolation along one old strip at continuous node index r (node i at r = i): the two
 // nodes and their weights. The strip's ends lie half an element outside its first and last node
 // and carry zero traction; beyond them both weights are zero.
-struct AlongStrip {
+struct StripInterpolation {
   int i0 = 0;
   double w0 = 0.0, w1 = 0.0;
-  AlongStrip(double r, int nx) {
+  StripInterpolation(double r, int nx) {
     if (r <= -0.5 || r >= nx - 0.5) return;
     if (r < 0.0) {
       w0 = 1.0 + 2.0 * r;
@@ -612,11 +614,11 @@ void remapState(const PatchMesh& from, const TransientState& in, const PatchMesh
       const double r0 = ((1.0 - ratio * (1.0 - 1.0 / nx)) * oldNx - 1.0) * 0.5;
       const double dr = ratio * oldNx / nx;
       for (int i = 0; i < nx; ++i) {
-        const AlongStrip at(r0 + i * dr, oldNx);
+        const StripInterpolation at(r0 + i * dr, oldNx);
         const int k = to.index(i, j), k0 = base + at.i0, k1 = base + std::min(at.i0 + 1, oldNx - 1);
         const double w0 = w * at.w0, w1 = w * at.w1;
-        TransientStorage::column(out, k) += w0 * TransientStorage::settledColumn(in, k0) +
-                                            w1 * TransientStorage::settledColumn(in, k1);
+        TransientStorage::column(out, k) += w0 * TransientStorage::materializedColumn(in, k0) +
+                                            w1 * TransientStorage::materializedColumn(in, k1);
       }
     }
   }

@@ -9,8 +9,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/fastsim/discrete_filter.hpp"
 #include "core/fastsim/fastsim.hpp"
-#include "wheel_rail_contact/fastsim/nss_filter.hpp"
 
 namespace wheel_rail_contact {
 
@@ -21,7 +21,7 @@ namespace wheel_rail_contact {
 /// Outside a fixed mesh's patch, with a first-order F, a node's traction is zero and its filter
 /// state only decays, s <- d s with the same d at every such node; so the march holds those states
 /// as s / D (D the product of every d since) and touches only the nodes that cross the patch's
-/// edge. The named rows settle() first: every reader sees the state itself.
+/// edge. The named rows materialize() first: every reader sees the state itself.
 class TransientState {
  public:
   /// Rows tx, ty: traction at the previous step [Pa]; sx, sy: filter state (transposed direct form
@@ -32,38 +32,39 @@ class TransientState {
   void resize(int n);
   void clear();
   /// Restores the states held decayed. Const: it changes how the state is stored, not the state.
-  void settle() const {
+  void materialize() const {
     if (decaying_) restoreDecayed();
   }
-  /// Node `to` takes node `from`'s traction (rows tx, ty, never held decayed: no settling).
+  /// Node `to` takes node `from`'s traction (rows tx, ty, never held decayed: no materializing).
   void copyTraction(int from, int to) { history_.col(to).head<2>() = history_.col(from).head<2>(); }
-  /// Multiplies sx, sy (with `second` also s2x, s2y) by r; no settling needed (D is unchanged).
+  /// Multiplies sx, sy (with `second` also s2x, s2y) by r; no materializing needed (D is
+  /// unchanged).
   void scaleStates(double r, bool second);
-  /// Multiplies every x row (tx, sx, s2x) by rx and every y row by ry; no settling needed.
+  /// Multiplies every x row (tx, sx, s2x) by rx and every y row by ry; no materializing needed.
   void scaleDirections(double rx, double ry);
-  auto tx() { return settled().row(0); }
-  auto ty() { return settled().row(1); }
-  auto sx() { return settled().row(2); }
-  auto sy() { return settled().row(3); }
+  auto tx() { return materialized().row(0); }
+  auto ty() { return materialized().row(1); }
+  auto sx() { return materialized().row(2); }
+  auto sy() { return materialized().row(3); }
   auto s2x() { return history_.row(4); }  // never held decayed
   auto s2y() { return history_.row(5); }
   auto secondState() { return history_.bottomRows<2>(); }  ///< rows s2x, s2y
-  auto tx() const { return settledRows().row(0); }
-  auto ty() const { return settledRows().row(1); }
-  auto sx() const { return settledRows().row(2); }
-  auto sy() const { return settledRows().row(3); }
+  auto tx() const { return materializedRows().row(0); }
+  auto ty() const { return materializedRows().row(1); }
+  auto sx() const { return materializedRows().row(2); }
+  auto sy() const { return materializedRows().row(3); }
   auto s2x() const { return history_.row(4); }
   auto s2y() const { return history_.row(5); }
 
  private:
   friend struct TransientStorage;  // the marches' access to the storage (transient_fastsim.cpp)
   using Rows = Eigen::Array<double, kRows, Eigen::Dynamic>;
-  Rows& settled() {
-    settle();
+  Rows& materialized() {
+    materialize();
     return history_;
   }
-  const Rows& settledRows() const {
-    settle();
+  const Rows& materializedRows() const {
+    materialize();
     return history_;
   }
   void restoreDecayed() const;
@@ -93,12 +94,12 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
                              bool marchSecond = false);
 
 /// How the adaptive mesh carries its history when the patch changes size (a choice beyond the
-/// paper's eq. 19, see README): every strip keeps its own history (strip j of the new patch reads
-/// strip j of the old one, i.e. the strips stay at the same y/b), and along the strip the history
-/// is carried at fixed physical x by linear interpolation, falling to zero at the old strip's ends
-/// (half an element beyond its first and last node) and zero outside them. Every strip's length
-/// scales by the same a_new / a_old, so the weights depend on the node index only: one table per
-/// step, for any number of strips.
+/// paper's eq. 19, see doc/method.md#adaptive-mesh): every strip keeps its own history (strip j of
+/// the new patch reads strip j of the old one, i.e. the strips stay at the same y/b), and along the
+/// strip the history is carried at fixed physical x by linear interpolation, falling to zero at the
+/// old strip's ends (half an element beyond its first and last node) and zero outside them. Every
+/// strip's length scales by the same a_new / a_old, so the weights depend on the node index only:
+/// one table per step, for any number of strips.
 class AlongStripMap {
  public:
   /// For strips of nx nodes (nx >= 2); allocates here, set() does not.
@@ -150,7 +151,8 @@ CreepForces holdTraction(const PatchMesh& mesh, TransientState* state, TractionF
 /// Paper eq. 19: carry the history from the patch (from.a(), from.b()) to the patch
 /// (to.a(), to.b()) of the same normalised layout by bilinear interpolation at fixed physical
 /// coordinates (linear along each strip, then across strips); traction falls to zero at the old
-/// patch's edge and is zero outside it. (NssModel uses AlongStripMap instead; see README.)
+/// patch's edge and is zero outside it. (NssModel uses AlongStripMap instead; see
+/// doc/method.md#adaptive-mesh.)
 void remapState(const PatchMesh& from, const TransientState& in, const PatchMesh& to,
                 TransientState* out);
 

@@ -13,11 +13,11 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 // The shares come from the chart (doc/data/speed_accuracy_scenes.csv). On the frequency sweep
-// the estimate (0.078 at lambda/a = 100) is steady FastSim's error beyond nss's or up to 1.7 times
-// it (0.045-0.065 measured there), and FastSim's own error stays below 0.015 at lambda/a = 100 on
-// every mesh. So NSS-FastSim starts above 0.85 of the tolerance, leaving the rest to FastSim's own
-// error, and hands back below 0.8 once the patch has rolled kCalmTransits lengths 2a in calm, so
-// its history has flushed through the patch.
+// the estimate is steady FastSim's error beyond nss's or somewhat above it, and FastSim's own error
+// stays well below the tolerance on long waves on every mesh (doc/performance.md#model-auto). So
+// NSS-FastSim starts above 0.85 of the tolerance, leaving the rest to FastSim's own error, and
+// hands back below 0.8 once the patch has rolled kCalmTransits lengths 2a in calm, so its history
+// has flushed through the patch.
 constexpr double kStartShare = 0.85;
 constexpr double kReturnShare = 0.8;
 constexpr double kCalmTransits = 2.0;
@@ -200,7 +200,7 @@ StepOutput AutoModel::step(const StepInput& in) {
     case Mode::kSteady:
       break;
   }
-  return nss_.settle(in);
+  return nss_.steadyStep(in);
 }
 
 }  // namespace wheel_rail_contact

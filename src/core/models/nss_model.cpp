@@ -126,7 +126,7 @@ bool NssModel::patchMoves(const HertzEllipse& h) {
   return true;
 }
 
-void NssModel::settlePatch() {
+void NssModel::adoptMovedPatch() {
   std::swap(state_, remapped_);
   mesh_.scale(spare_.a(), spare_.b());  // the same layout: only the size moves
 }
@@ -135,9 +135,9 @@ void NssModel::coverTrailingNodes() {
   // Material crosses the trailing edge outwards even while the edge moves back (at |da/dt| < V),
   // so a node the growing patch newly covers there holds material come from upstream, still in
   // contact: its traction history is its upstream node's, not the zero it had outside. Left at
-  // zero, the time term held its traction down (nss fixed at xi = 0.002, lambda/a0 = 5: 3.27 ->
-  // 2.44 % with it). The filter state stays the node's own (copying it too: 2.51 %). At the
-  // leading edge the material entering is unloaded: zero is right there.
+  // zero, the time term held its traction down (doc/validation.md, varying load). The filter
+  // state stays the node's own (copying it too was no better). At the leading edge the material
+  // entering is unloaded: zero is right there.
   const int nx = mesh_.nx();
   for (int j = 0; j < mesh_.ny(); ++j) {
     const int before = firstBefore_[j], now = std::min(field_.entry[j].first, nx);
@@ -215,7 +215,7 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
 
 CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool moves) {
   // When the adaptive patch moves, the step runs on spare_ and carries the history over from mesh_
-  // along the strips as it marches (AlongStripMap) into remapped_; settlePatch() then swaps.
+  // along the strips as it marches (AlongStripMap) into remapped_; adoptMovedPatch() then swaps.
   const PatchMesh& mesh = moves ? spare_ : mesh_;
   parabolicBound(mesh, h.a, h.b, in.fz, stepMu(in, p_.mu), &field_);
   if (!adaptive_) coverTrailingNodes();
@@ -292,7 +292,7 @@ StepOutput NssModel::finish(const CreepForces& f, const StepInput& in, const Her
   return out;
 }
 
-StepOutput NssModel::settle(const StepInput& given) {
+StepOutput NssModel::steadyStep(const StepInput& given) {
   StepOutput out;
   StepInput in;
   HertzEllipse h;
@@ -337,7 +337,7 @@ StepOutput NssModel::step(const StepInput& given) {
   reshaped_ = false;
   const bool moves = patchMoves(h);
   const CreepForces f = advance(in, h, moves);
-  if (moves) settlePatch();
+  if (moves) adoptMovedPatch();
   return finish(f, in, h);
 }
 

@@ -34,8 +34,8 @@ class NssModel : public ContactModel {
   /// history (filter at rest): the state the time-term march holds after `in` has been kept for
   /// long. A later step() continues from it without a jump; what the "auto" model runs while the
   /// inputs change slowly.
-  StepOutput settle(const StepInput& in);
-  /// Steady FastSim for `in` on the mesh and bound the last step() or settle() used, with the
+  StepOutput steadyStep(const StepInput& in);
+  /// Steady FastSim for `in` on the mesh and bound the last step() or steadyStep() used, with the
   /// history untouched: what "auto" blends towards when it hands back to steady FastSim.
   StepOutput steadyAlongside(const StepInput& in);
 
@@ -50,7 +50,7 @@ class NssModel : public ContactModel {
   /// The adaptive mesh must be re-sized to the patch h.
   bool meshMustFollow(const HertzEllipse& h) const;
   bool patchMoves(const HertzEllipse& h);
-  void settlePatch();
+  void adoptMovedPatch();
   CreepForces advance(const StepInput& in, const HertzEllipse& h, bool moves);
   /// Fixed mesh: the nodes the patch's trailing edge has covered since the last bound take the
   /// traction of the node upstream; then remembers where the patch begins on each strip.

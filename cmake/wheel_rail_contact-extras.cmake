@@ -1,0 +1,9 @@
+# Included by wheel_rail_contactConfig.cmake (catkin CFG_EXTRAS), devel and install space alike:
+# the imported target wheel_rail_contact::wheel_rail_contact_core, with Eigen3::Eigen it links.
+# wheel_rail_contact_DIR is the config's own directory (devel/share or install share), where the
+# exported targets are; this file itself is read from the source tree in the devel space.
+include(CMakeFindDependencyMacro)
+find_dependency(Eigen3 3.3 NO_MODULE)
+if(NOT TARGET wheel_rail_contact::wheel_rail_contact_core)
+  include(${wheel_rail_contact_DIR}/wheel_rail_contactTargets.cmake)
+endif()

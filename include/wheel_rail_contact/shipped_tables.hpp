@@ -1,0 +1,17 @@
+/// Data tables shipped inside the library: each config/<name>.csv of the source tree is compiled
+/// into the core at build time, so an installed package finds its tables wherever it is installed.
+/// A user's own table is still read from a file (e.g. the chi_table parameter).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace wheel_rail_contact {
+
+/// The text of the shipped table `name` (its file name without .csv, e.g. "chi_table").
+/// Throws std::invalid_argument naming the shipped tables for an unknown name.
+const std::string& shippedTable(const std::string& name);
+/// The names of the shipped tables, sorted.
+std::vector<std::string> shippedTableNames();
+
+}  // namespace wheel_rail_contact
