@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
-# The demo behind `bash scripts/quickstart.sh demo` (which builds and sources the devel space):
+# The demo behind `bash scripts/quickstart.sh demo` (which builds and sources the devel space): by
+# default the closed-loop wheelset demo (scripts/wheelset_demo.sh: a wheelset simulator driving a
+# left and a right contact_node, steady against nss; doc/wheelset_demo.md). DEMO=scenes instead:
 # roslaunch launch/demo.launch — two real contact_nodes fed the paper's combined-creepage and
 # varying-load scenes by scene_player, recorded by force_recorder — then plots the forces and checks
 # them against `contact_cli run` on the same scenes. Ends by itself; prints where its outputs are.
 # Environment: DEMO_MODEL (default nss), DEMO_TIME_SCALE (scene s per wall s, default 8).
-# DEMO=wheelset runs the closed-loop wheelset demo instead (scripts/wheelset_demo.sh: a wheelset
-# simulator driving a left and a right contact_node, steady against nss; doc/wheelset_demo.md).
 set -eo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
-if [ "${DEMO:-scenes}" = wheelset ]; then exec bash scripts/wheelset_demo.sh; fi
-[ "${DEMO:-scenes}" = scenes ] || { echo "[demo] DEMO must be scenes (default) or wheelset" >&2; exit 2; }
+if [ "${DEMO:-wheelset}" = wheelset ]; then exec bash scripts/wheelset_demo.sh; fi
+[ "${DEMO}" = scenes ] || { echo "[demo] DEMO must be wheelset (default) or scenes" >&2; exit 2; }
 out="$here/build/demo"
 model="${DEMO_MODEL:-nss}"
 rm -rf "$out" && mkdir -p "$out"
