@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../cli/config_yaml.hpp"
+#include "ros_conversions.hpp"
 #include "wheel_rail_contact/ContactState.h"
 
 namespace wheel_rail_contact {
@@ -25,26 +26,6 @@ static_assert(ContactState::LOAD_SAME_STAMP == static_cast<int>(LoadMatch::kSame
 
 namespace {
 
-// ContactState and Step's response carry the same state fields under the same names.
-template <class State>
-void fillState(const StepResult& r, const std::string& model, State* m) {
-  m->fx = r.out.fx;
-  m->fy = r.out.fy;
-  m->fz = r.out.fz;
-  m->mz = r.out.mz;
-  m->a = r.out.a;
-  m->b = r.out.b;
-  m->adhesion_fraction = r.out.adhesionFraction;
-  m->model = model;
-  m->dt = r.dt;
-  m->solver_time = r.solverTime;
-  m->status = contactStateStatus(r.out.status);
-  m->message = r.message;
-  m->load_match = static_cast<uint8_t>(r.loadMatch);
-  m->load_stamp.fromNSec(static_cast<uint64_t>(r.loadStampNs));
-  m->held = r.held;
-}
-
 int64_t steadyNowNs() {
   return static_cast<int64_t>(ros::SteadyTime::now().toNSec());
 }
@@ -52,23 +33,6 @@ int64_t steadyNowNs() {
 /// A header stamp in ns; 0 (unstamped) stays 0.
 int64_t stampNs(const ros::Time& t) {
   return static_cast<int64_t>(t.toNSec());
-}
-
-/// A parameter value as the text setParameter() parses, so node and CLI share one rule.
-std::string parameterText(const std::string& name, XmlRpc::XmlRpcValue& v) {
-  switch (v.getType()) {
-    case XmlRpc::XmlRpcValue::TypeInt:
-      return std::to_string(static_cast<int>(v));
-    case XmlRpc::XmlRpcValue::TypeDouble: {
-      char text[64];
-      std::snprintf(text, sizeof text, "%.17g", static_cast<double>(v));
-      return text;
-    }
-    case XmlRpc::XmlRpcValue::TypeString:
-      return static_cast<std::string>(v);
-    default:
-      throw std::invalid_argument(name + ": expected a number or a name, got " + v.toXml());
-  }
 }
 
 double numberParameter(const ros::NodeHandle& pnh, const std::string& name, double value) {
@@ -272,7 +236,8 @@ bool ContactNode::stepService(Step::Request& req, Step::Response& res) {
       stepper_->stepWithLoad(stampNs(req.stamp), in, {req.curvature_x, req.curvature_y});
   flush();  // older creepages this call released come out first
   report(r);
-  fillState(r, stepper_->modelName(), &res);
+  fillState(r, &res);
+  res.model = stepper_->modelName();
   publish(r);
   return true;
 }
@@ -323,7 +288,8 @@ void ContactNode::publish(const StepResult& r) {
   w.wrench.torque.z = r.out.mz;
   ContactState s;
   s.header = w.header;
-  fillState(r, stepper_->modelName(), &s);
+  fillState(r, &s);
+  s.model = stepper_->modelName();
   forcePub_.publish(w);
   statePub_.publish(s);
 }

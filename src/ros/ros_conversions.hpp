@@ -45,6 +45,9 @@ void fillState(const StepResult& r, State* m) {
   m->solver_time = r.solverTime;
   m->status = contactStateStatus(r.out.status);
   m->message = r.message;
+  m->load_match = static_cast<uint8_t>(r.loadMatch);
+  m->load_stamp.fromNSec(static_cast<uint64_t>(r.loadStampNs));
+  m->held = r.held;
 }
 
 }  // namespace wheel_rail_contact
