@@ -1,4 +1,4 @@
-// contact_node: one wheel-rail contact as a ROS node (see contact_node.hpp and the README).
+// contact_node: one wheel-rail contact as a ROS node (contact_node.hpp; doc/ros_interface.md).
 #include <ros/ros.h>
 
 #include "contact_node.hpp"
