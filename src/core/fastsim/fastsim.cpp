@@ -129,22 +129,28 @@ void flattenBound(const PatchMesh& mesh, double a, double b, double fz, double m
   double* const out = field->bound.data();
   const double p0 = 2.0 * mu * fz / (M_PI * a * b), alpha = 1.0 + 0.5 * s, beta = 0.75 * s / p0;
   double sum1 = 0.0, sum2 = 0.0;
-  for (int j = 0; j < ny; ++j) {
-    const double* const q = out + mesh.index(0, j);
-    double s1[4] = {0, 0, 0, 0}, s2[4] = {0, 0, 0, 0};
-    int i = 0;
-    for (; i + 4 <= nx; i += 4)
-      for (int l = 0; l < 4; ++l) {
-        s1[l] += q[i + l];
-        s2[l] += q[i + l] * q[i + l];
+  if (a == mesh.a() && b == mesh.b()) {  // the patch fills the mesh: the mesh's own shape sums
+    const double k = mu * fz / (mesh.shapeIntegral() * a * b);  // as parabolicBound scales it
+    sum1 = k * mesh.shapeSum();
+    sum2 = k * k * mesh.shapeSquareSum();
+  } else {
+    for (int j = 0; j < ny; ++j) {
+      const double* const q = out + mesh.index(0, j);
+      double s1[4] = {0, 0, 0, 0}, s2[4] = {0, 0, 0, 0};
+      int i = 0;
+      for (; i + 4 <= nx; i += 4)
+        for (int l = 0; l < 4; ++l) {
+          s1[l] += q[i + l];
+          s2[l] += q[i + l] * q[i + l];
+        }
+      for (; i < nx; ++i) {
+        s1[0] += q[i];
+        s2[0] += q[i] * q[i];
       }
-    for (; i < nx; ++i) {
-      s1[0] += q[i];
-      s2[0] += q[i] * q[i];
+      const double dx = mesh.halfNorm(j);
+      sum1 += dx * ((s1[0] + s1[1]) + (s1[2] + s1[3]));
+      sum2 += dx * ((s2[0] + s2[1]) + (s2[2] + s2[3]));
     }
-    const double dx = mesh.halfNorm(j);
-    sum1 += dx * ((s1[0] + s1[1]) + (s1[2] + s1[3]));
-    sum2 += dx * ((s2[0] + s2[1]) + (s2[2] + s2[3]));
   }
   const double after = alpha * sum1 - beta * sum2;
   if (!(after > 0.0)) return;
