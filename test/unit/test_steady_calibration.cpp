@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/fastsim/patch_mesh.hpp"
 #include "core/fastsim/steady_calibration.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/contact_parameters.hpp"
@@ -108,6 +109,65 @@ TEST(SteadyCalibration, RefusesMalformedTablesNamingTheLine) {
                 .find("same epsilon knots"),
             std::string::npos);
   EXPECT_EQ(message(kTwoRows), "");
+  // Spin's second parameter and bound shape: optional, but then in every a/b; the shape in (0, 1].
+  const std::string one = h + "1,11,0,1\n1,22,0,1\n1,23,0,1\n";
+  EXPECT_NE(message(one + "1,23s,0,1.5\n").find(":5: a bound shape (23s) must be in (0, 1]"),
+            std::string::npos);
+  EXPECT_EQ(message(one + "1,23x,0,1\n1,23s,0,0.5\n"), "");
+  EXPECT_NE(message(one + "1,23x,0,1\n2,11,0,1\n2,22,0,1\n2,23,0,1\n")
+                .find("every a/b must hold every kind"),
+            std::string::npos);
+}
+
+TEST(SteadyCalibration, SpinsSecondParameterAndBoundShapeFollowSpinsShare) {
+  const std::string path = writeTable(
+      "a_over_b,kind,epsilon,ratio\n1,11,0,1\n1,11,1,1\n1,22,0,1\n1,22,1,1\n1,23,0,1\n"
+      "1,23,1,1\n1,23x,0,1\n1,23x,1,4\n1,23s,0,0.5\n1,23s,1,0.5\n");
+  const FlexibilityCalibration c = SteadyCalibration::load(path).at(1.0);
+  const double a = 5e-3, b = 5e-3, G = 8.2e10, muFz = 3e3;
+  const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
+  const double unit = muFz / (G * a * b);
+  // e1 = e3 = 1 / sqrt(2): e = 1, spin's share 1/2.
+  const Creepages c13{std::sqrt(0.5) * unit / k.c11, 0.0,
+                      std::sqrt(0.5) * unit / (k.c23 * std::sqrt(a * b))};
+  const Flexibilities L = c.flexibilities(a, b, G, k, muFz, c13);
+  EXPECT_NEAR(L.L3x, L.L3 * 2.0, 1e-12 * L.L3);  // 4^(1/2)
+  EXPECT_NEAR(c.boundShape(a, b, G, k, muFz, c13), 0.25, 1e-12);
+  // No spin: Kalker's L3x (0: L3) and the parabolic bound, as classic.
+  const Creepages c1{unit / k.c11, 0.0, 0.0};
+  EXPECT_EQ(c.flexibilities(a, b, G, k, muFz, c1).spinX(),
+            c.flexibilities(a, b, G, k, muFz, c1).L3);
+  EXPECT_EQ(c.boundShape(a, b, G, k, muFz, c1), 0.0);
+  EXPECT_EQ(SteadyCalibration().at(1.0).boundShape(a, b, G, k, muFz, c13), 0.0);
+}
+
+TEST(SteadyCalibration, FlattenedBoundKeepsTheTotalAndThePatch) {
+  // Saturated everywhere, FastSim's force is the bound's node sum: the blend must keep it (mu fz)
+  // and the patch (where the bound is positive); s = 0 leaves the bound bit for bit.
+  for (const double scale : {1.0, 0.7}) {  // patch filling the mesh, and a smaller patch on it
+    const PatchMesh mesh(20, 20, 5e-3, 4e-3);
+    const double a = 5e-3 * scale, b = 4e-3 * scale, fz = 1e4, mu = 0.3;
+    TractionField f, g;
+    f.resize(mesh.size());
+    g.resize(mesh.size());
+    parabolicBound(mesh, a, b, fz, mu, &f);
+    parabolicBound(mesh, a, b, fz, mu, &g);
+    flattenBound(mesh, a, b, fz, mu, 0.0, &g);
+    EXPECT_TRUE((f.bound == g.bound).all());
+    flattenBound(mesh, a, b, fz, mu, 1.0, &g);
+    double before = 0.0, after = 0.0;
+    for (int j = 0; j < mesh.ny(); ++j)
+      for (int i = 0; i < mesh.nx(); ++i) {
+        const int n = mesh.index(i, j);
+        before += f.bound[n] * mesh.nodeArea(j);
+        after += g.bound[n] * mesh.nodeArea(j);
+        EXPECT_EQ(f.bound[n] > 0.0, g.bound[n] > 0.0) << i << " " << j;
+      }
+    EXPECT_NEAR(after, before, 1e-12 * before);
+    // Flatter: the centre node carries less than the parabola's peak.
+    const int centre = mesh.index(mesh.nx() / 2, mesh.ny() / 2);
+    EXPECT_LT(g.bound[centre], f.bound[centre]);
+  }
 }
 
 TEST(SteadyCalibration, ShippedTableKeepsLinearTheory) {

@@ -49,12 +49,14 @@ CurveError fastsimError(double ab, const std::vector<CurvePoint>& curve,
   const PatchMesh mesh(20, 20, a, b);
   TractionField f;
   f.resize(mesh.size());
-  parabolicBound(mesh, a, b, kFz, kMu, &f);
   double peak = 0.0;
   for (const CurvePoint& p : curve) peak = std::max(peak, std::abs(p.mz));
   CurveError err;
   const double m = kMu * kFz;
   for (const CurvePoint& p : curve) {
+    // The calibrated bound's shape depends on the creepages (spin's share): set per point.
+    parabolicBound(mesh, a, b, kFz, kMu, &f);
+    flattenBound(mesh, a, b, kFz, kMu, cal.boundShape(a, b, kG, k, m, p.c), &f);
     const CreepForces x = steadyFastSim(mesh, cal.flexibilities(a, b, kG, k, m, p.c), p.c, &f);
     err.force = std::max({err.force, std::abs(x.fx / m - p.fx), std::abs(x.fy / m - p.fy)});
     err.moment = std::max(err.moment, std::abs(x.mz / (m * std::sqrt(a * b)) - p.mz) / peak);
@@ -111,19 +113,25 @@ TEST_F(CalibratedSteady, LongitudinalWithLateralWithinTwoPercentOfMuFz) {
 }
 
 TEST_F(CalibratedSteady, CombinedWithSpinBetterThanClassicWhereTheSignsOppose) {
-  // Measured 0.037 / 0.058 / 0.064 against classic 0.146 / 0.172 / 0.140: the 0.02 is not
+  // Measured 0.034 / 0.055 / 0.039 against classic 0.146 / 0.172 / 0.140: the 0.02 is not
   // met with spin (doc/calibrated_fastsim.md).
   for (double ab : {0.2, 1.0, 5.0}) {
     const double cal = error(ab, "opp", true).force;
     EXPECT_LT(cal, 0.07) << ab;
     EXPECT_LT(cal, 0.5 * error(ab, "opp", false).force) << ab;
   }
-  // All three of one sign: 0.042 / 0.060 / 0.041 against classic 0.074 / 0.027 / 0.050.
+  // All three of one sign: 0.039 / 0.060 / 0.041 against classic 0.074 / 0.027 / 0.050.
   for (double ab : {0.2, 1.0, 5.0}) EXPECT_LT(error(ab, "xep", true).force, 0.065) << ab;
 }
 
+TEST_F(CalibratedSteady, SpinMomentWithinFivePercentOfThePeak) {
+  // Pure spin, the target: measured 2.9 / 2.7 / 2.8 % at a/b 0.2 / 1 / 5 (the flatter
+  // bound and spin's second parameter, steady_calibration.hpp).
+  for (double ab : {0.2, 1.0, 5.0}) EXPECT_LT(error(ab, "23", true).moment, 0.05) << ab;
+}
+
 TEST_F(CalibratedSteady, SpinMomentNoWorseThanClassic) {
-  // Pure spin: Mz within 14 % of the peak (classic 10-18 %); the 5 % is not met.
+  // Pure spin: Mz within 14 % of the peak (classic 10-18 %).
   for (double ab : {0.2, 1.0, 5.0}) {
     const double cal = error(ab, "23", true).moment, classic = error(ab, "23", false).moment;
     EXPECT_LT(cal, 0.14) << ab;

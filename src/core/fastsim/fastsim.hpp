@@ -20,6 +20,11 @@ struct Flexibilities {
   double L1 = 0.0;
   double L2 = 0.0;
   double L3 = 0.0;
+  /// Flexibility of the spin's longitudinal drive, -phi y / L3x, where it differs from L3 (the
+  /// calibrated FastSim's second spin parameter, steady_calibration.hpp); 0: L3, as in Kalker's
+  /// theory.
+  double L3x = 0.0;
+  double spinX() const { return L3x > 0.0 ? L3x : L3; }
 };
 Flexibilities kalkerFlexibilities(double a, double b, double G, const CreepCoefficients& c);
 
@@ -72,6 +77,15 @@ struct TractionField {
 /// its value at the node: saturated there, they carry the bound's integral wherever the edge falls.
 void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
                     TractionField* field);
+
+/// Flattens a bound written by parabolicBound: with p the parabola (1 - r^2 in normalised
+/// radius), bound = (1 - s) p + s (3/4) p (2 - p / p0), p0 = 2 mu fz / (pi a b) its peak, i.e. a
+/// blend towards 1 - r^4, between the parabolic and Hertz's elliptic shape (spin moment at full
+/// slip 8/15, 4/7 and 3 pi / 16 of mu fz times the radius), rescaled so that the mesh's node sums
+/// keep the parabolic total. s = 0 leaves the bound untouched; the patch is the same ellipse. The
+/// calibrated FastSim's bound shape (steady_calibration.hpp).
+void flattenBound(const PatchMesh& mesh, double a, double b, double fz, double mu, double s,
+                  TractionField* field);
 
 /// Raw views of a TractionField for the marches' inner loops: held in registers, they are not
 /// reloaded after every store of `slip` (a bool store may alias anything).

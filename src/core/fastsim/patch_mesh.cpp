@@ -17,6 +17,7 @@ PatchMesh::PatchMesh(int nx, int ny, double a, double b) : nx_(nx), ny_(ny) {
   }
   xNorm_.resize(size());
   shape_.resize(size());
+  double shapeSquares = 0.0;
   for (int j = 0; j < ny; ++j) {
     double strip = 0.0;
     for (int i = 0; i < nx; ++i) {
@@ -24,9 +25,12 @@ PatchMesh::PatchMesh(int nx, int ny, double a, double b) : nx_(nx), ny_(ny) {
       xNorm_(index(i, j)) = xn;
       shape_(index(i, j)) = std::max(0.0, 1.0 - yNorm_(j) * yNorm_(j) - xn * xn);
       strip += shape_(index(i, j));
+      shapeSquares += shape_(index(i, j)) * shape_(index(i, j)) * halfNorm_(j);
     }
     shapeIntegral_ += strip * (2.0 * halfNorm_(j) / nx) * (2.0 / ny);
+    shapeSums_[0] += strip * halfNorm_(j);
   }
+  shapeSums_[1] = shapeSquares;
   scale(a, b);
 }
 

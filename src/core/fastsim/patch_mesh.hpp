@@ -42,6 +42,9 @@ class PatchMesh {
   /// sum(shape * dx_j dy) / (a b): the parabolic pressure of a patch that fills the mesh.
   const Eigen::ArrayXd& pressureShape() const { return shape_; }
   double shapeIntegral() const { return shapeIntegral_; }
+  /// Sum over nodes of a_j / a times the shape, and times its square (flattenBound's node sums).
+  double shapeSum() const { return shapeSums_[0]; }
+  double shapeSquareSum() const { return shapeSums_[1]; }
   /// Area a node stands for, dx_j * dy [m^2] (midpoint rule).
   double nodeArea(int j) const { return stripStep(j) * stripWidth(); }
 
@@ -55,6 +58,7 @@ class PatchMesh {
   Eigen::ArrayXd xNorm_;     ///< x_ij / a, size nx*ny
   Eigen::ArrayXd shape_;     ///< 1 - (x/a)^2 - (y/b)^2, size nx*ny
   double shapeIntegral_ = 0.0;
+  double shapeSums_[2] = {0.0, 0.0};
 };
 
 /// The march's step onto node i of a strip with element length dx and half-length aj [m]: from

@@ -38,6 +38,14 @@ double FlexibilityCalibration::logRatio(int kind, double e) const {
   return r[i - 1] + t * (r[i] - r[i - 1]);
 }
 
+double FlexibilityCalibration::boundShape(double a, double b, double G, const CreepCoefficients& k,
+                                          double muFz, const Creepages& c) const {
+  if (eps_[4].empty()) return 0.0;
+  double e2[3];
+  const double e = normalisedCreepage(a, b, G, k, muFz, c, e2);
+  return std::isfinite(e) && e > 0.0 ? ratio(4, e) * e2[2] / (e * e) : 0.0;
+}
+
 double FlexibilityCalibration::ratio(int kind, double e) const {
   return std::exp(logRatio(kind, e));
 }
@@ -70,6 +78,8 @@ Flexibilities FlexibilityCalibration::flexibilities(double a, double b, double G
   L.L1 = rho * ((1.0 - w) * L.L1 + w * crss);
   L.L2 = rho * ((1.0 - w) * L.L2 + w * crss);
   L.L3 = rho * ((1.0 - w) * L.L3 + w * crss);
+  if (!eps_[3].empty())
+    L.L3x = L.L3 * std::exp(std::isfinite(e) ? e2[2] * logRatio(3, e) / (e * e) : 0.0);
   return L;
 }
 
@@ -118,8 +128,13 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
     for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
     if (f.size() < 4) fail(path, n, "expected a_over_b,kind,epsilon,ratio");
     const double ab = number(path, n, f[0]), e = number(path, n, f[2]), r = number(path, n, f[3]);
-    const int kind = f[1] == "11" ? 0 : f[1] == "22" ? 1 : f[1] == "23" ? 2 : -1;
-    if (kind < 0) fail(path, n, "kind must be 11, 22 or 23, got '" + f[1] + "'");
+    const int kind = f[1] == "11"    ? 0
+                     : f[1] == "22"  ? 1
+                     : f[1] == "23"  ? 2
+                     : f[1] == "23x" ? 3
+                     : f[1] == "23s" ? 4
+                                     : -1;
+    if (kind < 0) fail(path, n, "kind must be 11, 22, 23, 23x or 23s, got '" + f[1] + "'");
     if (!(ab > 0.0)) fail(path, n, "a_over_b must be > 0");
     if (!(r > 0.0)) fail(path, n, "ratio must be > 0");
     const double logAB = std::log(ab);
@@ -130,15 +145,16 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
     }
     Row& row = t.rows_.back();
     std::vector<double>& x = row.eps[kind];
-    if (x.empty() ? (e != 0.0 || r != 1.0) : !(e > x.back()))
+    if (kind == 4 && !(r <= 1.0)) fail(path, n, "a bound shape (23s) must be in (0, 1]");
+    if (x.empty() ? (e != 0.0 || (kind != 4 && r != 1.0)) : !(e > x.back()))
       fail(path, n, "the knots of a kind start at epsilon 0, ratio 1 and increase");
     x.push_back(e);
     row.ratio[kind].push_back(r);
   }
   if (!header) fail(path, n, "no header");
   for (const Row& row : t.rows_)
-    for (int k = 0; k < 3; ++k)
-      if (row.eps[k].empty() || row.eps[k] != t.rows_.front().eps[k])
+    for (int k = 0; k < 5; ++k)
+      if ((k < 3 && row.eps[k].empty()) || row.eps[k] != t.rows_.front().eps[k])
         fail(path, n, "every a/b must hold every kind, with the same epsilon knots");
   return t;
 }
@@ -153,7 +169,7 @@ FlexibilityCalibration SteadyCalibration::at(double a_over_b) const {
   const Row& hi = rows_[std::min(i + 1, rows_.size() - 1)];
   const double t =
       (&lo == &hi || !(x > lo.logAB)) ? 0.0 : std::min(1.0, (x - lo.logAB) / (hi.logAB - lo.logAB));
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < 5; ++k) {
     c.eps_[k] = lo.eps[k];
     c.logRatio_[k].resize(lo.ratio[k].size());
     for (std::size_t j = 0; j < lo.ratio[k].size(); ++j)

@@ -15,9 +15,19 @@
 /// w = min(1, e / 5), L_crss = (xi^2 + eta^2 + (k phi)^2) / (xi^2/L1 + eta^2/L2 + (k phi)^2/L3),
 /// k = 3 pi a / 32 (CONTACT's FASTSIM, Vollebregt and Voltr 2023): a single
 /// creepage of kind k gets L_k ratio_k(e) exactly, so the table is identified on single creepages.
+/// Spin has a second parameter: the flexibility of its longitudinal drive (-phi y / L3x,
+/// Flexibilities::L3x) is L3x = L3 ratio_23x(e)^(e3^2 / e^2). One flexibility ratio moves the
+/// spin curve along e only, and FastSim's pure-spin Fy peaks higher than the exact one and its Mz
+/// runs low; a stiffer longitudinal spin drive saturates the patch earlier and carries more of the
+/// moment, so the pair (ratio_23, ratio_23x) fits Fy and Mz together. Optional in the table
+/// (absent: 1, Kalker's L3). With it goes the bound's shape (flattenBound): the parabolic
+/// bound's spin moment at full slip is 10 % below the exact one whatever the flexibilities, so spin
+/// saturates on a flatter bound, s = shape_23s(e) e3^2 / e^2: no spin, the parabolic bound of
+/// classic FastSim; kind 23s holds the shape per a/b identified for pure spin, in (0, 1],
+/// interpolated linearly.
 ///
 /// Table (CSV, '#' comment lines: command, Poisson ratio, grids, fit errors):
-///   a_over_b,kind,epsilon,ratio[,...]   kind in {11, 22, 23}
+///   a_over_b,kind,epsilon,ratio[,...]   kind in {11, 22, 23, 23x, 23s}
 /// Every a/b holds the same epsilon knots per kind (increasing, the first 0 with ratio 1); ln
 /// ratio is interpolated linearly in epsilon and held beyond the last knot; the ratio linearly in
 /// ln(a/b) between rows, clamped at the table's ends. The table is identified at nu = 0.28: at
@@ -41,7 +51,12 @@ class FlexibilityCalibration {
   /// exactly kalkerFlexibilities(a, b, G, k).
   Flexibilities flexibilities(double a, double b, double G, const CreepCoefficients& k, double muFz,
                               const Creepages& c) const;
-  /// Ratio of kind k (0: 11, 1: 22, 2: 23) at normalised creepage e, and its logarithm.
+  /// The bound's shape for this step (flattenBound): shape_23s(e) times spin's share
+  /// of e^2, e3^2 / e^2, where the table has it, else 0 (parabolic, as classic).
+  double boundShape(double a, double b, double G, const CreepCoefficients& k, double muFz,
+                    const Creepages& c) const;
+  /// Ratio of kind k (0: 11, 1: 22, 2: 23, 3: 23x, 4: 23s) at normalised creepage e, and its
+  /// logarithm.
   double ratio(int kind, double e) const;
   double logRatio(int kind, double e) const;
   /// Normalised creepage e (above) at patch (a, b); infinity where muFz <= 0. `squares`, if
@@ -51,7 +66,7 @@ class FlexibilityCalibration {
 
  private:
   friend class SteadyCalibration;
-  std::vector<double> eps_[3], logRatio_[3];  // knots, ln ratio at them
+  std::vector<double> eps_[5], logRatio_[5];  // knots, ln ratio at them
 };
 
 /// The identified table over a/b.
@@ -59,7 +74,7 @@ class SteadyCalibration {
  public:
   /// Reads a table. Throws std::runtime_error naming the file and line on a malformed,
   /// non-finite or non-positive ratio, knots not increasing or not starting at (0, 1), or a/b rows
-  /// whose knots differ.
+  /// whose knots differ (23x, 23s: in every a/b or in none; 23s in (0, 1], any at knot 0).
   static SteadyCalibration load(const std::string& path);
   /// The table shipped with the package (config/steady_calibration.csv, compiled in).
   static SteadyCalibration shipped();
@@ -70,7 +85,7 @@ class SteadyCalibration {
   static SteadyCalibration parse(std::istream& in, const std::string& path);
   struct Row {
     double logAB;
-    std::vector<double> eps[3], ratio[3];
+    std::vector<double> eps[5], ratio[5];
   };
   std::vector<Row> rows_;  // sorted by a/b
 };

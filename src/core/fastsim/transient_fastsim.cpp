@@ -338,7 +338,8 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const StateUpdate<kSecond> update(X, Y, zx, zy, dt, r, st);
   history.writesTo(*st);
   const Pair beta(X.beta, Y.beta);
-  const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, a = mesh.a();
+  const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, gphiX = c.phi / L.spinX(),
+               a = mesh.a();
   const double* const xn = mesh.xNorms().data();
   const FieldPointers out(f);
   const int nx = mesh.nx(), ny = mesh.ny();
@@ -349,7 +350,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   unloadedNodes(mesh, f->entry, TransientStorage::outsideFrom(*st), history, out, update);
   // Strip j's march.
   auto strip = [&](int j) __attribute__((always_inline)) {
-    const double driveX = gx - gphi * mesh.stripY(j);
+    const double driveX = gx - gphiX * mesh.stripY(j);
     const StripEntry e = f->entry[j];
     const int first = mesh.index(0, j), enter = first + e.first, leave = first + nx - e.first;
     const double* const stripHistory = history.strip(j, nx);

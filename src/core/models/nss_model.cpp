@@ -148,6 +148,16 @@ void NssModel::coverTrailingNodes() {
   }
 }
 
+void NssModel::boundOn(const PatchMesh& mesh, const HertzEllipse& h, const StepInput& in) {
+  const double mu = stepMu(in, p_.mu);
+  parabolicBound(mesh, h.a, h.b, in.fz, mu, &field_);
+  // Calibrated: the bound's shape follows spin's share of the step's creepage (classic: 0).
+  flattenBound(
+      mesh, h.a, h.b, in.fz, mu,
+      calibration_.boundShape(h.a, h.b, p_.G, kalker_, mu * in.fz, {in.xi, in.eta, in.phi}),
+      &field_);
+}
+
 Flexibilities NssModel::flexibilities(const HertzEllipse& h, const StepInput& in,
                                       const Creepages& c) const {
   // Calibrated: a new flexibility each step from its creepages, constant over the patch during the
@@ -217,7 +227,7 @@ CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool m
   // When the adaptive patch moves, the step runs on spare_ and carries the history over from mesh_
   // along the strips as it marches (AlongStripMap) into remapped_; adoptMovedPatch() then swaps.
   const PatchMesh& mesh = moves ? spare_ : mesh_;
-  parabolicBound(mesh, h.a, h.b, in.fz, stepMu(in, p_.mu), &field_);
+  boundOn(mesh, h, in);
   if (!adaptive_) coverTrailingNodes();
   // Travel below 1e-9 a is no travel (a subnormal V made 1 / (V dt) infinite: NaN, found by
   // fuzzing): the step then holds the history as dt = 0 does, saturated at the current load.
@@ -299,7 +309,7 @@ StepOutput NssModel::steadyStep(const StepInput& given) {
   if (!screen(given, &in, &h, &out)) return out;
   reshaped_ = false;
   if (meshMustFollow(h)) mesh_.scale(h.a, h.b);  // no carry: the history is overwritten below
-  parabolicBound(mesh_, h.a, h.b, in.fz, stepMu(in, p_.mu), &field_);
+  boundOn(mesh_, h, in);
   if (!adaptive_) coverTrailingNodes();
   const Creepages c{in.xi, in.eta, in.phi};
   updateWeights(c, h.a, h.b);

@@ -67,6 +67,9 @@ class NssModel : public ContactModel {
   CreepCoefficients kalker_;
   SteadyCalibration calibrationTable_;
   FlexibilityCalibration calibration_;  // calibrationTable_ at a/b ab_
+  /// The step's traction bound mu p on `mesh` (field_): parabolic, flattened by the
+  /// calibration's bound shape.
+  void boundOn(const PatchMesh& mesh, const HertzEllipse& h, const StepInput& in);
   /// The step's flexibilities: Kalker's, scaled by the calibration for these creepages.
   Flexibilities flexibilities(const HertzEllipse& h, const StepInput& in, const Creepages& c) const;
   bool adaptive_ = false;
