@@ -131,6 +131,35 @@ TEST(ContactModel, StepAndResetAllocateNothingWhateverTheInput) {
   }
 }
 
+TEST(ContactModel, CalibratedStepsWithAChangingAOverBAllocateNothing) {
+  // A new a/b re-picks the calibration's ratios: into the storage the model already holds.
+  for (const char* model : {"steady", "nss", "auto"}) {
+    ContactParameters p;
+    p.model = model;
+    p.fastsim = "calibrated";
+    p.nx = p.ny = 10;
+    const auto m = makeContactModel(p);
+    std::vector<StepInput> in;
+    for (int k = 0; k < 200; ++k) {
+      StepInput s{1e-4, 20.0, 2e-3, 5e-4, 1.0, p.fz0};
+      const double ab = 1.0 + 0.4 * std::sin(0.1 * k);  // a/b from 0.6 to 1.4 at a constant area
+      s.a = p.a0 * std::sqrt(ab * p.b0 / p.a0);
+      s.b = s.a / ab;
+      in.push_back(s);
+    }
+    m->step(in[0]);
+    long allocations = 0;
+    int ok = 0;
+    {
+      const CountAllocations counted;
+      for (const StepInput& s : in) ok += m->step(s).status == StepStatus::kOk;
+      allocations = counted.count();
+    }
+    EXPECT_EQ(allocations, 0) << model;
+    EXPECT_EQ(ok, 200) << model;
+  }
+}
+
 TEST(ContactModel, TheCounterSeesAnAllocation) {
   // The contract above could pass vacuously if the counter missed allocations.
   const CountAllocations counted;

@@ -161,7 +161,15 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
 
 FlexibilityCalibration SteadyCalibration::at(double a_over_b) const {
   FlexibilityCalibration c;
-  if (rows_.empty()) return c;
+  at(a_over_b, &c);
+  return c;
+}
+
+void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
+  if (rows_.empty()) {
+    *c = FlexibilityCalibration();
+    return;
+  }
   const double x = std::log(a_over_b);
   std::size_t i = 0;
   while (i + 1 < rows_.size() && rows_[i + 1].logAB <= x) ++i;
@@ -170,12 +178,11 @@ FlexibilityCalibration SteadyCalibration::at(double a_over_b) const {
   const double t =
       (&lo == &hi || !(x > lo.logAB)) ? 0.0 : std::min(1.0, (x - lo.logAB) / (hi.logAB - lo.logAB));
   for (int k = 0; k < 5; ++k) {
-    c.eps_[k] = lo.eps[k];
-    c.logRatio_[k].resize(lo.ratio[k].size());
+    c->eps_[k] = lo.eps[k];  // every row has the same knots: the storage c holds is reused
+    c->logRatio_[k].resize(lo.ratio[k].size());
     for (std::size_t j = 0; j < lo.ratio[k].size(); ++j)
-      c.logRatio_[k][j] = std::log(lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]));
+      c->logRatio_[k][j] = std::log(lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]));
   }
-  return c;
 }
 
 }  // namespace wheel_rail_contact

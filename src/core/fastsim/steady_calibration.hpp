@@ -79,6 +79,9 @@ class SteadyCalibration {
   /// The table shipped with the package (config/steady_calibration.csv, compiled in).
   static SteadyCalibration shipped();
   FlexibilityCalibration at(double a_over_b) const;
+  /// The same into `c`, reusing the storage it holds (a model re-picking at a new a/b each step
+  /// allocates nothing).
+  void at(double a_over_b, FlexibilityCalibration* c) const;
   bool empty() const { return rows_.empty(); }
 
  private:

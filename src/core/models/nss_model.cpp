@@ -58,7 +58,7 @@ bool NssModel::followAOverB(double ab) {
   // with 1 / C11, 1 / C22 as well as with a: carry u along each direction.
   if (lastA_ > 0.0) state_.scaleDirections(c.c11 / kalker_.c11, c.c22 / kalker_.c22);
   kalker_ = c;
-  calibration_ = calibrationTable_.at(ab);
+  calibrationTable_.at(ab, &calibration_);
   for (int k = 0; k < 3; ++k) {
     chi_[k] = chi[k];
     secondKind_[k] = second[k];

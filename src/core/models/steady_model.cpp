@@ -39,7 +39,7 @@ StepOutput SteadyModel::step(const StepInput& in) {
   const double ab = stepAOverB(fwd, ab0_);
   if (ab != ab_) {  // per-step geometry: Kalker's coefficients at this a/b
     c_ = kalkerCoefficients(ab, p_.nu);
-    calibration_ = calibrationTable_.at(ab);
+    calibrationTable_.at(ab, &calibration_);
     ab_ = ab;
   }
   if (fitted_) mesh_.scale(h.a, h.b);
