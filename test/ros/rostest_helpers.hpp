@@ -318,6 +318,32 @@ inline bool sceneAndCliReference(const std::string& ns, const std::string& scene
   return true;
 }
 
+/// A scene-driven rostest node's inputs: its private parameters ns (the contact's namespace), scene
+/// (scenario CSV) and config (the node's YAML), the scene's rows and contact_cli's output for them
+/// (sceneAndCliReference). Stamps are offset + t [s].
+struct SceneUnderTest {
+  explicit SceneUnderTest(double stampOffset) : offset(stampOffset) {}
+  std::string ns, scene, config;
+  std::vector<wheel_rail_contact::ScenarioRow> rows;
+  std::vector<Row> reference;
+  double offset;
+  ros::Time stampOf(double t) const { return ros::Time(offset + t); }
+};
+
+/// main() of a scene-driven rostest node `name`: fills `sut`, then runs every test; 1 if
+/// contact_cli fails.
+inline int runSceneTests(int argc, char** argv, const char* name, SceneUnderTest* sut) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, name);
+  ros::NodeHandle pnh("~");
+  pnh.getParam("ns", sut->ns);
+  pnh.getParam("scene", sut->scene);
+  pnh.getParam("config", sut->config);
+  if (!sceneAndCliReference(sut->ns, sut->scene, sut->config, &sut->rows, &sut->reference))
+    return 1;
+  return RUN_ALL_TESTS();
+}
+
 /// A node's shared parameters, read back from the parameter server.
 inline wheel_rail_contact::ContactParameters parametersOf(const std::string& node) {
   wheel_rail_contact::ContactParameters p;

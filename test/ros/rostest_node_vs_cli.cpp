@@ -11,23 +11,16 @@ using namespace wrc_test;
 
 namespace {
 
-std::string ns, scene, config;
-std::vector<wheel_rail_contact::ScenarioRow> rows;
-std::vector<Row> reference;
-const double kOffset = 1000.0;  // stamps = kOffset + t [s]
-
-ros::Time stampOf(double t) {
-  return ros::Time(kOffset + t);
-}
+SceneUnderTest sut(1000.0);
 
 double scaleOf(double Row::*field) {
-  return largest(reference, field);
+  return largest(sut.reference, field);
 }
 
 /// The node's k-th step against contact_cli's k-th row, each field to 1e-9 of its largest value.
 template <class Out>
 void expectMatches(size_t k, const Out& o) {
-  const Row& r = reference[k];
+  const Row& r = sut.reference[k];
   const double rel = 1e-9;
   EXPECT_NEAR(o.fx, r.fx, rel * scaleOf(&Row::fx)) << "row " << k;
   EXPECT_NEAR(o.fy, r.fy, rel * scaleOf(&Row::fy)) << "row " << k;
@@ -50,15 +43,15 @@ std::vector<ContactState> viaTopics(ContactClient& c, size_t n) {
   EXPECT_TRUE(c.oneOutputPerInput());  // earlier Step calls' outputs are all in
   EXPECT_TRUE(c.reset());
   for (size_t k = 0; k < n; ++k) {
-    const auto& row = rows[k];
+    const auto& row = sut.rows[k];
     ContactState s;
     if (k % 2 == 0) {
-      c.load(stampOf(row.t), row.fz);
-      EXPECT_TRUE(c.creep(stampOf(row.t), row.xi, row.eta, row.phi, row.V, &s));
+      c.load(sut.stampOf(row.t), row.fz);
+      EXPECT_TRUE(c.creep(sut.stampOf(row.t), row.xi, row.eta, row.phi, row.V, &s));
     } else {
       const size_t before = c.states.size();
-      c.publishCreepage(stampOf(row.t), row.xi, row.eta, row.phi, row.V);
-      c.load(stampOf(row.t), row.fz);
+      c.publishCreepage(sut.stampOf(row.t), row.xi, row.eta, row.phi, row.V);
+      c.load(sut.stampOf(row.t), row.fz);
       EXPECT_TRUE(spinUntil([&] { return c.states.size() > before; }, 20.0)) << "row " << k;
       if (c.states.size() > before) s = c.states.back();
     }
@@ -72,9 +65,9 @@ std::vector<ContactState> viaTopics(ContactClient& c, size_t n) {
 
 void viaStep(ContactClient& c, size_t from, size_t to) {
   for (size_t k = from; k < to; ++k) {
-    const auto& row = rows[k];
+    const auto& row = sut.rows[k];
     wheel_rail_contact::Step::Response res;
-    ASSERT_TRUE(c.step(stampOf(row.t), row.xi, row.eta, row.phi, row.V, row.fz, &res));
+    ASSERT_TRUE(c.step(sut.stampOf(row.t), row.xi, row.eta, row.phi, row.V, row.fz, &res));
     expectMatches(k, res);
     EXPECT_EQ(res.dt, k == from && from == 0 ? 0.0 : res.dt);
   }
@@ -83,8 +76,8 @@ void viaStep(ContactClient& c, size_t from, size_t to) {
 class NodeVsCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    client = std::make_unique<ContactClient>(nh, ns);
-    ASSERT_TRUE(client->connect()) << "contact_node under " << ns << " not reachable";
+    client = std::make_unique<ContactClient>(nh, sut.ns);
+    ASSERT_TRUE(client->connect()) << "contact_node under " << sut.ns << " not reachable";
     ASSERT_TRUE(client->reset());
   }
   void TearDown() override {
@@ -99,44 +92,44 @@ class NodeVsCli : public ::testing::Test {
 }  // namespace
 
 TEST_F(NodeVsCli, ContactCliReadsTheNodeConfiguration) {
-  ASSERT_FALSE(rows.empty());
-  ASSERT_EQ(reference.size(), rows.size());
+  ASSERT_FALSE(sut.rows.empty());
+  ASSERT_EQ(sut.reference.size(), sut.rows.size());
   std::string model;
-  ASSERT_TRUE(ros::param::get(ns + "/contact_node/model", model));
-  for (const auto& r : reference) EXPECT_EQ(r.status, "ok");
+  ASSERT_TRUE(ros::param::get(sut.ns + "/contact_node/model", model));
+  for (const auto& r : sut.reference) EXPECT_EQ(r.status, "ok");
 }
 
 TEST_F(NodeVsCli, TopicsGiveContactCliForces) {
-  const auto out = viaTopics(*client, rows.size());
-  ASSERT_EQ(out.size(), rows.size());
-  std::string frame = wheel_rail_contact::frameIdForNamespace(ros::names::resolve(ns));
-  ros::param::get(ns + "/contact_node/frame_id", frame);  // an explicit one overrides
+  const auto out = viaTopics(*client, sut.rows.size());
+  ASSERT_EQ(out.size(), sut.rows.size());
+  std::string frame = wheel_rail_contact::frameIdForNamespace(ros::names::resolve(sut.ns));
+  ros::param::get(sut.ns + "/contact_node/frame_id", frame);  // an explicit one overrides
   EXPECT_EQ(client->forces.back().header.frame_id, frame);
   EXPECT_EQ(out[0].dt, 0.0);
-  EXPECT_NEAR(out[1].dt, rows[1].t - rows[0].t, 1e-9);
+  EXPECT_NEAR(out[1].dt, sut.rows[1].t - sut.rows[0].t, 1e-9);
 }
 
 TEST_F(NodeVsCli, StepServiceGivesContactCliForcesAndPublishesThem) {
-  viaStep(*client, 0, rows.size());
+  viaStep(*client, 0, sut.rows.size());
   // Service steps are published too (connect() made sure none can be lost).
-  spinUntil([&] { return client->states.size() >= rows.size(); }, 20.0);
-  EXPECT_EQ(client->states.size(), rows.size());
+  spinUntil([&] { return client->states.size() >= sut.rows.size(); }, 20.0);
+  EXPECT_EQ(client->states.size(), sut.rows.size());
 }
 
 TEST_F(NodeVsCli, TopicsAndStepServiceMixInOneTimeLine) {
-  const size_t half = rows.size() / 2;
+  const size_t half = sut.rows.size() / 2;
   ASSERT_EQ(viaTopics(*client, half).size(), half);
-  viaStep(*client, half, rows.size());
+  viaStep(*client, half, sut.rows.size());
 }
 
 TEST_F(NodeVsCli, ResetRestoresFreshStartOutputs) {
-  const size_t n = std::min<size_t>(rows.size(), 40);
+  const size_t n = std::min<size_t>(sut.rows.size(), 40);
   const auto first = viaTopics(*client, n);
   // Leave every piece of state dirty: history, a later time base, another load.
   wheel_rail_contact::Step::Response res;
   for (int k = 0; k < 5; ++k)
-    ASSERT_TRUE(
-        client->step(stampOf(1e3 + k), 0.03, -0.02, 1.0, rows[0].V, 0.7 * rows[0].fz, &res));
+    ASSERT_TRUE(client->step(sut.stampOf(1e3 + k), 0.03, -0.02, 1.0, sut.rows[0].V,
+                             0.7 * sut.rows[0].fz, &res));
   const auto second = viaTopics(*client, n);  // starts with a reset
   ASSERT_EQ(first.size(), n);
   ASSERT_EQ(second.size(), n);
@@ -151,12 +144,5 @@ TEST_F(NodeVsCli, ResetRestoresFreshStartOutputs) {
 }
 
 int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "node_vs_cli");
-  ros::NodeHandle pnh("~");
-  pnh.getParam("ns", ns);
-  pnh.getParam("scene", scene);
-  pnh.getParam("config", config);
-  if (!sceneAndCliReference(ns, scene, config, &rows, &reference)) return 1;
-  return RUN_ALL_TESTS();
+  return runSceneTests(argc, argv, "node_vs_cli", &sut);
 }

@@ -20,26 +20,19 @@ using namespace wrc_test;
 
 namespace {
 
-std::string ns, scene, config;
-std::vector<wheel_rail_contact::ScenarioRow> rows;
-std::vector<Row> reference;
-const double kOffset = 2000.0;  // stamps = kOffset + t [s]
-
-ros::Time stampOf(double t) {
-  return ros::Time(kOffset + t);
-}
+SceneUnderTest sut(2000.0);
 
 void expectCli(const std::vector<ContactState>& out, const char* what) {
-  ASSERT_EQ(out.size(), reference.size()) << what;
+  ASSERT_EQ(out.size(), sut.reference.size()) << what;
   for (size_t k = 0; k < out.size(); ++k) {
-    const Row& r = reference[k];
+    const Row& r = sut.reference[k];
     const ContactState& s = out[k];
-    EXPECT_EQ(s.header.stamp, stampOf(rows[k].t)) << what << " row " << k;
+    EXPECT_EQ(s.header.stamp, sut.stampOf(sut.rows[k].t)) << what << " row " << k;
     EXPECT_EQ(s.load_match, ContactState::LOAD_SAME_STAMP) << what << " row " << k << s.message;
-    EXPECT_EQ(s.fz, rows[k].fz) << what << " row " << k;
-    EXPECT_NEAR(s.fx, r.fx, 1e-9 * largest(reference, &Row::fx)) << what << " row " << k;
-    EXPECT_NEAR(s.fy, r.fy, 1e-9 * largest(reference, &Row::fy)) << what << " row " << k;
-    EXPECT_NEAR(s.a, r.a, 1e-9 * largest(reference, &Row::a)) << what << " row " << k;
+    EXPECT_EQ(s.fz, sut.rows[k].fz) << what << " row " << k;
+    EXPECT_NEAR(s.fx, r.fx, 1e-9 * largest(sut.reference, &Row::fx)) << what << " row " << k;
+    EXPECT_NEAR(s.fy, r.fy, 1e-9 * largest(sut.reference, &Row::fy)) << what << " row " << k;
+    EXPECT_NEAR(s.a, r.a, 1e-9 * largest(sut.reference, &Row::a)) << what << " row " << k;
     EXPECT_NEAR(s.adhesion_fraction, r.adhesion, 1e-9) << what << " row " << k;
     EXPECT_EQ(statusText(s.status), r.status) << what << " row " << k;
   }
@@ -57,10 +50,10 @@ struct Input {
 std::vector<Input> shuffledOrder(std::mt19937& rng) {
   std::vector<Input> order;
   std::uniform_int_distribution<int> pattern(0, 5), ahead(2, 5);
-  for (size_t k = 0; k < rows.size();) {
+  for (size_t k = 0; k < sut.rows.size();) {
     const int p = pattern(rng);
     if (p == 0) {  // several creepages, then their loads
-      const size_t n = std::min<size_t>(ahead(rng), rows.size() - k);
+      const size_t n = std::min<size_t>(ahead(rng), sut.rows.size() - k);
       for (size_t j = 0; j < n; ++j) order.push_back({k + j, false});
       for (size_t j = 0; j < n; ++j) order.push_back({k + j, true});
       k += n;
@@ -75,26 +68,26 @@ std::vector<Input> shuffledOrder(std::mt19937& rng) {
 
 wheel_rail_contact::Creepage creepageOf(size_t k) {
   wheel_rail_contact::Creepage m;
-  m.header.stamp = stampOf(rows[k].t);
-  m.longitudinal = rows[k].xi;
-  m.lateral = rows[k].eta;
-  m.spin = rows[k].phi;
-  m.velocity = rows[k].V;
+  m.header.stamp = sut.stampOf(sut.rows[k].t);
+  m.longitudinal = sut.rows[k].xi;
+  m.lateral = sut.rows[k].eta;
+  m.spin = sut.rows[k].phi;
+  m.velocity = sut.rows[k].V;
   return m;
 }
 
 wheel_rail_contact::NormalLoad loadOf(size_t k) {
   wheel_rail_contact::NormalLoad m;
-  m.header.stamp = stampOf(rows[k].t);
-  m.force = rows[k].fz;
+  m.header.stamp = sut.stampOf(sut.rows[k].t);
+  m.force = sut.rows[k].fz;
   return m;
 }
 
 class Pairing : public ::testing::Test {
  protected:
   void SetUp() override {
-    client = std::make_unique<ContactClient>(nh, ns);
-    ASSERT_TRUE(client->connect()) << "contact_node under " << ns << " not reachable";
+    client = std::make_unique<ContactClient>(nh, sut.ns);
+    ASSERT_TRUE(client->connect()) << "contact_node under " << sut.ns << " not reachable";
     ASSERT_TRUE(client->reset());
   }
   /// Waits for `n` outputs after index `from`, returns them.
@@ -118,14 +111,14 @@ TEST_F(Pairing, ShuffledArrivalWithDelaysGivesContactCliForces) {
     ASSERT_TRUE(client->reset());
     const size_t from = client->states.size();
     for (const Input& in : shuffledOrder(rng)) {
-      const auto& r = rows[in.row];
+      const auto& r = sut.rows[in.row];
       if (in.load)
-        client->load(stampOf(r.t), r.fz);
+        client->load(sut.stampOf(r.t), r.fz);
       else
-        client->publishCreepage(stampOf(r.t), r.xi, r.eta, r.phi, r.V);
+        client->publishCreepage(sut.stampOf(r.t), r.xi, r.eta, r.phi, r.V);
       if (pause(rng)) spinFor(delay(rng));  // a deliberate gap in the stream, not a wait
     }
-    expectCli(outputs(from, rows.size()), run == 0 ? "shuffled run 1" : "shuffled run 2");
+    expectCli(outputs(from, sut.rows.size()), run == 0 ? "shuffled run 1" : "shuffled run 2");
   }
   EXPECT_TRUE(client->oneOutputPerInput());
 }
@@ -145,9 +138,9 @@ TEST_F(Pairing, ARecordedBagPlayedTwiceGivesBitIdenticalContactCliForces) {
     for (const Input& in : shuffledOrder(rng)) {
       t = std::max(t, 0.001 * static_cast<double>(in.row)) + jitter(rng);
       if (in.load)
-        bag.write("/" + ns + "/normal_load", t0 + ros::Duration(t), loadOf(in.row));
+        bag.write("/" + sut.ns + "/normal_load", t0 + ros::Duration(t), loadOf(in.row));
       else
-        bag.write("/" + ns + "/creepage", t0 + ros::Duration(t), creepageOf(in.row));
+        bag.write("/" + sut.ns + "/creepage", t0 + ros::Duration(t), creepageOf(in.row));
     }
   }
   std::vector<std::vector<ContactState>> plays;
@@ -157,7 +150,7 @@ TEST_F(Pairing, ARecordedBagPlayedTwiceGivesBitIdenticalContactCliForces) {
     // --wait-for-subscribers: rosbag starts once the node is subscribed to both topics.
     std::string log;
     ASSERT_EQ(run("rosbag play --wait-for-subscribers -q '" + path + "'", &log), 0) << log;
-    plays.push_back(outputs(from, rows.size()));
+    plays.push_back(outputs(from, sut.rows.size()));
     expectCli(plays.back(), play == 0 ? "bag play 1" : "bag play 2");
   }
   std::remove(path.c_str());
@@ -168,7 +161,7 @@ TEST_F(Pairing, ARecordedBagPlayedTwiceGivesBitIdenticalContactCliForces) {
 
 TEST_F(Pairing, PerStepGeometryAndFrictionReachTheModel) {
   // The node's model, rebuilt here from its parameters, fed what the node must pass it.
-  const wheel_rail_contact::ContactParameters p = parametersOf(ns + "/contact_node");
+  const wheel_rail_contact::ContactParameters p = parametersOf(sut.ns + "/contact_node");
   auto model = wheel_rail_contact::makeContactModel(p);
   const double fz = 500.0, V = 0.025, xi = 0.01, eta = 0.004, phi = 0.5;
   // Step 1 (topics): a, b and mu given; the load comes after the creepage.
@@ -177,8 +170,8 @@ TEST_F(Pairing, PerStepGeometryAndFrictionReachTheModel) {
   g.b = 0.017;
   g.mu = 0.35;
   const size_t from = client->states.size();
-  client->publishCreepage(stampOf(0.0), xi, eta, phi, V, g);
-  client->load(stampOf(0.0), fz);
+  client->publishCreepage(sut.stampOf(0.0), xi, eta, phi, V, g);
+  client->load(sut.stampOf(0.0), fz);
   const auto out = outputs(from, 1);
   ASSERT_EQ(out.size(), 1u);
   wheel_rail_contact::StepInput in{0.0, V, xi, eta, phi, fz};
@@ -197,7 +190,7 @@ TEST_F(Pairing, PerStepGeometryAndFrictionReachTheModel) {
   req.curvature_y = 6.0;
   req.mu = 0.2;
   wheel_rail_contact::Step::Response res;
-  ASSERT_TRUE(client->step(stampOf(0.01), xi, eta, phi, V, 1.2 * fz, &res, req));
+  ASSERT_TRUE(client->step(sut.stampOf(0.01), xi, eta, phi, V, 1.2 * fz, &res, req));
   const auto e = wheel_rail_contact::hertzFromCurvatures(1.2 * fz, 4.0, 6.0, p.G, p.nu);
   in = {0.01, V, xi, eta, phi, 1.2 * fz};
   in.a = e.a;
@@ -212,7 +205,7 @@ TEST_F(Pairing, PerStepGeometryAndFrictionReachTheModel) {
   // A conflicting request is rejected with its reason and holds step 2's output.
   req.a = 0.02;
   req.b = 0.02;
-  ASSERT_TRUE(client->step(stampOf(0.02), xi, eta, phi, V, fz, &res, req));
+  ASSERT_TRUE(client->step(sut.stampOf(0.02), xi, eta, phi, V, fz, &res, req));
   EXPECT_EQ(res.status, ContactState::STATUS_REJECTED);
   EXPECT_NE(res.message.find("both"), std::string::npos) << res.message;
   EXPECT_TRUE(res.held);
@@ -221,12 +214,5 @@ TEST_F(Pairing, PerStepGeometryAndFrictionReachTheModel) {
 }
 
 int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "pairing");
-  ros::NodeHandle pnh("~");
-  pnh.getParam("ns", ns);
-  pnh.getParam("scene", scene);
-  pnh.getParam("config", config);
-  if (!sceneAndCliReference(ns, scene, config, &rows, &reference)) return 1;
-  return RUN_ALL_TESTS();
+  return runSceneTests(argc, argv, "pairing", &sut);
 }
