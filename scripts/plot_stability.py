@@ -64,7 +64,7 @@ def compare_variants(rows):
     """Cells of one model whose class differs between its classic and calibrated rows."""
     cell = {}
     for r in rows:
-        base = r["model"].rsplit(", ", 1)[0]
+        base = r["model"].rsplit(" (", 1)[0]
         key = (base, r["input"], r["lambda_over_a"], r["step_over_dx"])
         cell.setdefault(key, {})[r.get("fastsim", "-")] = r
     broken = [r for r in rows if r["class"] in ("nan", "blow-up", "oscillation")]

@@ -366,7 +366,7 @@ int run(const Options& o) {
       {"nss adaptive + varying load", "nss", "adaptive", true, "calibrated"}};
   for (ModelSpec m : fastsim) {
     if (!runs(o, m.fastsim)) continue;
-    m.label += ", " + m.fastsim;
+    m.label += " (" + m.fastsim + ")";
     sweep.model(m, lambdas, ratios, o.nx);
   }
   if (o.exact) {
