@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """doc/data/stability_map.csv (src/tools/stability_map.cpp) -> doc/figures/stability_map.png: one row of
 panels per model, one column per input (adhesion, partial slip, full slip, spin), lambda/a against
-V dt/dx, each cell coloured by its class."""
+V dt/dx, each cell coloured by its class. Prints, per model run in both FastSim variants, the cells
+whose class differs between classic and calibrated, and every cell that is nan, blow-up or
+oscillation."""
 import csv
 import sys
 from collections import OrderedDict
@@ -55,6 +57,32 @@ def main(src="doc/data/stability_map.csv", out="doc/figures/stability_map.png"):
     fig.tight_layout(rect=(0, 0.03, 1, 0.97))
     fig.savefig(out, dpi=110)
     print("wrote", out)
+    compare_variants(rows)
+
+
+def compare_variants(rows):
+    """Cells of one model whose class differs between its classic and calibrated rows."""
+    cell = {}
+    for r in rows:
+        base = r["model"].rsplit(" (", 1)[0]
+        key = (base, r["input"], r["lambda_over_a"], r["step_over_dx"])
+        cell.setdefault(key, {})[r.get("fastsim", "-")] = r
+    broken = [r for r in rows if r["class"] in ("nan", "blow-up", "oscillation")]
+    print("nan, blow-up or oscillation cells:", len(broken))
+    for r in broken:
+        print("  %s %s lambda/a %s step/dx %s: %s" % (r["model"], r["input"], r["lambda_over_a"],
+                                                       r["step_over_dx"], r["class"]))
+    for base in OrderedDict.fromkeys(k[0] for k in cell):
+        pairs = [(k, v) for k, v in cell.items() if k[0] == base and len(v) == 2]
+        if not pairs:
+            continue
+        changed = [(k, v) for k, v in pairs if v["classic"]["class"] != v["calibrated"]["class"]]
+        print("%s: %d of %d cells change class from classic to calibrated" % (base, len(changed),
+                                                                            len(pairs)))
+        for k, v in changed:
+            print("  %s lambda/a %s step/dx %s: %s %.3f -> %s %.3f" % (
+                k[1], k[2], k[3], v["classic"]["class"], float(v["classic"]["error"]),
+                v["calibrated"]["class"], float(v["calibrated"]["error"])))
 
 
 def edges(v):

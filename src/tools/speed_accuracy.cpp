@@ -15,9 +15,12 @@
 // --refresh.
 // Writes <out>/speed_accuracy.csv (one row per model and mesh) and speed_accuracy_scenes.csv.
 // Options: speed_accuracy --help.
-// LIST: NAME[:MESH],... (mesh fixed when left out), by default
+// LIST: NAME[:MESH[:FASTSIM]],... (mesh fixed when left out), by default
 // steady,shen-li,nss:fixed,nss:adaptive,exact,auto:auto; a model this build lacks is skipped, with
 // a note. auto runs once per tolerance, on the mesh it chooses.
+// Every FastSim model (all but exact) runs once per variant of --fastsim (classic,calibrated by
+// default) unless its spec names one, and the variant is set on every run and written in every
+// row: the parameters' default variant may change, the chart's rows must not.
 // --set passes any ContactParameters field (setParameter) to every model run, e.g. a tolerance;
 // the exact reference keeps the scene's own parameters.
 #include <algorithm>
@@ -50,6 +53,7 @@ struct Options {
   std::vector<int> meshes = {5, 10, 20, 30, 40}, exactMeshes = {10, 20};
   // auto picks its own mesh: it runs once per tolerance instead of once per mesh.
   std::vector<double> tolerances = {0.1, 0.05};
+  std::vector<std::string> fastsims = {"classic", "calibrated"};  // variants of every FastSim model
   int grid = 40, loadGrid = 30, periods = 3, repeats = 7, rounds = 3;
   std::vector<std::pair<std::string, std::string>> overrides;  // --set NAME=VALUE
   bool refresh = false;
@@ -164,9 +168,12 @@ void computeReferences(const Options& o, std::vector<Scene>* scenes) {
 
 struct Variant {
   std::string model, mesh;
+  std::string fastsim;  // classic | calibrated; kNoFastSim for the exact solver
   int n = 0;
   double tolerance = 0.0;  // auto only (0: the parameter's default)
 };
+
+const char* const kNoFastSim = "-";
 
 struct Result {
   Variant v;
@@ -183,6 +190,7 @@ ContactParameters paramsFor(const Options& o, const Variant& v, const PaperScene
   if (v.n > 0) p.nx = p.ny = v.n;  // auto chooses its own (n = 0)
   for (const auto& kv : o.overrides) setParameter(&p, kv.first, kv.second);
   if (v.tolerance > 0.0) p.tolerance = v.tolerance;
+  if (v.fastsim != kNoFastSim) p.fastsim = v.fastsim;
   return p;
 }
 
@@ -279,12 +287,21 @@ std::vector<Variant> variants(const Options& o) {
   std::vector<Variant> out;
   for (const std::string& spec : o.models) {
     const std::vector<std::string> f = split(spec, ':');
+    if (f.empty() || f.size() > 3)
+      throw std::invalid_argument("--models: bad entry '" + spec + "'");
     const std::string mesh = f.size() > 1 ? f[1] : "fixed";
-    if (f[0] == "auto") {
-      for (double t : o.tolerances) out.push_back({f[0], mesh, 0, t});
-      continue;
+    std::vector<std::string> kinds = f.size() > 2 ? std::vector<std::string>{f[2]} : o.fastsims;
+    if (f.size() > 2 && f[2] != "classic" && f[2] != "calibrated")
+      throw std::invalid_argument("--models: FASTSIM is classic or calibrated, in '" + spec + "'");
+    if (f[0] == "exact") kinds = {kNoFastSim};
+    for (const std::string& fastsim : kinds) {
+      if (f[0] == "auto") {
+        for (double t : o.tolerances) out.push_back({f[0], mesh, fastsim, 0, t});
+        continue;
+      }
+      for (int n : f[0] == "exact" ? o.exactMeshes : o.meshes)
+        out.push_back({f[0], mesh, fastsim, n});
     }
-    for (int n : f[0] == "exact" ? o.exactMeshes : o.meshes) out.push_back({f[0], mesh, n});
   }
   return out;
 }
@@ -302,23 +319,25 @@ void writeResults(const Options& o, const std::vector<Result>& results,
                   const std::vector<Scene>& scenes) {
   std::ofstream table = tools::writeFile(o.out + "/speed_accuracy.csv"),
                 per = tools::writeFile(o.out + "/speed_accuracy_scenes.csv");
-  table << "model,mesh,nx,ny,tolerance,ns_per_step,worst_error,mean_error,worst_freq,"
+  table << "model,mesh,fastsim,nx,ny,tolerance,ns_per_step,worst_error,mean_error,worst_freq,"
            "worst_combined,worst_load\n";
-  per << "model,mesh,nx,ny,tolerance,scene,family,error,ns_per_step,nss_share\n";
+  per << "model,mesh,fastsim,nx,ny,tolerance,scene,family,error,ns_per_step,nss_share\n";
   for (const Result& r : results) {
     double sum = 0.0;
     for (double e : r.errors) sum += e;
     char line[256];
-    std::snprintf(line, sizeof line, "%s,%s,%d,%d,%g,%.4g,%.5f,%.5f,%.5f,%.5f,%.5f\n",
-                  r.v.model.c_str(), r.v.mesh.c_str(), r.v.n, r.v.n, r.v.tolerance, r.nsPerStep,
-                  worstOf(r, scenes, ""), sum / r.errors.size(), worstOf(r, scenes, "freq"),
-                  worstOf(r, scenes, "combined"), worstOf(r, scenes, "load"));
+    std::snprintf(line, sizeof line, "%s,%s,%s,%d,%d,%g,%.4g,%.5f,%.5f,%.5f,%.5f,%.5f\n",
+                  r.v.model.c_str(), r.v.mesh.c_str(), r.v.fastsim.c_str(), r.v.n, r.v.n,
+                  r.v.tolerance, r.nsPerStep, worstOf(r, scenes, ""), sum / r.errors.size(),
+                  worstOf(r, scenes, "freq"), worstOf(r, scenes, "combined"),
+                  worstOf(r, scenes, "load"));
     table << line;
     std::cerr << line;
     for (size_t k = 0; k < scenes.size(); ++k) {
-      std::snprintf(line, sizeof line, "%s,%s,%d,%d,%g,%s,%s,%.5f,%.4g,%.3f\n", r.v.model.c_str(),
-                    r.v.mesh.c_str(), r.v.n, r.v.n, r.v.tolerance, scenes[k].scene.name.c_str(),
-                    scenes[k].family.c_str(), r.errors[k], r.nsPerScene[k], r.nssShare[k]);
+      std::snprintf(line, sizeof line, "%s,%s,%s,%d,%d,%g,%s,%s,%.5f,%.4g,%.3f\n",
+                    r.v.model.c_str(), r.v.mesh.c_str(), r.v.fastsim.c_str(), r.v.n, r.v.n,
+                    r.v.tolerance, scenes[k].scene.name.c_str(), scenes[k].family.c_str(),
+                    r.errors[k], r.nsPerScene[k], r.nssShare[k]);
       per << line;
     }
   }
@@ -327,9 +346,9 @@ void writeResults(const Options& o, const std::vector<Result>& results,
 const char* const kUsage =
     "usage: speed_accuracy [--out doc/data] [--models LIST] [--meshes 5,10,20,30,40]\n"
     "                      [--exact-meshes 10,20] [--grid 40] [--load-grid 30] [--periods 3]\n"
-    "                      [--repeats 7] [--rounds 3] [--tolerances 0.1,0.05] [--set "
-    "NAME=VALUE]... "
-    "[--refresh]\n";
+    "                      [--repeats 7] [--rounds 3] [--tolerances 0.1,0.05]\n"
+    "                      [--fastsim classic,calibrated] [--set NAME=VALUE]... [--refresh]\n"
+    "  --models NAME[:MESH[:FASTSIM]],...  a FASTSIM pins one variant of that entry\n";
 
 void readOption(tools::Args& a, Options* o) {
   if (a.is("--refresh")) {
@@ -342,6 +361,11 @@ void readOption(tools::Args& a, Options* o) {
     o->meshes = a.integers();
   } else if (a.is("--exact-meshes")) {
     o->exactMeshes = a.integers();
+  } else if (a.is("--fastsim")) {
+    o->fastsims = split(a.text(), ',');
+    for (const std::string& f : o->fastsims)
+      if (f != "classic" && f != "calibrated")
+        throw std::invalid_argument("--fastsim: classic or calibrated, got '" + f + "'");
   } else if (a.is("--tolerances")) {
     o->tolerances = a.reals();
   } else if (a.is("--grid")) {
@@ -358,6 +382,8 @@ void readOption(tools::Args& a, Options* o) {
     const std::string v = a.text();
     const size_t eq = v.find('=');
     if (eq == std::string::npos) throw std::invalid_argument("--set needs NAME=VALUE, got " + v);
+    if (v.substr(0, eq) == "fastsim")  // each row names its variant: set it per row instead
+      throw std::invalid_argument("--set fastsim: use --fastsim or --models NAME:MESH:FASTSIM");
     o->overrides.push_back({v.substr(0, eq), v.substr(eq + 1)});
     ContactParameters probe;  // an unknown name fails here, not as a skip of every model
     setParameter(&probe, o->overrides.back().first, o->overrides.back().second);
@@ -382,8 +408,8 @@ int run(const Options& o) {
     try {
       results.push_back(evaluate(o, v, scenes));
     } catch (const std::invalid_argument& e) {  // a model or option this build does not provide
-      std::cerr << "skipping " << v.model << ":" << v.mesh << " " << v.n << "x" << v.n << ": "
-                << e.what() << "\n";
+      std::cerr << "skipping " << v.model << ":" << v.mesh << ":" << v.fastsim << " " << v.n << "x"
+                << v.n << ": " << e.what() << "\n";
     }
   }
   retime(o, scenes, &results);

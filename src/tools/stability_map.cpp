@@ -20,9 +20,14 @@
 //                 slip and varying load against the same model at the smallest step, interpolated
 //                 in the travel over the part both windows cover (RMS / mu Fz)
 //   good
+// Every FastSim row runs the variant its label names (fastsim: classic or calibrated, set
+// explicitly: the parameters' default may change, the map's rows must not); --fastsim picks the
+// variants (classic,calibrated by default; the calibrated one for steady, nss fixed and nss
+// adaptive under varying load).
 // Output: <out>/stability_map.csv (one row per model, input, lambda/a, V dt/dx).
 // Options: stability_map --help.
 #include <Eigen/Dense>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -30,6 +35,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -46,6 +52,7 @@ struct Options {
   std::string out = "doc/data";
   int nx = 20, lambdas = 10, ratios = 7, refGrid = 30, exactGrid = 12;
   bool exact = true;
+  std::vector<std::string> fastsims = {"classic", "calibrated"};
   double tol = 0.1, slipTol = 0.05, oscTol = 0.02;
 };
 
@@ -60,10 +67,11 @@ const InputCase kCases[] = {{"adhesion", 1e-5, 1e-5, 0.0, true},
                             {"spin", 0.0, 1e-3, 4.0, false}};
 
 struct ModelSpec {
-  const char* label;
+  std::string label;
   const char* model;
   const char* mesh;
-  bool varyingLoad;  // Fz = Fz0 (1 + 0.25 sin theta): judged against its own smallest step
+  bool varyingLoad;     // Fz = Fz0 (1 + 0.25 sin theta): judged against its own smallest step
+  std::string fastsim;  // classic | calibrated; empty for the exact model
 };
 
 constexpr double kV = 20.0;          // rolling speed [m/s]
@@ -256,6 +264,7 @@ struct Sweep {
     p.model = m.model;
     p.mesh = m.mesh;
     p.nx = p.ny = meshN;
+    p.fastsim = m.fastsim;
     if (m.varyingLoad) p.fz_max = p.fz0 * (1.0 + kLoadSwing);
     const CreepCoefficients kalker = kalkerCoefficients(p.a0 / p.b0, p.nu);
     const double c0 = kalker.c11, c1 = kalker.c22;
@@ -273,9 +282,10 @@ struct Sweep {
           if (r == 0) fine = w;
           const Judgement j = judge(o, p, c, w, perPeriod, linear ? &ref : nullptr, &fine);
           char line[320];
-          std::snprintf(line, sizeof line, "%s,%s,%.5g,%.5g,%.5g,%s,%.5g,%.5g,%.5g,%.6g,%d,%s\n",
-                        m.label, c.name, l, ratios[r], perPeriod, j.cls.c_str(), j.error,
-                        j.residual, j.alternating, w.maxForceRatio, w.notConverged,
+          std::snprintf(line, sizeof line, "%s,%s,%s,%.5g,%.5g,%.5g,%s,%.5g,%.5g,%.5g,%.6g,%d,%s\n",
+                        m.label.c_str(), m.fastsim.empty() ? "-" : m.fastsim.c_str(), c.name, l,
+                        ratios[r], perPeriod, j.cls.c_str(), j.error, j.residual, j.alternating,
+                        w.maxForceRatio, w.notConverged,
                         linear ? "exact linear" : "own smallest step");
           csv << line;
         }
@@ -287,10 +297,26 @@ struct Sweep {
   }
 };
 
+std::vector<std::string> fastsimList(const std::string& text) {
+  std::vector<std::string> out;
+  for (size_t from = 0; from <= text.size();) {
+    const size_t comma = std::min(text.find(',', from), text.size());
+    out.push_back(text.substr(from, comma - from));
+    if (out.back() != "classic" && out.back() != "calibrated")
+      throw std::invalid_argument("--fastsim: classic or calibrated, got '" + out.back() + "'");
+    from = comma + 1;
+  }
+  return out;
+}
+
+bool runs(const Options& o, const std::string& fastsim) {
+  return std::find(o.fastsims.begin(), o.fastsims.end(), fastsim) != o.fastsims.end();
+}
+
 const char* const kUsage =
     "usage: stability_map [--out doc/data] [--nx 20] [--lambdas 10] [--ratios 7] [--ref-grid 30]\n"
     "                     [--exact-grid 12] [--no-exact] [--tol 0.1] [--slip-tol 0.05]\n"
-    "                     [--osc-tol 0.02]\n";
+    "                     [--osc-tol 0.02] [--fastsim classic,calibrated]\n";
 
 void readOption(tools::Args& a, Options* o) {
   if (a.is("--out"))
@@ -313,6 +339,8 @@ void readOption(tools::Args& a, Options* o) {
     o->slipTol = a.real();
   else if (a.is("--osc-tol"))
     o->oscTol = a.real();
+  else if (a.is("--fastsim"))
+    o->fastsims = fastsimList(a.text());
   else
     a.unknown();
 }
@@ -323,15 +351,24 @@ int run(const Options& o) {
   const NonSteadyCoefficients x(CreepageKind::kXi, p.a0 / p.b0, p.nu, o.refGrid, o.refGrid);
   const NonSteadyCoefficients y(CreepageKind::kEta, p.a0 / p.b0, p.nu, o.refGrid, o.refGrid);
   std::ofstream csv = tools::writeFile(o.out + "/stability_map.csv");
-  csv << "model,input,lambda_over_a,step_over_dx,steps_per_period,class,error,residual,"
+  csv << "model,fastsim,input,lambda_over_a,step_over_dx,steps_per_period,class,error,residual,"
          "alternating,max_force_ratio,not_converged,reference\n";
   Sweep sweep{o, csv, {&x, &y}};
   const auto lambdas = logGrid(0.5, 200.0, o.lambdas), ratios = logGrid(0.01, 10.0, o.ratios);
-  const ModelSpec fastsim[] = {{"steady", "steady", "fixed", false},
-                               {"shen-li", "shen-li", "fixed", false},
-                               {"nss fixed", "nss", "fixed", false},
-                               {"nss adaptive + varying load", "nss", "adaptive", true}};
-  for (const ModelSpec& m : fastsim) sweep.model(m, lambdas, ratios, o.nx);
+  // Classic and calibrated of one model side by side; shen-li in classic only.
+  const ModelSpec fastsim[] = {
+      {"steady", "steady", "fixed", false, "classic"},
+      {"steady", "steady", "fixed", false, "calibrated"},
+      {"shen-li", "shen-li", "fixed", false, "classic"},
+      {"nss fixed", "nss", "fixed", false, "classic"},
+      {"nss fixed", "nss", "fixed", false, "calibrated"},
+      {"nss adaptive + varying load", "nss", "adaptive", true, "classic"},
+      {"nss adaptive + varying load", "nss", "adaptive", true, "calibrated"}};
+  for (ModelSpec m : fastsim) {
+    if (!runs(o, m.fastsim)) continue;
+    m.label += " (" + m.fastsim + ")";
+    sweep.model(m, lambdas, ratios, o.nx);
+  }
   if (o.exact) {
     // Every other wavelength; steps no shorter than the exact grid's element (2.2 a / grid), as
     // the exact model holds its output between its one-element sub-steps.
@@ -340,7 +377,7 @@ int run(const Options& o) {
     er.push_back(2.2 / o.exactGrid * o.nx / 2.0);  // one sub-step per step: its own scheme
     for (double r : ratios)
       if (r > er.front() * (1 + 1e-9)) er.push_back(r);
-    sweep.model({"exact", "exact", "fixed", false}, el, er, o.exactGrid);
+    sweep.model({"exact", "exact", "fixed", false, ""}, el, er, o.exactGrid);
   }
   return 0;
 }

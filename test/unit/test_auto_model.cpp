@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
+#include "core/fastsim/steady_calibration.hpp"
 #include "core/models/auto_model.hpp"
 #include "core/models/steady_model.hpp"
 #include "validation/harmonic_scenes.hpp"
@@ -16,10 +18,13 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// Classic FastSim named explicitly: these tests compare with a classic SteadyModel, whatever the
+// parameters' default variant.
 ContactParameters autoParameters(const char* mesh = "adaptive") {
   ContactParameters p;
   p.model = "auto";
   p.mesh = mesh;
+  p.fastsim = "classic";
   return p;
 }
 
@@ -53,15 +58,36 @@ double forceChange(const Rolled& r, int k) {
 }  // namespace
 
 TEST(AutoModel, MeshGrowsAsTheToleranceTightens) {
-  int previous = 0;
-  for (double tolerance : {0.3, 0.1, 0.05, 0.02, 0.001}) {
-    const int n = meshForTolerance(tolerance);
-    EXPECT_LE(previous, n) << tolerance;
-    EXPECT_GE(n, 5);
-    EXPECT_LE(n, 40);
-    previous = n;
+  for (const bool calibrated : {false, true}) {
+    int previous = 0;
+    for (double tolerance : {0.3, 0.1, 0.07, 0.05, 0.047, 0.043, 0.02, 0.001}) {
+      const int n = meshForTolerance(tolerance, calibrated);
+      EXPECT_LE(previous, n) << tolerance << (calibrated ? " calibrated" : " classic");
+      EXPECT_GE(n, 5);
+      EXPECT_LE(n, 40);
+      previous = n;
+    }
+    EXPECT_LT(meshForTolerance(0.3, calibrated), meshForTolerance(0.001, calibrated));
   }
-  EXPECT_LT(meshForTolerance(0.3), meshForTolerance(0.001));
+}
+
+// Each variant's ladder is read off its own rows of the chart; auto takes the one of the FastSim it
+// runs, whatever the parameters' default variant. Between the ladders' rungs they differ: at 0.07
+// the classic 5x5 (worst 0.060 within reach) is enough, the calibrated one (0.084) is not.
+TEST(AutoModel, MeshComesFromTheLadderOfTheVariantItRuns) {
+  for (const char* fastsim : {"classic", "calibrated"})
+    for (double tolerance : {0.2, 0.07, 0.05, 0.047, 0.03}) {
+      ContactParameters p = autoParameters();
+      p.fastsim = fastsim;
+      p.tolerance = tolerance;
+      auto m = makeContactModel(p);
+      const auto* a = dynamic_cast<const AutoModel*>(m.get());
+      ASSERT_NE(a, nullptr);
+      const bool calibrated = std::string(fastsim) == "calibrated";
+      EXPECT_EQ(a->runsCalibratedFastSim(), calibrated) << fastsim;
+      EXPECT_EQ(a->meshSize(), meshForTolerance(tolerance, calibrated)) << fastsim << tolerance;
+    }
+  EXPECT_LT(meshForTolerance(0.07, false), meshForTolerance(0.07, true));
 }
 
 TEST(AutoModel, RelaxationLengthIsAboutThePatchSize) {
@@ -155,9 +181,15 @@ TEST(AutoModel, ResetGivesFreshStartOutputs) {
 // The rule's shares were read off the chart's sweep (lambda/a = 1 ... 100 on a 40x40 exact grid);
 // here waves between and beyond those, against a coarser exact grid (16x16, whose own error is
 // about 1 %): auto keeps within its tolerance, runs steady FastSim over the scored period of the
-// longest wave (where it is cheaper than NSS-FastSim) and NSS-FastSim on the shorter ones.
-TEST(AutoModel, MeetsItsToleranceOnWavesTheChartDidNotSee) {
+// longest wave (where it is cheaper than NSS-FastSim) and NSS-FastSim on the shorter ones. Run in
+// each FastSim variant, named explicitly: the calibrated one carries the same rule's shares.
+namespace {
+
+void expectToleranceOnWavesTheChartDidNotSee(const char* fastsim) {
   constexpr int kGrid = 16;
+  const bool calibrated = std::string(fastsim) == "calibrated";
+  const SteadyCalibration calibration =
+      calibrated ? SteadyCalibration::shipped() : SteadyCalibration();
   for (const CreepageKind kind : kCreepageKinds) {
     const NonSteadyCoefficients exact(kind, 1.0, 0.28, kGrid, kGrid);
     for (const double tolerance : {0.1, 0.05})
@@ -165,8 +197,10 @@ TEST(AutoModel, MeetsItsToleranceOnWavesTheChartDidNotSee) {
         const HarmonicScene h = harmonicScene(kind, lambda, 2.2 * 0.02 / kGrid);
         ContactParameters p = h.scene.params;
         p.model = "auto";
+        p.fastsim = fastsim;
         p.tolerance = tolerance;
-        AutoModel m(p, ChiTable::shipped());
+        AutoModel m(p, ChiTable::shipped(), calibration);
+        ASSERT_EQ(m.runsCalibratedFastSim(), calibrated);
         std::vector<StepOutput> out;
         int nssScored = 0, scored = 0;
         const double from = h.scene.rows.back().t - h.scene.period;
@@ -176,8 +210,8 @@ TEST(AutoModel, MeetsItsToleranceOnWavesTheChartDidNotSee) {
           ++scored;
           nssScored += m.nonSteady();
         }
-        const std::string at = std::string(toString(kind)) + " lambda/a " + std::to_string(lambda) +
-                               " tolerance " + std::to_string(tolerance);
+        const std::string at = std::string(fastsim) + " " + toString(kind) + " lambda/a " +
+                               std::to_string(lambda) + " tolerance " + std::to_string(tolerance);
         const std::vector<StepOutput> ref = harmonicResponse(h, exact.at(lambda));
         EXPECT_LE(sceneError(h.scene, out, ref).rmsOverPeak, tolerance) << at;
         if (lambda == 300.0)
@@ -186,4 +220,14 @@ TEST(AutoModel, MeetsItsToleranceOnWavesTheChartDidNotSee) {
           EXPECT_EQ(nssScored, scored) << at;
       }
   }
+}
+
+}  // namespace
+
+TEST(AutoModel, MeetsItsToleranceOnWavesTheChartDidNotSee) {
+  expectToleranceOnWavesTheChartDidNotSee("classic");
+}
+
+TEST(AutoModel, CalibratedMeetsItsToleranceOnWavesTheChartDidNotSee) {
+  expectToleranceOnWavesTheChartDidNotSee("calibrated");
 }

@@ -22,8 +22,10 @@ constexpr double kStartShare = 0.85;
 constexpr double kReturnShare = 0.8;
 constexpr double kCalmTransits = 2.0;
 // On the chart's varying-load scenes steady FastSim's error beyond nss's is at most 0.3 of the
-// lag estimate l |dfz/dq| / fz / sqrt 2 (0.02-0.3 over the twelve scenes, 5x5 and 20x20): the
-// patch's size follows the load at once, only the traction's shape lags.
+// lag estimate l |dfz/dq| / fz / sqrt 2 (0.02-0.3 over the twelve scenes, 5x5 and 20x20; 0.08-0.3
+// with the calibrated FastSim): the patch's size follows the load at once, only the traction's
+// shape lags. The shares and this weight hold for both variants: the sweep is linear, where the
+// calibration's ratios are 1, and so is the relaxation length.
 constexpr double kLoadWeight = 0.3;
 
 // The peaks are held over the longest wavelength that still needs NSS-FastSim
@@ -93,19 +95,36 @@ double SteadinessMonitor::update(const StepInput& in) {
   return estimate_;
 }
 
-int meshForTolerance(double tolerance) {
-  // doc/data/speed_accuracy_scenes.csv (scripts/speed_accuracy.sh): worst error of nss on the
-  // adaptive n x n mesh over the combined and varying-load scenes and the frequency sweep from
-  // lambda/a = 10 (5: 0.060, 10: 0.041, 20: 0.044, each mesh with its own chi; 0.084, 0.046, 0.044
-  // with the 20x20 chi on every mesh). Finer meshes gain nothing there (30x30 and 40x40: 0.044):
-  // the model's own error dominates; below 0.045, 20x20 is the best beyond reach (short waves).
-  struct Reach {
-    int n;
-    double worst;
-  };
-  for (const Reach& r : {Reach{5, 0.064}, Reach{10, 0.045}})
-    if (tolerance >= r.worst) return r.n;
+namespace {
+
+// From doc/data/speed_accuracy_reading.txt (scripts/speed_accuracy.sh, "auto's rule read off the
+// chart"): worst error of nss on the adaptive n x n mesh, in the variant auto runs, over the
+// combined and varying-load scenes and the frequency sweep from lambda/a = 10; each rung starts
+// about 8 % above it. Finer meshes than the last rung gain nothing there: the model's own error
+// dominates, and the last rung's mesh is also taken below its reach (shorter waves).
+struct Rung {
+  int n;
+  double from;  // smallest tolerance for this mesh
+};
+// Classic: 5: 0.060, 10: 0.041, 20 to 40: 0.044 (each mesh with its own chi; 0.084, 0.046, 0.044
+// with the 20x20 chi on every mesh); 10x10 reaches furthest, 20x20 is taken below 0.045.
+constexpr Rung kClassicLadder[] = {{5, 0.064}, {10, 0.045}, {20, 0.0}};
+constexpr double kClassicReach = 0.041;
+// Calibrated: 5: 0.084, 10: 0.046 (combined2; its spin makes the coarse meshes worse than
+// classic's), 20: 0.039, 30 and 40: 0.040 (combined1); the varying-load scenes are 0.03-0.04.
+constexpr Rung kCalibratedLadder[] = {{5, 0.090}, {10, 0.049}, {20, 0.0}};
+constexpr double kCalibratedReach = 0.039;
+
+}  // namespace
+
+int meshForTolerance(double tolerance, bool calibrated) {
+  for (const Rung& r : calibrated ? kCalibratedLadder : kClassicLadder)
+    if (tolerance >= r.from) return r.n;
   return 20;
+}
+
+double nssReachOnTheChart(bool calibrated) {
+  return calibrated ? kCalibratedReach : kClassicReach;
 }
 
 double nssRelaxationLength(const ContactParameters& p, const ChiTable& chi) {
@@ -124,7 +143,8 @@ double nssRelaxationLength(const ContactParameters& p, const ChiTable& chi) {
 AutoModel::AutoModel(const ContactParameters& p, const ChiTable& chi,
                      const SteadyCalibration& calibration)
     : p_(p),
-      n_(meshForTolerance(p.tolerance)),
+      calibrated_(!calibration.empty()),
+      n_(meshForTolerance(p.tolerance, calibrated_)),
       l_(nssRelaxationLength(p, chi)),
       nss_(withMesh(p, n_, "nss"), chi, calibration),
       monitor_(l_, peakWindow(l_, p.tolerance), kalkerCoefficients(p.a0 / p.b0, p.nu),
@@ -142,13 +162,16 @@ std::string AutoModel::name() const {
 }
 
 std::string AutoModel::choices() const {
-  char text[300];
+  char reach[120] = "";
+  const double best = nssReachOnTheChart(calibrated_);
+  if (p_.tolerance < best)
+    std::snprintf(reach, sizeof reach, " (below what NSS-FastSim reaches on the chart, %g)", best);
+  char text[360];
   std::snprintf(text, sizeof text,
-                "mesh %dx%d for tolerance %g%s; relaxation length %.3g m; NSS-FastSim above an "
-                "estimated steady error of %g",
-                n_, n_, p_.tolerance,
-                p_.tolerance < 0.041 ? " (below what NSS-FastSim reaches on the chart, 0.041)" : "",
-                l_, kStartShare * p_.tolerance);
+                "%s FastSim; mesh %dx%d for tolerance %g%s; relaxation length %.3g m; NSS-FastSim "
+                "above an estimated steady error of %g",
+                calibrated_ ? "calibrated" : "classic", n_, n_, p_.tolerance, reach, l_,
+                kStartShare * p_.tolerance);
   return text;
 }
 

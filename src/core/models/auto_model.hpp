@@ -42,7 +42,8 @@ class SteadinessMonitor {
 
 class AutoModel : public ContactModel {
  public:
-  /// p.model must be "auto"; p.nx, p.ny are replaced by meshForTolerance(p.tolerance).
+  /// p.model must be "auto"; p.nx, p.ny are replaced by meshForTolerance(p.tolerance, the
+  /// variant): calibrated FastSim when `calibration` is not empty, classic otherwise.
   AutoModel(const ContactParameters& p, const ChiTable& chi,
             const SteadyCalibration& calibration = SteadyCalibration());
   StepOutput step(const StepInput& in) override;
@@ -53,11 +54,13 @@ class AutoModel : public ContactModel {
 
   bool nonSteady() const { return mode_ != Mode::kSteady; }  ///< the last step ran NSS-FastSim
   int meshSize() const { return n_; }                        ///< nodes per strip and strips chosen
-  double relaxationLength() const { return l_; }             ///< at fz0 [m]
+  bool runsCalibratedFastSim() const { return calibrated_; }
+  double relaxationLength() const { return l_; }  ///< at fz0 [m]
   const SteadinessMonitor& monitor() const { return monitor_; }
 
  private:
   ContactParameters p_;
+  bool calibrated_;  // runs the calibrated FastSim (the mesh ladder depends on it)
   int n_;
   double l_;
   NssModel nss_;
@@ -71,9 +74,14 @@ class AutoModel : public ContactModel {
   double handed_ = 0.0;  // distance rolled since the hand-back began [m]
 };
 
-/// The smallest n whose n x n NSS-FastSim stays within `tolerance` (RMS error over the peak force)
-/// on the speed-against-accuracy chart's scenes; 20, its most accurate, when none does.
-int meshForTolerance(double tolerance);
+/// The smallest n whose n x n NSS-FastSim, in the FastSim variant auto runs (classic or
+/// calibrated), stays within `tolerance` (RMS error over the peak force) on the
+/// speed-against-accuracy chart's scenes; 20 when none does. One ladder per variant.
+int meshForTolerance(double tolerance, bool calibrated);
+
+/// The least worst error NSS-FastSim reaches on the chart's scenes within reach, per variant: a
+/// tighter tolerance is reported at start-up as out of reach.
+double nssReachOnTheChart(bool calibrated);
 
 /// The relaxation length l [m] at fz0 of NSS-FastSim with `chi`: the l of a first-order lag with
 /// the same steady-state error |1 - C^(lambda)/C| at lambda/a = 50, the largest over the kinds.
