@@ -79,83 +79,125 @@ double stripShapeSum(int nx, double ry, double c, const StripEntry& e, double* e
   return inner + 2.0 * (1.0 + e.w) * *endShape;
 }
 
-}  // namespace
+// The node sums of stripShapeSum's shape (end nodes at *endShape, clipped at zero as the bound
+// is, unweighted: flattenedBound's node sums): Sum shape in n1, Sum shape^2 in n2. The n = L - 1
+// interior nodes at u = L - 2, ..., 2 - L in closed form, from Sum u^2 = n (n^2 - 1) / 3 and
+// Sum u^4 = n (n^2 - 1) (3 n^2 - 7) / 15.
+void stripShapeNodeSums(int nx, double ry, double c, const StripEntry& e, double endShape,
+                        double* n1, double* n2) {
+  *n1 = *n2 = 0.0;
+  if (e.first >= nx) return;
+  const double L = nx - 1.0 - 2.0 * e.first, end = std::max(endShape, 0.0), ends = L > 0.0 ? 2 : 1;
+  const double n = L - 1.0, c2 = c * c, m = n * (n * n - 1.0);
+  const double u2 = n > 0.0 ? m * (1.0 / 3.0) : 0.0;
+  const double u4 = n > 0.0 ? m * (3.0 * n * n - 7.0) * (1.0 / 15.0) : 0.0;
+  const double inner = n > 0.0 ? n : 0.0;
+  *n1 = inner * ry - c2 * u2 + ends * end;
+  *n2 = inner * ry * ry - 2.0 * ry * c2 * u2 + c2 * c2 * u4 + ends * end * end;
+}
 
-void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
-                    TractionField* field) {
+// The flattening's factor on the bound q, q (ca - cb q) (flattenedBound), from the parabolic
+// bound's node sums: sum1 = Sum_j (a_j / a) Sum_i q, sum2 the same of q^2 (the quadrature's
+// weights, dy being common). The rescale keeps sum1.
+struct Flattening {
+  double ca = 1.0, cb = 0.0;
+  Flattening(double s, double p0, double sum1, double sum2) {
+    // p (2 - p / p0) is 1 - r^4 on the parabola's 1 - r^2: flatter, zero at the same edge, with
+    // three quarters of the integral of 2 p, and needs no square root. Blended:
+    // q (1 + s/2 - (3 s / 4 p0) q), then rescaled to the parabolic node sum.
+    const double alpha = 1.0 + 0.5 * s, beta = 0.75 * s / p0;
+    const double after = alpha * sum1 - beta * sum2;
+    if (!(after > 0.0)) return;
+    const double scale = sum1 / after;
+    ca = scale * alpha;
+    cb = scale * beta;
+  }
+  double operator()(double q) const { return q * (ca - cb * q); }
+};
+
+// The parabolic bound's peak mu p0, p0 = 2 fz / (pi a b).
+double peak(double a, double b, double fz, double mu) {
+  return 2.0 * mu * fz / (M_PI * a * b);
+}
+
+// parabolicBound, flattened (kFlat, s > 0) in the same pass. The classic bound (kFlat false) is
+// its own instance: no flattening arithmetic touches it.
+template <bool kFlat>
+void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu, double s,
+                TractionField* field) {
   Eigen::ArrayXd* const bound = &field->bound;
   std::vector<StripEntry>& entry = field->entry;
   entry.resize(mesh.ny());
   if (a == mesh.a() && b == mesh.b()) {  // the patch fills the mesh: precomputed shape
-    *bound = mesh.pressureShape() * (mu * fz / (mesh.shapeIntegral() * a * b));
+    const double k = mu * fz / (mesh.shapeIntegral() * a * b);
+    if constexpr (kFlat) {  // the node sums from the mesh's own shape sums
+      const Flattening flat(s, peak(a, b, fz, mu), k * mesh.shapeSum(),
+                            k * k * mesh.shapeSquareSum());
+      const auto q = mesh.pressureShape() * k;
+      *bound = q * (flat.ca - flat.cb * q);
+    } else {
+      *bound = mesh.pressureShape() * k;
+    }
     for (int j = 0; j < mesh.ny(); ++j) entry[j] = {0, 0.5 * mesh.stripStep(j), 0.0};
     return;
   }
   // The ellipse differs from the mesh's (fixed mesh sized for another load): node (x/a, y/b) on
   // the mesh is (ka x/a_mesh, kb y/b_mesh), its shape 1 - (kb y/b_mesh)^2 - (ka x/a_mesh)^2. Per
   // strip in closed form where the patch begins and the quadrature sum (the end nodes weighted as
-  // the march's sums weight them); then the bound, scale (ry - (ka x/a_mesh)^2) clipped at zero.
+  // the march's sums weight them), and with kFlat the node sums the flattening keeps; then the
+  // bound, scale (ry - (ka x/a_mesh)^2) clipped at zero.
   const int nx = mesh.nx(), ny = mesh.ny();
   const double ka = mesh.a() / a, kb = mesh.b() / b;
   double* const out = bound->data();
-  double sum = 0.0;
+  double sum = 0.0, shapeSum = 0.0, shapeSquareSum = 0.0;
   for (int j = 0; j < ny; ++j) {
     const double yn = mesh.yNorm(j) * kb, ry = 1.0 - yn * yn, c = ka * mesh.halfNorm(j) / nx;
     entry[j] = stripEntry(nx, ry, c, mesh.stripStep(j));
     double endShape;
     sum += stripShapeSum(nx, ry, c, entry[j], &endShape) * mesh.nodeArea(j);
     out[mesh.index(0, j)] = endShape;  // parked until the scale is known
+    if constexpr (kFlat) {
+      double n1, n2;
+      stripShapeNodeSums(nx, ry, c, entry[j], endShape, &n1, &n2);
+      shapeSum += mesh.halfNorm(j) * n1;
+      shapeSquareSum += mesh.halfNorm(j) * n2;
+    }
   }
   const double scale = (sum > 0.0) ? mu * fz / sum : 0.0, perXn2 = scale * ka * ka;
   const double* const xn = mesh.xNorms().data();
-  for (int j = 0; j < ny; ++j) {
-    const int k0 = mesh.index(0, j), first = entry[j].first;
-    const double yn = mesh.yNorm(j) * kb, top = scale * (1.0 - yn * yn);
-    const double end = std::max(scale * out[k0], 0.0);
-    for (int k = k0; k < k0 + nx; ++k) out[k] = std::max(top - perXn2 * xn[k] * xn[k], 0.0);
-    if (first < nx) out[k0 + first] = out[k0 + nx - 1 - first] = end;
+  if constexpr (kFlat) {
+    const Flattening flat(s, peak(a, b, fz, mu), scale * shapeSum, scale * scale * shapeSquareSum);
+    for (int j = 0; j < ny; ++j) {
+      const int k0 = mesh.index(0, j), first = entry[j].first;
+      const double yn = mesh.yNorm(j) * kb, top = scale * (1.0 - yn * yn);
+      const double end = flat(std::max(scale * out[k0], 0.0));
+      for (int k = k0; k < k0 + nx; ++k) out[k] = flat(std::max(top - perXn2 * xn[k] * xn[k], 0.0));
+      if (first < nx) out[k0 + first] = out[k0 + nx - 1 - first] = end;
+    }
+  } else {
+    for (int j = 0; j < ny; ++j) {
+      const int k0 = mesh.index(0, j), first = entry[j].first;
+      const double yn = mesh.yNorm(j) * kb, top = scale * (1.0 - yn * yn);
+      const double end = std::max(scale * out[k0], 0.0);
+      for (int k = k0; k < k0 + nx; ++k) out[k] = std::max(top - perXn2 * xn[k] * xn[k], 0.0);
+      if (first < nx) out[k0 + first] = out[k0 + nx - 1 - first] = end;
+    }
   }
 }
 
-void flattenBound(const PatchMesh& mesh, double a, double b, double fz, double mu, double s,
-                  TractionField* field) {
-  if (!(s > 0.0)) return;
-  // p (2 - p / p0) is 1 - r^4 on the parabola's 1 - r^2: flatter, zero at the same edge, with
-  // three quarters of the integral of 2 p, and needs no square root. Blended:
-  // bound (1 + s/2 - (3 s / 4 p0) bound), then rescaled to the parabolic node sum. The node sums
-  // weight strip j by dx_j (dy is common); Sum w bound and Sum w bound^2 in one pass, on four
-  // running sums (one chain of additions per node would cost more than the march's own pass).
-  const int nx = mesh.nx(), ny = mesh.ny();
-  double* const out = field->bound.data();
-  const double p0 = 2.0 * mu * fz / (M_PI * a * b), alpha = 1.0 + 0.5 * s, beta = 0.75 * s / p0;
-  double sum1 = 0.0, sum2 = 0.0;
-  if (a == mesh.a() && b == mesh.b()) {  // the patch fills the mesh: the mesh's own shape sums
-    const double k = mu * fz / (mesh.shapeIntegral() * a * b);  // as parabolicBound scales it
-    sum1 = k * mesh.shapeSum();
-    sum2 = k * k * mesh.shapeSquareSum();
-  } else {
-    for (int j = 0; j < ny; ++j) {
-      const double* const q = out + mesh.index(0, j);
-      double s1[4] = {0, 0, 0, 0}, s2[4] = {0, 0, 0, 0};
-      int i = 0;
-      for (; i + 4 <= nx; i += 4)
-        for (int l = 0; l < 4; ++l) {
-          s1[l] += q[i + l];
-          s2[l] += q[i + l] * q[i + l];
-        }
-      for (; i < nx; ++i) {
-        s1[0] += q[i];
-        s2[0] += q[i] * q[i];
-      }
-      const double dx = mesh.halfNorm(j);
-      sum1 += dx * ((s1[0] + s1[1]) + (s1[2] + s1[3]));
-      sum2 += dx * ((s2[0] + s2[1]) + (s2[2] + s2[3]));
-    }
-  }
-  const double after = alpha * sum1 - beta * sum2;
-  if (!(after > 0.0)) return;
-  const double c = sum1 / after, ca = c * alpha, cb = c * beta;
-  for (int k = 0; k < nx * ny; ++k) out[k] *= ca - cb * out[k];
+}  // namespace
+
+void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
+                    TractionField* field) {
+  writeBound<false>(mesh, a, b, fz, mu, 0.0, field);
+}
+
+void flattenedBound(const PatchMesh& mesh, double a, double b, double fz, double mu, double s,
+                    TractionField* field) {
+  if (s > 0.0)
+    writeBound<true>(mesh, a, b, fz, mu, s, field);
+  else
+    writeBound<false>(mesh, a, b, fz, mu, 0.0, field);
 }
 
 void ForceSums::addStrip(const PatchMesh& mesh, int j, StripSums s) {

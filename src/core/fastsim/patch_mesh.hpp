@@ -42,7 +42,7 @@ class PatchMesh {
   /// sum(shape * dx_j dy) / (a b): the parabolic pressure of a patch that fills the mesh.
   const Eigen::ArrayXd& pressureShape() const { return shape_; }
   double shapeIntegral() const { return shapeIntegral_; }
-  /// Sum over nodes of a_j / a times the shape, and times its square (flattenBound's node sums).
+  /// Sum over nodes of a_j / a times the shape, and times its square (flattenedBound's node sums).
   double shapeSum() const { return shapeSums_[0]; }
   double shapeSquareSum() const { return shapeSums_[1]; }
   /// Area a node stands for, dx_j * dy [m^2] (midpoint rule).
