@@ -82,24 +82,6 @@ namespace {
   return inner + 2.0 * (1.0 + e.w) * *endShape;
 }
 
-// The node sums of stripShapeSum's shape (end nodes at *endShape, clipped at zero as the bound
-// is, unweighted: flattenedBound's node sums): Sum shape in n1, Sum shape^2 in n2. The n = L - 1
-// interior nodes at u = L - 2, ..., 2 - L in closed form, from Sum u^2 = n (n^2 - 1) / 3 and
-// Sum u^4 = n (n^2 - 1) (3 n^2 - 7) / 15.
-[[gnu::always_inline]] inline void stripShapeNodeSums(int nx, double ry, double c,
-                                                      const StripEntry& e, double endShape,
-                                                      double* n1, double* n2) {
-  *n1 = *n2 = 0.0;
-  if (e.first >= nx) return;
-  const double L = nx - 1.0 - 2.0 * e.first, end = std::max(endShape, 0.0), ends = L > 0.0 ? 2 : 1;
-  const double n = L - 1.0, c2 = c * c, m = n * (n * n - 1.0);
-  const double u2 = n > 0.0 ? m * (1.0 / 3.0) : 0.0;
-  const double u4 = n > 0.0 ? m * (3.0 * n * n - 7.0) * (1.0 / 15.0) : 0.0;
-  const double inner = n > 0.0 ? n : 0.0;
-  *n1 = inner * ry - c2 * u2 + ends * end;
-  *n2 = inner * ry * ry - 2.0 * ry * c2 * u2 + c2 * c2 * u4 + ends * end * end;
-}
-
 // The flattening's factor on the bound q, q (ca - cb q) (flattenedBound), from the parabolic
 // bound's node sums: sum1 = Sum_j (a_j / a) Sum_i q, sum2 the same of q^2 (the quadrature's
 // weights, dy being common). The rescale keeps sum1.
@@ -160,11 +142,21 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
     double endShape;
     sum += stripShapeSum(nx, ry, c, entry[j], &endShape) * mesh.nodeArea(j);
     out[mesh.index(0, j)] = endShape;  // parked until the scale is known
-    if constexpr (kFlat) {
-      double n1, n2;
-      stripShapeNodeSums(nx, ry, c, entry[j], endShape, &n1, &n2);
-      shapeSum += mesh.halfNorm(j) * n1;
-      shapeSquareSum += mesh.halfNorm(j) * n2;
+  }
+  if constexpr (kFlat) {
+    // The node sums of the shape (unweighted, the end nodes at their parked shape, clipped at zero
+    // as the bound is), Sum shape and Sum shape^2 times a_j / a, in closed form per strip: the
+    // interior nodes' shape is ry - c^2 u^2 (stripEntry), their moments the mesh's.
+    const double perU2 = (ka / nx) * (ka / nx);
+    for (int j = 0; j < ny; ++j) {
+      const int first = entry[j].first;
+      if (first >= nx) continue;
+      const PatchMesh::InteriorMoments& m = mesh.interiorMoments(first);
+      const double h = mesh.halfNorm(j), yn = mesh.yNorm(j) * kb, ry = 1.0 - yn * yn;
+      const double c2 = perU2 * h * h, c2u2 = c2 * m.u2, end = std::max(out[mesh.index(0, j)], 0.0);
+      const double ends = 2 * first == nx - 1 ? 1.0 : 2.0;  // one loaded node, or two ends
+      shapeSum += h * (m.count * ry - c2u2 + ends * end);
+      shapeSquareSum += h * (ry * (m.count * ry - 2.0 * c2u2) + c2 * c2 * m.u4 + ends * end * end);
     }
   }
   const double scale = (sum > 0.0) ? mu * fz / sum : 0.0, perXn2 = scale * ka * ka;
