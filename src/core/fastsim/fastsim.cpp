@@ -163,11 +163,19 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
   const double* const xn = mesh.xNorms().data();
   if constexpr (kFlat) {
     const Flattening flat(s, peak(a, b, fz, mu), scale * shapeSum, scale * scale * shapeSquareSum);
+    // On a strip the flattened parabola q (ca - cb q), q = top - perXn2 x^2, is a polynomial in
+    // x^2, lo + x^2 (mid + hi x^2): two operations a node more than the parabola (q's form took
+    // three). Outside the patch q < 0 gives a negative value, clipped at zero as q is.
+    const double hi = -flat.cb * perXn2 * perXn2;
     for (int j = 0; j < ny; ++j) {
       const int k0 = mesh.index(0, j), first = entry[j].first;
       const double yn = mesh.yNorm(j) * kb, top = scale * (1.0 - yn * yn);
       const double end = flat(std::max(scale * out[k0], 0.0));
-      for (int k = k0; k < k0 + nx; ++k) out[k] = flat(std::max(top - perXn2 * xn[k] * xn[k], 0.0));
+      const double lo = flat(top), mid = perXn2 * (2.0 * flat.cb * top - flat.ca);
+      for (int k = k0; k < k0 + nx; ++k) {
+        const double x2 = xn[k] * xn[k];
+        out[k] = std::max(lo + x2 * (mid + hi * x2), 0.0);
+      }
       if (first < nx) out[k0 + first] = out[k0 + nx - 1 - first] = end;
     }
   } else {
