@@ -87,11 +87,12 @@ namespace {
 // weights, dy being common). The rescale keeps sum1.
 struct Flattening {
   double ca = 1.0, cb = 0.0;
-  Flattening(double s, double p0, double sum1, double sum2) {
+  // perPeak: 1 / p0, p0 the parabola's peak (inversePeak).
+  Flattening(double s, double perPeak, double sum1, double sum2) {
     // p (2 - p / p0) is 1 - r^4 on the parabola's 1 - r^2: flatter, zero at the same edge, with
     // three quarters of the integral of 2 p, and needs no square root. Blended:
     // q (1 + s/2 - (3 s / 4 p0) q), then rescaled to the parabolic node sum.
-    const double alpha = 1.0 + 0.5 * s, beta = 0.75 * s / p0;
+    const double alpha = 1.0 + 0.5 * s, beta = 0.75 * s * perPeak;
     const double after = alpha * sum1 - beta * sum2;
     if (!(after > 0.0)) return;
     const double scale = sum1 / after;
@@ -101,9 +102,9 @@ struct Flattening {
   double operator()(double q) const { return q * (ca - cb * q); }
 };
 
-// The parabolic bound's peak mu p0, p0 = 2 fz / (pi a b).
-double peak(double a, double b, double fz, double mu) {
-  return 2.0 * mu * fz / (M_PI * a * b);
+// 1 / p0, p0 = 2 mu fz / (pi a b) the parabolic bound's peak (one division, not two in a row).
+double inversePeak(double a, double b, double fz, double mu) {
+  return M_PI * a * b / (2.0 * mu * fz);
 }
 
 // parabolicBound, flattened (kFlat, s > 0) in the same pass. The classic bound (kFlat false) is
@@ -117,10 +118,11 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
   if (a == mesh.a() && b == mesh.b()) {  // the patch fills the mesh: precomputed shape
     const double k = mu * fz / (mesh.shapeIntegral() * a * b);
     if constexpr (kFlat) {  // the node sums from the mesh's own shape sums
-      const Flattening flat(s, peak(a, b, fz, mu), k * mesh.shapeSum(),
+      const Flattening flat(s, inversePeak(a, b, fz, mu), k * mesh.shapeSum(),
                             k * k * mesh.shapeSquareSum());
-      const auto q = mesh.pressureShape() * k;
-      *bound = q * (flat.ca - flat.cb * q);
+      // q (ca - cb q) with q = k shape, folded: shape (k ca - k^2 cb shape).
+      const double lo = k * flat.ca, hi = k * k * flat.cb;
+      *bound = mesh.pressureShape() * (lo - hi * mesh.pressureShape());
     } else {
       *bound = mesh.pressureShape() * k;
     }
@@ -162,7 +164,8 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
   const double scale = (sum > 0.0) ? mu * fz / sum : 0.0, perXn2 = scale * ka * ka;
   const double* const xn = mesh.xNorms().data();
   if constexpr (kFlat) {
-    const Flattening flat(s, peak(a, b, fz, mu), scale * shapeSum, scale * scale * shapeSquareSum);
+    const Flattening flat(s, inversePeak(a, b, fz, mu), scale * shapeSum,
+                          scale * scale * shapeSquareSum);
     // On a strip the flattened parabola q (ca - cb q), q = top - perXn2 x^2, is a polynomial in
     // x^2, lo + x^2 (mid + hi x^2): two operations a node more than the parabola (q's form took
     // three). Outside the patch q < 0 gives a negative value, clipped at zero as q is.
