@@ -117,11 +117,19 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
   entry.resize(mesh.ny());
   if (a == mesh.a() && b == mesh.b()) {  // the patch fills the mesh: precomputed shape
     const double k = mu * fz / (mesh.shapeIntegral() * a * b);
-    if constexpr (kFlat) {  // the node sums from the mesh's own shape sums
-      const Flattening flat(s, inversePeak(a, b, fz, mu), k * mesh.shapeSum(),
-                            k * k * mesh.shapeSquareSum());
-      // q (ca - cb q) with q = k shape, folded: shape (k ca - k^2 cb shape).
-      const double lo = k * flat.ca, hi = k * k * flat.cb;
+    if constexpr (kFlat) {
+      // The node sums are the mesh's shape sums S1, S2 times k and k^2, and 1 / p0 = pi / (2 I k)
+      // (I its shape integral): the rescale sum1 / (alpha sum1 - beta sum2) is 1 / (alpha - s R),
+      // R = (3 pi / 8) S2 / (I S1), free of the step's load and size; then q (ca - cb q) with
+      // q = k shape, folded: shape (lo - hi shape). (As Flattening, in fewer divisions in a row.)
+      const double perI = (3.0 * M_PI / 8.0) / mesh.shapeIntegral(), alpha = 1.0 + 0.5 * s;
+      const double after = alpha - s * perI * mesh.shapeSquareSum() / mesh.shapeSum();
+      double lo = k, hi = 0.0;
+      if (after > 0.0) {
+        const double kc = k / after;
+        lo = kc * alpha;
+        hi = kc * s * perI;
+      }
       *bound = mesh.pressureShape() * (lo - hi * mesh.pressureShape());
     } else {
       *bound = mesh.pressureShape() * k;
