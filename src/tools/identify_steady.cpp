@@ -189,9 +189,9 @@ Point fastsimAt(const Options& o, double g, const Ray& r, double e,
   const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
   TractionField f;
   f.resize(mesh.size());
-  parabolicBound(mesh, s.a, s.b, s.fz, s.mu, &f);
   const Creepages c = s.creepages(r, e);
-  flattenBound(mesh, s.a, s.b, s.fz, s.mu, cal.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c), &f);
+  flattenedBound(mesh, s.a, s.b, s.fz, s.mu, cal.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c),
+                 &f);
   const CreepForces x =
       steadyFastSim(mesh, cal.flexibilities(s.a, s.b, s.G, s.k, s.mu * s.fz, c), c, &f);
   return s.normalised(x.fx, x.fy, x.mz);
@@ -205,8 +205,7 @@ Point fastsimScaled(const Options& o, double g, int kind, double e, double ratio
   const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
   TractionField f;
   f.resize(mesh.size());
-  parabolicBound(mesh, s.a, s.b, s.fz, s.mu, &f);
-  flattenBound(mesh, s.a, s.b, s.fz, s.mu, shape, &f);
+  flattenedBound(mesh, s.a, s.b, s.fz, s.mu, shape, &f);
   const Creepages c = s.creepages(kRays[kind], e);
   Flexibilities L = kalkerFlexibilities(s.a, s.b, s.G, s.k);
   (kind == 0 ? L.L1 : kind == 1 ? L.L2 : L.L3) *= ratio;

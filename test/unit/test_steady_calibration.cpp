@@ -143,7 +143,7 @@ TEST(SteadyCalibration, SpinsSecondParameterAndBoundShapeFollowSpinsShare) {
 
 TEST(SteadyCalibration, FlattenedBoundKeepsTheTotalAndThePatch) {
   // Saturated everywhere, FastSim's force is the bound's node sum: the blend must keep it (mu fz)
-  // and the patch (where the bound is positive); s = 0 leaves the bound bit for bit.
+  // and the patch (where the bound is positive); s = 0 is the parabolic bound bit for bit.
   for (const double scale : {1.0, 0.7}) {  // patch filling the mesh, and a smaller patch on it
     const PatchMesh mesh(20, 20, 5e-3, 4e-3);
     const double a = 5e-3 * scale, b = 4e-3 * scale, fz = 1e4, mu = 0.3;
@@ -151,10 +151,9 @@ TEST(SteadyCalibration, FlattenedBoundKeepsTheTotalAndThePatch) {
     f.resize(mesh.size());
     g.resize(mesh.size());
     parabolicBound(mesh, a, b, fz, mu, &f);
-    parabolicBound(mesh, a, b, fz, mu, &g);
-    flattenBound(mesh, a, b, fz, mu, 0.0, &g);
+    flattenedBound(mesh, a, b, fz, mu, 0.0, &g);
     EXPECT_TRUE((f.bound == g.bound).all());
-    flattenBound(mesh, a, b, fz, mu, 1.0, &g);
+    flattenedBound(mesh, a, b, fz, mu, 1.0, &g);
     double before = 0.0, after = 0.0;
     for (int j = 0; j < mesh.ny(); ++j)
       for (int i = 0; i < mesh.nx(); ++i) {
@@ -168,6 +167,39 @@ TEST(SteadyCalibration, FlattenedBoundKeepsTheTotalAndThePatch) {
     const int centre = mesh.index(mesh.nx() / 2, mesh.ny() / 2);
     EXPECT_LT(g.bound[centre], f.bound[centre]);
   }
+}
+
+TEST(SteadyCalibration, FlattenedBoundsClosedFormSumsAreTheNodeSums) {
+  // flattenedBound takes the node sums of the parabolic bound per strip in closed form: it must
+  // give the blend whose rescale is computed from the written parabolic bound's own nodes, on
+  // meshes of odd and even nx, a patch filling the mesh, smaller (end nodes at their part's mean,
+  // strips with one or two loaded nodes) and larger than it (clipped).
+  for (const int nx : {7, 20, 21})
+    for (const double scale : {1.0, 0.93, 0.55, 0.31, 1.2})
+      for (const double s : {0.3, 1.0}) {
+        const PatchMesh mesh(nx, 13, 5e-3, 4e-3);
+        const double a = 5e-3 * scale, b = 4e-3 * scale, fz = 1e4, mu = 0.3;
+        TractionField f, g;
+        f.resize(mesh.size());
+        g.resize(mesh.size());
+        parabolicBound(mesh, a, b, fz, mu, &f);
+        flattenedBound(mesh, a, b, fz, mu, s, &g);
+        double sum1 = 0.0, sum2 = 0.0;
+        for (int j = 0; j < mesh.ny(); ++j)
+          for (int i = 0; i < mesh.nx(); ++i) {
+            const double q = f.bound[mesh.index(i, j)];
+            sum1 += mesh.halfNorm(j) * q;
+            sum2 += mesh.halfNorm(j) * q * q;
+          }
+        const double p0 = 2.0 * mu * fz / (M_PI * a * b), alpha = 1.0 + 0.5 * s,
+                     beta = 0.75 * s / p0, c = sum1 / (alpha * sum1 - beta * sum2);
+        for (int n = 0; n < mesh.size(); ++n) {
+          const double q = f.bound[n], expected = q * (c * alpha - c * beta * q);
+          EXPECT_NEAR(g.bound[n], expected, 1e-13 * p0) << nx << " " << scale << " " << n;
+        }
+        EXPECT_EQ(g.entry.size(), f.entry.size());
+        for (size_t j = 0; j < f.entry.size(); ++j) EXPECT_EQ(g.entry[j].first, f.entry[j].first);
+      }
 }
 
 TEST(SteadyCalibration, ShippedTableKeepsLinearTheory) {

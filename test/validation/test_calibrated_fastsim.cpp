@@ -55,8 +55,7 @@ CurveError fastsimError(double ab, const std::vector<CurvePoint>& curve,
   const double m = kMu * kFz;
   for (const CurvePoint& p : curve) {
     // The calibrated bound's shape depends on the creepages (spin's share): set per point.
-    parabolicBound(mesh, a, b, kFz, kMu, &f);
-    flattenBound(mesh, a, b, kFz, kMu, cal.boundShape(a, b, kG, k, m, p.c), &f);
+    flattenedBound(mesh, a, b, kFz, kMu, cal.boundShape(a, b, kG, k, m, p.c), &f);
     const CreepForces x = steadyFastSim(mesh, cal.flexibilities(a, b, kG, k, m, p.c), p.c, &f);
     err.force = std::max({err.force, std::abs(x.fx / m - p.fx), std::abs(x.fy / m - p.fy)});
     err.moment = std::max(err.moment, std::abs(x.mz / (m * std::sqrt(a * b)) - p.mz) / peak);

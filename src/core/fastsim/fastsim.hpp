@@ -78,14 +78,16 @@ struct TractionField {
 void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
                     TractionField* field);
 
-/// Flattens a bound written by parabolicBound: with p the parabola (1 - r^2 in normalised
-/// radius), bound = (1 - s) p + s (3/4) p (2 - p / p0), p0 = 2 mu fz / (pi a b) its peak, i.e. a
-/// blend towards 1 - r^4, between the parabolic and Hertz's elliptic shape (spin moment at full
-/// slip 8/15, 4/7 and 3 pi / 16 of mu fz times the radius), rescaled so that the mesh's node sums
-/// keep the parabolic total. s = 0 leaves the bound untouched; the patch is the same ellipse. The
+/// parabolicBound's bound flattened by s, written in the same pass: with p the parabola (1 - r^2
+/// in normalised radius), bound = (1 - s) p + s (3/4) p (2 - p / p0), p0 = 2 mu fz / (pi a b) its
+/// peak, i.e. a blend towards 1 - r^4, between the parabolic and Hertz's elliptic shape (spin
+/// moment at full slip 8/15, 4/7 and 3 pi / 16 of mu fz times the radius), rescaled so that the
+/// mesh's node sums (Sum over nodes of a_j / a times the bound) keep the parabolic total. The sums
+/// are taken in closed form per strip (from the mesh's shape sums where the patch fills the mesh),
+/// not from the nodes. s = 0 is parabolicBound, bit for bit; the patch is the same ellipse. The
 /// calibrated FastSim's bound shape (steady_calibration.hpp).
-void flattenBound(const PatchMesh& mesh, double a, double b, double fz, double mu, double s,
-                  TractionField* field);
+void flattenedBound(const PatchMesh& mesh, double a, double b, double fz, double mu, double s,
+                    TractionField* field);
 
 /// Raw views of a TractionField for the marches' inner loops: held in registers, they are not
 /// reloaded after every store of `slip` (a bool store may alias anything).

@@ -31,6 +31,14 @@ PatchMesh::PatchMesh(int nx, int ny, double a, double b) : nx_(nx), ny_(ny) {
     shapeSums_[0] += strip * halfNorm_(j);
   }
   shapeSums_[1] = shapeSquares;
+  interior_.resize(nx);
+  for (int first = 0; first < nx; ++first)
+    for (int u = nx - 3 - 2 * first; u > -(nx - 1 - 2 * first); u -= 2) {  // exact in doubles
+      const double u2 = double(u) * u;
+      interior_[first].count += 1.0;
+      interior_[first].u2 += u2;
+      interior_[first].u4 += u2 * u2;
+    }
   scale(a, b);
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace wheel_rail_contact {
 
@@ -42,9 +43,17 @@ class PatchMesh {
   /// sum(shape * dx_j dy) / (a b): the parabolic pressure of a patch that fills the mesh.
   const Eigen::ArrayXd& pressureShape() const { return shape_; }
   double shapeIntegral() const { return shapeIntegral_; }
-  /// Sum over nodes of a_j / a times the shape, and times its square (flattenBound's node sums).
+  /// Sum over nodes of a_j / a times the shape, and times its square (flattenedBound's node sums).
   double shapeSum() const { return shapeSums_[0]; }
   double shapeSquareSum() const { return shapeSums_[1]; }
+  /// Over the interior nodes of a strip whose first loaded node is `first` (StripEntry, < nx):
+  /// u = L - 2, L - 4, ..., 2 - L, L = nx - 1 - 2 first, u = nx - 1 - 2i the node's distance from
+  /// the strip's centre in half elements: their count, Sum u^2 and Sum u^4 (flattenedBound's node
+  /// sums in closed form).
+  struct InteriorMoments {
+    double count = 0.0, u2 = 0.0, u4 = 0.0;
+  };
+  const InteriorMoments& interiorMoments(int first) const { return interior_[first]; }
   /// Area a node stands for, dx_j * dy [m^2] (midpoint rule).
   double nodeArea(int j) const { return stripStep(j) * stripWidth(); }
 
@@ -59,6 +68,7 @@ class PatchMesh {
   Eigen::ArrayXd shape_;     ///< 1 - (x/a)^2 - (y/b)^2, size nx*ny
   double shapeIntegral_ = 0.0;
   double shapeSums_[2] = {0.0, 0.0};
+  std::vector<InteriorMoments> interior_;  ///< by first loaded node, size nx
 };
 
 /// The march's step onto node i of a strip with element length dx and half-length aj [m]: from

@@ -20,7 +20,7 @@
 /// spin curve along e only, and FastSim's pure-spin Fy peaks higher than the exact one and its Mz
 /// runs low; a stiffer longitudinal spin drive saturates the patch earlier and carries more of the
 /// moment, so the pair (ratio_23, ratio_23x) fits Fy and Mz together. Optional in the table
-/// (absent: 1, Kalker's L3). With it goes the bound's shape (flattenBound): the parabolic
+/// (absent: 1, Kalker's L3). With it goes the bound's shape (flattenedBound): the parabolic
 /// bound's spin moment at full slip is 10 % below the exact one whatever the flexibilities, so spin
 /// saturates on a flatter bound, s = shape_23s(e) e3^2 / e^2: no spin, the parabolic bound of
 /// classic FastSim; kind 23s holds the shape per a/b identified for pure spin, in (0, 1],
@@ -51,7 +51,7 @@ class FlexibilityCalibration {
   /// exactly kalkerFlexibilities(a, b, G, k).
   Flexibilities flexibilities(double a, double b, double G, const CreepCoefficients& k, double muFz,
                               const Creepages& c) const;
-  /// The bound's shape for this step (flattenBound): shape_23s(e) times spin's share
+  /// The bound's shape for this step (flattenedBound): shape_23s(e) times spin's share
   /// of e^2, e3^2 / e^2, where the table has it, else 0 (parabolic, as classic).
   double boundShape(double a, double b, double G, const CreepCoefficients& k, double muFz,
                     const Creepages& c) const;

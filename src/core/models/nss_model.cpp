@@ -150,9 +150,8 @@ void NssModel::coverTrailingNodes() {
 
 void NssModel::boundOn(const PatchMesh& mesh, const HertzEllipse& h, const StepInput& in) {
   const double mu = stepMu(in, p_.mu);
-  parabolicBound(mesh, h.a, h.b, in.fz, mu, &field_);
   // Calibrated: the bound's shape follows spin's share of the step's creepage (classic: 0).
-  flattenBound(
+  flattenedBound(
       mesh, h.a, h.b, in.fz, mu,
       calibration_.boundShape(h.a, h.b, p_.G, kalker_, mu * in.fz, {in.xi, in.eta, in.phi}),
       &field_);

@@ -43,11 +43,10 @@ StepOutput SteadyModel::step(const StepInput& in) {
     ab_ = ab;
   }
   if (fitted_) mesh_.scale(h.a, h.b);
-  parabolicBound(mesh_, h.a, h.b, fwd.fz, stepMu(fwd, p_.mu), &field_);
   const Creepages c{fwd.xi, fwd.eta, fwd.phi};
-  flattenBound(mesh_, h.a, h.b, fwd.fz, stepMu(fwd, p_.mu),
-               calibration_.boundShape(h.a, h.b, p_.G, c_, stepMu(fwd, p_.mu) * fwd.fz, c),
-               &field_);
+  flattenedBound(mesh_, h.a, h.b, fwd.fz, stepMu(fwd, p_.mu),
+                 calibration_.boundShape(h.a, h.b, p_.G, c_, stepMu(fwd, p_.mu) * fwd.fz, c),
+                 &field_);
   const CreepForces f = steadyFastSim(
       mesh_, calibration_.flexibilities(h.a, h.b, p_.G, c_, stepMu(fwd, p_.mu) * fwd.fz, c), c,
       &field_);
