@@ -4,19 +4,21 @@
 // Exact creep curves are cached (--exact, doc/data/steady_exact_curves.csv): a point found there
 // is read, not recomputed; missing points are solved and the cache rewritten.
 // Curves: along a ray of normalised creepage (e1, e2, e3) (steady_calibration.hpp), kinds 11, 22,
-// 23 one creepage each; combined rays xe (1, 1, 0), xep (1, 1, 1), opp (1, -1, 1) and spin
-// (0.3, -0.3, 1) (large spin, opposite signs).
+// 23 one creepage each; combined rays xe (1, 1, 0), xep (1, 1, 1), opp (1, -1, 1), spin
+// (0.3, -0.3, 1) (large spin, opposite signs), h1 (1, 0.5, 0.8) and h2 (0.4, 1, -0.7): the
+// combined correction's evaluation rays, none on its direction grid.
 // Identification, per a/b and kind: at each knot epsilon the ratio r minimising FastSim's error
 // against the exact point, max(|dFx|, |dFy|) / (mu fz), scanned near the previous knot's ratio.
 // Spin: on a flattened bound (shape 23s per a/b), the pair (ratio of L3, ratio of L3x, kind 23x)
 // minimising the larger of that and 0.2 |dMz| / peak |Mz| (the 0.01 mu fz and 5 % of the
 // peak weighed alike).
+// Combined creepages with spin: on a grid of directions (gridRay) and at each knot, multipliers
+// of L1, L2, L3 and of the bound's shape on top of the single kinds' table (kinds c1, c2, c3, cs).
 // Options: identify_steady --help.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <iostream>
@@ -46,7 +48,11 @@ struct Options {
   std::vector<double> knots = {0,    0.1, 0.2, 0.35, 0.5, 0.6, 0.75, 0.9, 1,
                                1.25, 1.5, 2,   3,    4.5, 7,   10,   15};
   std::vector<double> points = {0.05, 0.15, 0.3, 0.6, 0.9, 1.25, 1.75, 2.5, 4, 6, 9, 13};
-  std::vector<double> spinShares = {0.25, 0.5, 0.75}, xiShares = {0, 0.5, 1};
+  // The combined correction's knots: denser where creep curves with spin turn (e 1.5 to 2.5).
+  std::vector<double> corrKnots = {0,   0.1,  0.2,  0.35, 0.5,  0.6, 0.75, 0.9, 1,  1.25,
+                                   1.5, 1.65, 1.85, 2,    2.25, 3,   4.5,  7,   10, 15};
+  std::vector<double> spinShares = {0.25, 0.375, 0.5, 0.75, 0.9},
+                      xiShares = {0, 0.25, 0.5, 0.75, 1};
   bool solveGrid = false, gridOnly = false;
 };
 
@@ -56,10 +62,17 @@ const char* const kUsage =
     "                       [--curves doc/data/steady_curves.csv] [--table FILE]\n"
     "                       [--grid 20] [--nx 20] [--nu 0.28] [--ab 0.2,0.5,1,2,5]\n"
     "                       [--knots 0,0.1,...] [--points 0.05,0.15,...]\n"
+    "                       [--correction-knots 0,0.1,...]\n"
+    "                       [--spin-shares 0.25,0.375,0.5,0.75,0.9]\n"
+    "                       [--xi-shares 0,0.25,0.5,0.75,1]\n"
+    "                       [--solve-grid [--grid-only]]\n"
     "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
     "          --table classic: no table)\n"
     "--curves: write exact / classic / calibrated curves at --points for every ray\n"
-    "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis\n";
+    "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis\n"
+    "--spin-shares, --xi-shares: the combined correction's direction grid (none: no correction)\n"
+    "--solve-grid: only solve the exact points the table and curves need (a long job; the cache\n"
+    "          is saved as it goes); --grid-only: the direction grid's points, not the rays'\n";
 
 void readOption(tools::Args& a, Options* o) {
   if (a.is("--out"))
@@ -82,6 +95,8 @@ void readOption(tools::Args& a, Options* o) {
     o->knots = a.reals();
   else if (a.is("--points"))
     o->points = a.reals();
+  else if (a.is("--correction-knots"))
+    o->corrKnots = a.reals();
   else if (a.is("--spin-shares"))
     o->spinShares = a.reals();
   else if (a.is("--xi-shares"))
@@ -423,10 +438,10 @@ struct CorrectionFit {
 CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, const Ray& r,
                                 const FlexibilityCalibration& base) {
   double mzPeak = 0.0;
-  for (double e : o.knots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, r, e).mz));
+  for (double e : o.corrKnots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, r, e).mz));
   CorrectionFit fit;
   double lm[4] = {0.0, 0.0, 0.0, 0.0};
-  for (double e : o.knots) {
+  for (double e : o.corrKnots) {
     if (e == 0.0) {
       fit.m.push_back({1.0, 1.0, 1.0, 1.0});
       fit.error.push_back(0.0);
@@ -460,24 +475,6 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
       }
     fit.m.push_back({std::exp(lm[0]), std::exp(lm[1]), std::exp(lm[2]), std::exp(lm[3])});
     fit.error.push_back(error(lm));
-    if (std::getenv("WRC_DEBUG2") && e == 15) {
-      for (double sh : {0.5, 1.0, 2.0, 4.0, 8.0}) {
-        const double m[4] = {1, 1, 1, sh};
-        const Point p = fastsimCorrected(o, g, r, e, base, m);
-        std::printf("   shape x%g: fx %.4f fy %.4f mz %.4f\n", sh, p.fx, p.fy, p.mz);
-      }
-    }
-    if (std::getenv("WRC_DEBUG")) {
-      const double m[4] = {fit.m.back()[0], fit.m.back()[1], fit.m.back()[2], fit.m.back()[3]},
-                   one[4] = {1, 1, 1, 1};
-      const Point p = fastsimCorrected(o, g, r, e, base, m),
-                  q = fastsimCorrected(o, g, r, e, base, one);
-      std::printf(
-          "  %s e %g: fx %.3f %.3f %.3f fy %.3f %.3f %.3f mz %.3f %.3f %.3f m %.3f %.3f %.3f "
-          "%.3f\n",
-          r.name.c_str(), e, x.fx, q.fx, p.fx, x.fy, q.fy, p.fy, x.mz, q.mz, p.mz, m[0], m[1], m[2],
-          m[3]);
-    }
   }
   return fit;
 }
@@ -506,7 +503,7 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
       // fitted.
       const std::size_t nT = o.xiShares.size();
       for (int sign : {1, -1})
-        for (std::size_t i = 0; i < o.knots.size(); ++i) {
+        for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
           if (nT > 1 && o.xiShares.front() == 0.0)
             fits[{0.0, sign}].m[i][0] = fits[{o.xiShares[1], sign}].m[i][0];
           if (nT > 1 && o.xiShares.back() == 1.0)
@@ -514,14 +511,14 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
         }
       for (const auto& [key, fit] : fits)
         for (int p = 0; p < 4; ++p)
-          for (std::size_t i = 0; i < o.knots.size(); ++i) {
+          for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
             char line[200];
             std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%g,%g,%d\n", g,
                           p < 3 ? (p == 0   ? "c1"
                                    : p == 1 ? "c2"
                                             : "c3")
                                 : "cs",
-                          o.knots[i], fit.m[i][p], fit.error[i], s3, key.first, key.second);
+                          o.corrKnots[i], fit.m[i][p], fit.error[i], s3, key.first, key.second);
             (*rows)[g] += line;
           }
     }
@@ -647,7 +644,7 @@ void solveGrid(const Options& o, ExactCache* exact) {
   int last = 0;
   for (double g : o.ratios) {
     std::vector<std::pair<Ray, std::vector<double>>> jobs;
-    for (const Ray& r : gridRays(o)) jobs.push_back({r, o.knots});
+    for (const Ray& r : gridRays(o)) jobs.push_back({r, o.corrKnots});
     if (!o.gridOnly)
       for (const Ray& r : kRays) jobs.push_back({r, o.points});
     for (const auto& [r, es] : jobs)
