@@ -115,7 +115,8 @@ struct Ray {
 };
 const Ray kRays[] = {{"11", {1, 0, 0}},        {"22", {0, 1, 0}},     {"23", {0, 0, 1}},
                      {"xe", {1, 1, 0}},        {"xep", {1, 1, 1}},    {"opp", {1, -1, 1}},
-                     {"spin", {0.3, -0.3, 1}}, {"h1", {1, 0.5, 0.8}}, {"h2", {0.4, 1, -0.7}}};
+                     {"spin", {0.3, -0.3, 1}}, {"h1", {1, 0.5, 0.8}}, {"h2", {0.4, 1, -0.7}},
+                     {"h3", {1, -1, 0.2}}};
 
 // The direction grid of the combined correction: spin's share s3 = e3^2 / e^2, xi's share of the
 // rest t = e1^2 / (e1^2 + e2^2), and the relative sign of eta and phi (xi's sign only mirrors).
@@ -432,6 +433,9 @@ struct CorrectionFit {
   std::vector<double> error;
 };
 
+// Normalised creepage up to which the combined correction is 1.
+constexpr double kLinearEnd = 0.1;
+
 // The combined correction along one direction of the grid: at each knot the multipliers of L1,
 // L2, L3 minimising spinError (force and moment weighed as for spin alone), by pattern search in
 // their logarithms from the previous knot's (one continuous branch), with a small pull towards 1.
@@ -442,12 +446,12 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
   CorrectionFit fit;
   double lm[4] = {0.0, 0.0, 0.0, 0.0};
   for (double e : o.corrKnots) {
+    const Point x = exact->at(g, r, e);
     if (e == 0.0) {
       fit.m.push_back({1.0, 1.0, 1.0, 1.0});
       fit.error.push_back(0.0);
       continue;
     }
-    const Point x = exact->at(g, r, e);
     auto error = [&](const double* l) {
       const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
       return spinError(fastsimCorrected(o, g, r, e, base, m), x, mzPeak);
@@ -475,6 +479,16 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
       }
     fit.m.push_back({std::exp(lm[0]), std::exp(lm[1]), std::exp(lm[2]), std::exp(lm[3])});
     fit.error.push_back(error(lm));
+  }
+  // The linear range (force within 10 % of mu fz) stays Kalker's FastSim's, after the fit has run
+  // through it on one branch: nss's time term (chi) is identified on that linear response, and a
+  // correction there moved the linear combined scene (combined1) away from the exact one.
+  for (std::size_t i = 0; i < o.corrKnots.size() && o.corrKnots[i] <= kLinearEnd; ++i) {
+    const double one[4] = {1.0, 1.0, 1.0, 1.0};
+    fit.m[i] = {1.0, 1.0, 1.0, 1.0};
+    if (o.corrKnots[i] > 0.0)
+      fit.error[i] = spinError(fastsimCorrected(o, g, r, o.corrKnots[i], base, one),
+                               exact->at(g, r, o.corrKnots[i]), mzPeak);
   }
   return fit;
 }
