@@ -234,21 +234,6 @@ class ExactCache {
   double solverAB_ = 0.0;
 };
 
-// Steady FastSim at a/b = g along ray r at e, flexibilities scaled by `cal`.
-Point fastsimAt(const Options& o, double g, const Ray& r, double e,
-                const FlexibilityCalibration& cal) {
-  const Setup s(o, g);
-  const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
-  TractionField f;
-  f.resize(mesh.size());
-  parabolicBound(mesh, s.a, s.b, s.fz, s.mu, &f);
-  const Creepages c = s.creepages(r, e);
-  flattenBound(mesh, s.a, s.b, s.fz, s.mu, cal.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c), &f);
-  const CreepForces x =
-      steadyFastSim(mesh, cal.flexibilities(s.a, s.b, s.G, s.k, s.mu * s.fz, c), c, &f);
-  return s.normalised(x.fx, x.fy, x.mz);
-}
-
 // Steady FastSim at a/b = g along ray r at e on the table's flexibilities (`base`, without a
 // combined correction) with L1, L2, L3 (L3x with L3) multiplied by m[0..2], the bound's shape by
 // m[3].
@@ -271,6 +256,14 @@ Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
   L.L3 *= m[2];
   const CreepForces y = steadyFastSim(mesh, L, c, &f);
   return s.normalised(y.fx, y.fy, y.mz);
+}
+
+// Steady FastSim at a/b = g along ray r at e, flexibilities (and bound) as the table `cal` makes
+// them.
+Point fastsimAt(const Options& o, double g, const Ray& r, double e,
+                const FlexibilityCalibration& cal) {
+  const double one[4] = {1.0, 1.0, 1.0, 1.0};
+  return fastsimCorrected(o, g, r, e, cal, one);
 }
 
 // FastSim along pure kind `kind` with L_kind scaled by ratio (spin: its longitudinal drive's
