@@ -184,7 +184,14 @@ TEST(SteadyCalibration, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOn
   EXPECT_NEAR(c.boundShape(a, b, G, k, muFz, c23), 1.5, 1e-12);
   const Creepages far{0.0, 4.0 * c23.eta, 4.0 * c23.phi};
   EXPECT_NEAR(c.boundShape(a, b, G, k, muFz, far), 1.5, 1e-12);
-  // A grid missing a direction is refused.
+  // Malformed correction rows and a grid missing a direction are refused, naming the line.
+  const std::string single = body.substr(0, body.find("1,c1,"));
+  EXPECT_NE(message(single + "1,c1,0,1,0\n").find(":12: a c-kind row needs"), std::string::npos);
+  EXPECT_NE(message(single + "1,c1,0,1,0,1,0,1\n").find(":12: spin_share must be in (0, 1)"),
+            std::string::npos);
+  EXPECT_NE(message(single + "1,c1,0,1,0,0.5,0,2\n").find(":12: sign must be 1 or -1"),
+            std::string::npos);
+  EXPECT_NE(message(single + "1,c1,0.5,1,0,0.5,0,1\n").find(":12: the knots"), std::string::npos);
   EXPECT_NE(message(body.substr(0, body.rfind("1,cs,0,1"))).find("misses a direction"),
             std::string::npos);
 }
