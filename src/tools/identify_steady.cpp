@@ -4,15 +4,19 @@
 // Exact creep curves are cached (--exact, doc/data/steady_exact_curves.csv): a point found there
 // is read, not recomputed; missing points are solved and the cache rewritten.
 // Curves: along a ray of normalised creepage (e1, e2, e3) (steady_calibration.hpp), kinds 11, 22,
-// 23 one creepage each; combined rays xe (1, 1, 0), xep (1, 1, 1), opp (1, -1, 1) and spin
-// (0.3, -0.3, 1) (large spin, opposite signs).
+// 23 one creepage each; combined rays xe (1, 1, 0), xep (1, 1, 1), opp (1, -1, 1), spin
+// (0.3, -0.3, 1) (large spin, opposite signs), h1 (1, 0.5, 0.8) and h2 (0.4, 1, -0.7): the
+// combined correction's evaluation rays, none on its direction grid.
 // Identification, per a/b and kind: at each knot epsilon the ratio r minimising FastSim's error
 // against the exact point, max(|dFx|, |dFy|) / (mu fz), scanned near the previous knot's ratio.
 // Spin: on a flattened bound (shape 23s per a/b), the pair (ratio of L3, ratio of L3x, kind 23x)
 // minimising the larger of that and 0.2 |dMz| / peak |Mz| (the 0.01 mu fz and 5 % of the
 // peak weighed alike).
+// Combined creepages with spin: on a grid of directions (gridRay) and at each knot, multipliers
+// of L1, L2, L3 and of the bound's shape on top of the single kinds' table (kinds c1, c2, c3, cs).
 // Options: identify_steady --help.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -44,6 +48,12 @@ struct Options {
   std::vector<double> knots = {0,    0.1, 0.2, 0.35, 0.5, 0.6, 0.75, 0.9, 1,
                                1.25, 1.5, 2,   3,    4.5, 7,   10,   15};
   std::vector<double> points = {0.05, 0.15, 0.3, 0.6, 0.9, 1.25, 1.75, 2.5, 4, 6, 9, 13};
+  // The combined correction's knots: denser where creep curves with spin turn (e 1.5 to 2.5).
+  std::vector<double> corrKnots = {0,   0.1,  0.2,  0.35, 0.5,  0.6, 0.75, 0.9, 1,  1.25,
+                                   1.5, 1.65, 1.85, 2,    2.25, 3,   4.5,  7,   10, 15};
+  std::vector<double> spinShares = {0.25, 0.375, 0.5, 0.75, 0.9},
+                      xiShares = {0, 0.25, 0.5, 0.75, 1};
+  bool solveGrid = false, gridOnly = false;
 };
 
 const char* const kUsage =
@@ -52,10 +62,17 @@ const char* const kUsage =
     "                       [--curves doc/data/steady_curves.csv] [--table FILE]\n"
     "                       [--grid 20] [--nx 20] [--nu 0.28] [--ab 0.2,0.5,1,2,5]\n"
     "                       [--knots 0,0.1,...] [--points 0.05,0.15,...]\n"
+    "                       [--correction-knots 0,0.1,...]\n"
+    "                       [--spin-shares 0.25,0.375,0.5,0.75,0.9]\n"
+    "                       [--xi-shares 0,0.25,0.5,0.75,1]\n"
+    "                       [--solve-grid [--grid-only]]\n"
     "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
     "          --table classic: no table)\n"
     "--curves: write exact / classic / calibrated curves at --points for every ray\n"
-    "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis\n";
+    "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis\n"
+    "--spin-shares, --xi-shares: the combined correction's direction grid (none: no correction)\n"
+    "--solve-grid: only solve the exact points the table and curves need (a long job; the cache\n"
+    "          is saved as it goes); --grid-only: the direction grid's points, not the rays'\n";
 
 void readOption(tools::Args& a, Options* o) {
   if (a.is("--out"))
@@ -78,17 +95,46 @@ void readOption(tools::Args& a, Options* o) {
     o->knots = a.reals();
   else if (a.is("--points"))
     o->points = a.reals();
+  else if (a.is("--correction-knots"))
+    o->corrKnots = a.reals();
+  else if (a.is("--spin-shares"))
+    o->spinShares = a.reals();
+  else if (a.is("--xi-shares"))
+    o->xiShares = a.reals();
+  else if (a.is("--solve-grid"))
+    o->solveGrid = true;
+  else if (a.is("--grid-only"))
+    o->gridOnly = true;
   else
     a.unknown();
 }
 
 struct Ray {
-  const char* name;
+  std::string name;
   double e[3];
 };
-const Ray kRays[] = {{"11", {1, 0, 0}},       {"22", {0, 1, 0}},  {"23", {0, 0, 1}},
-                     {"xe", {1, 1, 0}},       {"xep", {1, 1, 1}}, {"opp", {1, -1, 1}},
-                     {"spin", {0.3, -0.3, 1}}};
+const Ray kRays[] = {{"11", {1, 0, 0}},        {"22", {0, 1, 0}},     {"23", {0, 0, 1}},
+                     {"xe", {1, 1, 0}},        {"xep", {1, 1, 1}},    {"opp", {1, -1, 1}},
+                     {"spin", {0.3, -0.3, 1}}, {"h1", {1, 0.5, 0.8}}, {"h2", {0.4, 1, -0.7}},
+                     {"h3", {1, -1, 0.2}}};
+
+// The direction grid of the combined correction: spin's share s3 = e3^2 / e^2, xi's share of the
+// rest t = e1^2 / (e1^2 + e2^2), and the relative sign of eta and phi (xi's sign only mirrors).
+Ray gridRay(double s3, double t, int sign) {
+  char name[48];
+  std::snprintf(name, sizeof name, "g%g_%g%c", s3, t, sign > 0 ? '+' : '-');
+  return {name,
+          {std::sqrt((1.0 - s3) * t), std::sqrt((1.0 - s3) * (1.0 - t)), sign * std::sqrt(s3)}};
+}
+
+std::vector<Ray> gridRays(const Options& o) {
+  std::vector<Ray> rays;
+  for (double s3 : o.spinShares)
+    for (double t : o.xiShares)
+      for (int sign : {1, -1})
+        if (sign > 0 || t < 1.0) rays.push_back(gridRay(s3, t, sign));
+  return rays;
+}
 
 // Normalised forces: fx, fy over mu fz, mz over mu fz sqrt(ab).
 struct Point {
@@ -120,17 +166,21 @@ struct Setup {
 };
 
 using Key = std::tuple<double, std::string, double>;  // a/b, ray, epsilon
+struct Solved {
+  Point p;
+  Creepages c;
+};
 
 class ExactCache {
  public:
   ExactCache(const std::string& path, const Options& o) : path_(path), o_(o) {
     for (const SteadyCurvePoint& p : readSteadyCurves(path))
-      map_[Key{p.aOverB, p.ray, p.epsilon}] = {p.fx, p.fy, p.mz};
+      map_[Key{p.aOverB, p.ray, p.epsilon}] = {{p.fx, p.fy, p.mz}, p.c};
   }
   Point at(double g, const Ray& r, double e) {
     const Key key{g, r.name, e};
     auto it = map_.find(key);
-    if (it != map_.end()) return it->second;
+    if (it != map_.end()) return it->second.p;
     const Setup s(o_, g);
     Point p;
     if (e > 0.0) {
@@ -145,12 +195,15 @@ class ExactCache {
         std::cerr << "warning: exact not converged at " << g << " " << r.name << " " << e << "\n";
       p = s.normalised(x.fx, x.fy, x.mz);
     }
-    map_[key] = p;
+    map_[key] = {p, s.creepages(r, e)};
     dirty_ = true;
+    ++solved_;
     return p;
   }
-  void save() const {
+  int solved() const { return solved_; }
+  void save() {
     if (!dirty_) return;
+    dirty_ = false;
     std::ofstream out = tools::writeFile(path_);
     out << "# Exact steady creep curves (our half-space solver, " << o_.grid << "x" << o_.grid
         << " elements over 1.1a x 1.1b, Hertz pressure; G " << o_.G << " Pa, nu " << o_.nu
@@ -161,11 +214,9 @@ class ExactCache {
            "mu fz sqrt(ab)\n"
         << "a_over_b,ray,epsilon,xi,eta,phi,fx,fy,mz\n";
     char line[256];
-    for (const auto& [key, p] : map_) {
-      const Ray* r = nullptr;
-      for (const Ray& q : kRays)
-        if (std::get<1>(key) == q.name) r = &q;
-      const Creepages c = Setup(o_, std::get<0>(key)).creepages(*r, std::get<2>(key));
+    for (const auto& [key, v] : map_) {
+      const Creepages& c = v.c;
+      const Point& p = v.p;
       std::snprintf(line, sizeof line, "%g,%s,%g,%.6g,%.6g,%.6g,%.6f,%.6f,%.6f\n", std::get<0>(key),
                     std::get<1>(key).c_str(), std::get<2>(key), c.xi, c.eta, c.phi, p.fx, p.fy,
                     p.mz);
@@ -176,25 +227,42 @@ class ExactCache {
  private:
   std::string path_;
   Options o_;
-  std::map<Key, Point> map_;
+  std::map<Key, Solved> map_;
   bool dirty_ = false;
+  int solved_ = 0;
   std::unique_ptr<HalfspaceSolver> solver_;
   double solverAB_ = 0.0;
 };
 
-// Steady FastSim at a/b = g along ray r at e, flexibilities scaled by `cal`.
-Point fastsimAt(const Options& o, double g, const Ray& r, double e,
-                const FlexibilityCalibration& cal) {
+// Steady FastSim at a/b = g along ray r at e on the table's flexibilities (`base`, without a
+// combined correction) with L1, L2, L3 (L3x with L3) multiplied by m[0..2], the bound's shape by
+// m[3].
+Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
+                       const FlexibilityCalibration& base, const double* m) {
   const Setup s(o, g);
   const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
   TractionField f;
   f.resize(mesh.size());
   const Creepages c = s.creepages(r, e);
-  flattenedBound(mesh, s.a, s.b, s.fz, s.mu, cal.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c),
+  flattenedBound(mesh, s.a, s.b, s.fz, s.mu,
+                 std::min(FlexibilityCalibration::kMaxBoundShape,
+                          base.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c) * m[3]),
                  &f);
-  const CreepForces x =
-      steadyFastSim(mesh, cal.flexibilities(s.a, s.b, s.G, s.k, s.mu * s.fz, c), c, &f);
-  return s.normalised(x.fx, x.fy, x.mz);
+  Flexibilities L = base.flexibilities(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
+  L.L3x = L.spinX() * m[2];
+  L.L1 *= m[0];
+  L.L2 *= m[1];
+  L.L3 *= m[2];
+  const CreepForces y = steadyFastSim(mesh, L, c, &f);
+  return s.normalised(y.fx, y.fy, y.mz);
+}
+
+// Steady FastSim at a/b = g along ray r at e, flexibilities (and bound) as the table `cal` makes
+// them.
+Point fastsimAt(const Options& o, double g, const Ray& r, double e,
+                const FlexibilityCalibration& cal) {
+  const double one[4] = {1.0, 1.0, 1.0, 1.0};
+  return fastsimCorrected(o, g, r, e, cal, one);
 }
 
 // FastSim along pure kind `kind` with L_kind scaled by ratio (spin: its longitudinal drive's
@@ -351,17 +419,133 @@ KindFit identifySpin(const Options& o, ExactCache* exact, double g) {
   return best;
 }
 
+struct CorrectionFit {
+  std::vector<std::array<double, 4>> m;
+  std::vector<double> error;
+};
+
+// Normalised creepage up to which the combined correction is 1.
+constexpr double kLinearEnd = 0.1;
+
+// The combined correction along one direction of the grid: at each knot the multipliers of L1,
+// L2, L3 minimising spinError (force and moment weighed as for spin alone), by pattern search in
+// their logarithms from the previous knot's (one continuous branch), with a small pull towards 1.
+CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, const Ray& r,
+                                const FlexibilityCalibration& base) {
+  double mzPeak = 0.0;
+  for (double e : o.corrKnots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, r, e).mz));
+  CorrectionFit fit;
+  double lm[4] = {0.0, 0.0, 0.0, 0.0};
+  for (double e : o.corrKnots) {
+    const Point x = exact->at(g, r, e);
+    if (e == 0.0) {
+      fit.m.push_back({1.0, 1.0, 1.0, 1.0});
+      fit.error.push_back(0.0);
+      continue;
+    }
+    auto error = [&](const double* l) {
+      const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
+      return spinError(fastsimCorrected(o, g, r, e, base, m), x, mzPeak);
+    };
+    // The search minimises a smooth norm of the same errors (a coordinate search stalls on the
+    // ridges of a maximum).
+    auto cost = [&](const double* l) {
+      const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
+      const Point p = fastsimCorrected(o, g, r, e, base, m);
+      const double dx = p.fx - x.fx, dy = p.fy - x.fy, dm = 0.2 * (p.mz - x.mz) / mzPeak;
+      return std::sqrt(dx * dx + dy * dy + dm * dm) +
+             1e-3 * (std::abs(l[0]) + std::abs(l[1]) + std::abs(l[2]) + std::abs(l[3]));
+    };
+    double best = cost(lm);
+    for (double h = 0.2; h > 1e-3; h *= 0.5)
+      for (bool moved = true; moved;) {
+        moved = false;
+        for (int d = 0; d < 4; ++d)
+          for (double step : {h, -h}) {
+            double t[4] = {lm[0], lm[1], lm[2], lm[3]};
+            t[d] += step;
+            const double c = cost(t);
+            if (c < best) best = c, std::copy(t, t + 4, lm), moved = true;
+          }
+      }
+    fit.m.push_back({std::exp(lm[0]), std::exp(lm[1]), std::exp(lm[2]), std::exp(lm[3])});
+    fit.error.push_back(error(lm));
+  }
+  // The linear range (force within 10 % of mu fz) stays Kalker's FastSim's, after the fit has run
+  // through it on one branch: nss's time term (chi) is identified on that linear response, and a
+  // correction there moved the linear combined scene (combined1) away from the exact one.
+  for (std::size_t i = 0; i < o.corrKnots.size() && o.corrKnots[i] <= kLinearEnd; ++i) {
+    const double one[4] = {1.0, 1.0, 1.0, 1.0};
+    fit.m[i] = {1.0, 1.0, 1.0, 1.0};
+    if (o.corrKnots[i] > 0.0)
+      fit.error[i] = spinError(fastsimCorrected(o, g, r, o.corrKnots[i], base, one),
+                               exact->at(g, r, o.corrKnots[i]), mzPeak);
+  }
+  return fit;
+}
+
+// The combined correction's rows (kinds c1, c2, c3) on the table `base` (single kinds only).
+void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibration& base,
+                        std::map<double, std::string>* rows, std::ostringstream* notes) {
+  for (double g : o.ratios) {
+    const FlexibilityCalibration cal = base.at(g);
+    double worst = 0.0;
+    for (double s3 : o.spinShares) {
+      std::map<std::pair<double, int>, CorrectionFit> fits;  // by xi share, sign
+      for (double t : o.xiShares)
+        for (int sign : {1, -1}) {
+          if (sign < 0 && t >= 1.0) continue;  // no eta: one direction, written for both signs
+          const CorrectionFit fit = identifyDirection(o, exact, g, gridRay(s3, t, sign), cal);
+          const double w = *std::max_element(fit.error.begin(), fit.error.end());
+          std::printf("a/b %g direction %s: worst knot error %.4f\n", g,
+                      gridRay(s3, t, sign).name.c_str(), w);
+          worst = std::max(worst, w);
+          fits[{t, sign}] = fit;
+          if (t >= 1.0) fits[{t, -1}] = fit;
+        }
+      // Without xi (t = 0) L1 does nothing, without eta (t = 1) L2: there the multiplier takes its
+      // neighbour's, so that between the grid's directions it is interpolated from one that was
+      // fitted.
+      const std::size_t nT = o.xiShares.size();
+      for (int sign : {1, -1})
+        for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
+          if (nT > 1 && o.xiShares.front() == 0.0)
+            fits[{0.0, sign}].m[i][0] = fits[{o.xiShares[1], sign}].m[i][0];
+          if (nT > 1 && o.xiShares.back() == 1.0)
+            fits[{1.0, sign}].m[i][1] = fits[{o.xiShares[nT - 2], sign}].m[i][1];
+        }
+      for (const auto& [key, fit] : fits)
+        for (int p = 0; p < 4; ++p)
+          for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
+            char line[200];
+            std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%g,%g,%d\n", g,
+                          p < 3 ? (p == 0   ? "c1"
+                                   : p == 1 ? "c2"
+                                            : "c3")
+                                : "cs",
+                          o.corrKnots[i], fit.m[i][p], fit.error[i], s3, key.first, key.second);
+            (*rows)[g] += line;
+          }
+    }
+    char note[120];
+    std::snprintf(note, sizeof note, "#   a/b %g combined correction: worst knot error %.4f\n", g,
+                  worst);
+    *notes << note;
+  }
+}
+
 void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
-  std::ostringstream rows, notes;
+  std::map<double, std::string> rows;  // per a/b: the table's blocks in increasing a/b
+  std::ostringstream notes;
   for (double g : o.ratios)
     for (int kind = 0; kind < 3; ++kind) {
       const KindFit fit = kind == 2 ? identifySpin(o, exact, g) : identifyKind(o, exact, g, kind);
       double worst = 0.0;
       for (std::size_t i = 0; i < o.knots.size(); ++i) {
         char line[160];
-        std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f\n", g, kRays[kind].name, o.knots[i],
-                      fit.ratio[i], fit.error[i]);
-        rows << line;
+        std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f\n", g, kRays[kind].name.c_str(),
+                      o.knots[i], fit.ratio[i], fit.error[i]);
+        rows[g] += line;
         worst = std::max(worst, fit.error[i]);
       }
       if (kind == 2)  // spin's second parameter: same knots, the same fit's error
@@ -369,20 +553,28 @@ void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
           char line[160];
           std::snprintf(line, sizeof line, "%g,23x,%g,%.6f,%.5f\n", g, o.knots[i], fit.ratioX[i],
                         fit.error[i]);
-          rows << line;
+          rows[g] += line;
         }
       if (kind == 2)
         for (std::size_t i = 0; i < o.knots.size(); ++i) {
           char line[160];
           std::snprintf(line, sizeof line, "%g,23s,%g,%.6f,%.5f\n", g, o.knots[i], fit.shape,
                         fit.error[i]);
-          rows << line;
+          rows[g] += line;
         }
       char note[120];
       std::snprintf(note, sizeof note, "#   a/b %g kind %s: worst knot error %.4f\n", g,
-                    kRays[kind].name, worst);
+                    kRays[kind].name.c_str(), worst);
       notes << note;
     }
+  if (!o.spinShares.empty()) {
+    {
+      std::ofstream single = tools::writeFile(o.out);
+      single << "a_over_b,kind,epsilon,ratio,fit_error\n";
+      for (const auto& [g, block] : rows) single << block;
+    }
+    identifyCorrection(o, exact, SteadyCalibration::load(o.out), &rows, &notes);
+  }
   std::ofstream out = tools::writeFile(o.out);
   std::string command = "identify_steady";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
@@ -395,9 +587,10 @@ void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
       << "; exact curves cached in " << o.exact << ") on FastSim " << o.nx << "x" << o.nx
       << "; other nu: the same ratios.\n"
       << "# fit_error: max(|dFx|, |dFy|) / (mu fz) at the knot (spin, kinds 23 and 23x fitted "
-         "together: the larger of that and 0.2 |dMz| / peak |Mz|)\n"
-      << notes.str() << "a_over_b,kind,epsilon,ratio,fit_error\n"
-      << rows.str();
+         "together, and the combined correction c1, c2, c3: the larger of that and 0.2 |dMz| / "
+         "peak |Mz|)\n"
+      << notes.str() << "a_over_b,kind,epsilon,ratio,fit_error,spin_share,xi_share,sign\n";
+  for (const auto& [g, block] : rows) out << block;
   std::cout << notes.str();
 }
 
@@ -435,18 +628,41 @@ void writeCurves(const Options& o, ExactCache* exact, const SteadyCalibration& t
           char line[400];
           std::snprintf(line, sizeof line,
                         "%g,%s,%g,%.6g,%.6g,%.6g,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", g,
-                        r.name, o.points[i], k.xi, k.eta, k.phi, x[i].fx, x[i].fy, x[i].mz,
+                        r.name.c_str(), o.points[i], k.xi, k.eta, k.phi, x[i].fx, x[i].fy, x[i].mz,
                         c[0][i].fx, c[0][i].fy, c[0][i].mz, c[1][i].fx, c[1][i].fy, c[1][i].mz);
           out << line;
         }
       }
       if (peak > 1e-3)
-        std::printf("%-5g %-5s %9.4f %9.4f %9.4f %9.4f\n", g, r.name, fErr[0], fErr[1], mErr[0],
-                    mErr[1]);
+        std::printf("%-5g %-5s %9.4f %9.4f %9.4f %9.4f\n", g, r.name.c_str(), fErr[0], fErr[1],
+                    mErr[0], mErr[1]);
       else  // no spin moment to speak of (xi alone)
-        std::printf("%-5g %-5s %9.4f %9.4f %9s %9s\n", g, r.name, fErr[0], fErr[1], "-", "-");
+        std::printf("%-5g %-5s %9.4f %9.4f %9s %9s\n", g, r.name.c_str(), fErr[0], fErr[1], "-",
+                    "-");
     }
   }
+}
+
+// Solves (or finds in the cache) every exact point the combined correction is identified on and
+// evaluated on, saving the cache as it goes (a long job).
+void solveGrid(const Options& o, ExactCache* exact) {
+  int last = 0;
+  for (double g : o.ratios) {
+    std::vector<std::pair<Ray, std::vector<double>>> jobs;
+    for (const Ray& r : gridRays(o)) jobs.push_back({r, o.corrKnots});
+    if (!o.gridOnly)
+      for (const Ray& r : kRays) jobs.push_back({r, o.points});
+    for (const auto& [r, es] : jobs)
+      for (double e : es) {
+        if (e > 0.0) exact->at(g, r, e);
+        if (exact->solved() >= last + 20) {
+          last = exact->solved();
+          exact->save();
+          std::cout << "a/b " << g << " " << r.name << ": " << last << " solved" << std::endl;
+        }
+      }
+  }
+  exact->save();
 }
 
 int run(const Options& o, int argc, char** argv) {
@@ -455,6 +671,11 @@ int run(const Options& o, int argc, char** argv) {
     ExactCache* c;
     ~Saver() { c->save(); }
   } saver{&exact};
+  if (o.solveGrid) {
+    solveGrid(o, &exact);
+    return 0;
+  }
+
   if (!o.out.empty()) writeTable(o, &exact, argc, argv);
   const std::string path = !o.out.empty() ? o.out : o.table;  // empty: the shipped table
   writeCurves(o, &exact,

@@ -141,6 +141,61 @@ TEST(SteadyCalibration, SpinsSecondParameterAndBoundShapeFollowSpinsShare) {
   EXPECT_EQ(SteadyCalibration().at(1.0).boundShape(a, b, G, k, muFz, c13), 0.0);
 }
 
+TEST(SteadyCalibration, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOnItsEdges) {
+  // One spin share (0.5), xi shares 0 and 1, both signs, knots 0 and 1: c1 is 2 at t = 0 and 8
+  // at t = 1 where eta and phi have one sign, 1 where they oppose; cs (the bound's shape) 3.
+  std::string body =
+      "a_over_b,kind,epsilon,ratio,fit_error,spin_share,xi_share,sign\n1,11,0,1\n1,11,1,1\n"
+      "1,22,0,1\n1,22,1,1\n1,23,0,1\n1,23,1,1\n1,23x,0,1\n1,23x,1,1\n1,23s,0,1\n1,23s,1,1\n";
+  for (const char* kind : {"c1", "c2", "c3", "cs"})
+    for (const char* t : {"0", "1"})
+      for (const char* sign : {"1", "-1"}) {
+        const std::string k = kind;
+        const char* r = k == "c1" && std::string(sign) == "1" ? (std::string(t) == "0" ? "2" : "8")
+                        : k == "cs"                           ? "3"
+                                                              : "1";
+        body += "1," + k + ",0,1,0,0.5," + t + "," + sign + "\n";
+        body += "1," + k + ",1," + r + ",0,0.5," + t + "," + sign + "\n";
+      }
+  const FlexibilityCalibration c = SteadyCalibration::load(writeTable(body)).at(1.0);
+  double m[4];
+  auto m1 = [&](double e1, double e2, double e3, bool opposed) {
+    const double sq[3] = {e1 * e1, e2 * e2, e3 * e3};
+    c.correction(sq, std::sqrt(sq[0] + sq[1] + sq[2]), opposed, 0, 4, m);
+    return m[0];
+  };
+  const double h = std::sqrt(0.5);
+  EXPECT_NEAR(m1(0.0, h, h, false), 2.0, 1e-12);  // on the grid: t = 0, s3 = 0.5, e = 1
+  EXPECT_NEAR(m[1], 1.0, 1e-12);
+  EXPECT_NEAR(m[3], 3.0, 1e-12);
+  EXPECT_NEAR(m1(h, 0.0, h, false), 8.0, 1e-12);                         // t = 1
+  EXPECT_NEAR(m1(0.5, 0.5, h, false), 4.0, 1e-12);                       // t = 1/2: ln halfway
+  EXPECT_NEAR(m1(0.0, h, h, true), 1.0, 1e-12);                          // the other sign's table
+  EXPECT_NEAR(m1(0.0, 0.5 * h, 0.5 * h, false), std::sqrt(2.0), 1e-12);  // e = 1/2
+  EXPECT_NEAR(m1(0.0, std::sqrt(0.75), 0.5, false), std::sqrt(2.0), 1e-12);  // s3 = 1/4
+  EXPECT_NEAR(m1(0.0, 0.5, std::sqrt(0.75), false), std::sqrt(2.0), 1e-12);  // s3 = 3/4
+  EXPECT_NEAR(m1(0.0, 0.0, 1.0, false), 1.0, 1e-12);          // spin alone: the rule alone
+  EXPECT_NEAR(m1(h, h, 0.0, false), 1.0, 1e-12);              // no spin
+  EXPECT_NEAR(m1(0.0, 2.0 * h, 2.0 * h, false), 2.0, 1e-12);  // held beyond the last knot
+  // The bound's shape: spin's share (1/2) times the table's 23s (1) times cs (3), capped at 2.
+  const double a = 5e-3, b = 5e-3, G = 8.2e10, muFz = 3e3, unit = muFz / (G * a * b);
+  const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
+  const Creepages c23{0.0, h * unit / k.c22, h * unit / (k.c23 * std::sqrt(a * b))};
+  EXPECT_NEAR(c.boundShape(a, b, G, k, muFz, c23), 1.5, 1e-12);
+  const Creepages far{0.0, 4.0 * c23.eta, 4.0 * c23.phi};
+  EXPECT_NEAR(c.boundShape(a, b, G, k, muFz, far), 1.5, 1e-12);
+  // Malformed correction rows and a grid missing a direction are refused, naming the line.
+  const std::string single = body.substr(0, body.find("1,c1,"));
+  EXPECT_NE(message(single + "1,c1,0,1,0\n").find(":12: a c-kind row needs"), std::string::npos);
+  EXPECT_NE(message(single + "1,c1,0,1,0,1,0,1\n").find(":12: spin_share must be in (0, 1)"),
+            std::string::npos);
+  EXPECT_NE(message(single + "1,c1,0,1,0,0.5,0,2\n").find(":12: sign must be 1 or -1"),
+            std::string::npos);
+  EXPECT_NE(message(single + "1,c1,0.5,1,0,0.5,0,1\n").find(":12: the knots"), std::string::npos);
+  EXPECT_NE(message(body.substr(0, body.rfind("1,cs,0,1"))).find("misses a direction"),
+            std::string::npos);
+}
+
 TEST(SteadyCalibration, FlattenedBoundKeepsTheTotalAndThePatch) {
   // Saturated everywhere, FastSim's force is the bound's node sum: the blend must keep it (mu fz)
   // and the patch (where the bound is positive); s = 0 is the parabolic bound bit for bit.
@@ -176,7 +231,7 @@ TEST(SteadyCalibration, FlattenedBoundsClosedFormSumsAreTheNodeSums) {
   // strips with one or two loaded nodes) and larger than it (clipped).
   for (const int nx : {7, 20, 21})
     for (const double scale : {1.0, 0.93, 0.55, 0.31, 1.2})
-      for (const double s : {0.3, 1.0}) {
+      for (const double s : {0.3, 1.0, 2.0}) {  // 2: the calibration's largest shape
         const PatchMesh mesh(nx, 13, 5e-3, 4e-3);
         const double a = 5e-3 * scale, b = 4e-3 * scale, fz = 1e4, mu = 0.3;
         TractionField f, g;

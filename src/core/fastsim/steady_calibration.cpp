@@ -6,8 +6,10 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace wheel_rail_contact {
 
@@ -43,7 +45,48 @@ double FlexibilityCalibration::boundShape(double a, double b, double G, const Cr
   if (eps_[4].empty()) return 0.0;
   double e2[3];
   const double e = normalisedCreepage(a, b, G, k, muFz, c, e2);
-  return std::isfinite(e) && e > 0.0 ? ratio(4, e) * e2[2] / (e * e) : 0.0;
+  if (!(std::isfinite(e) && e > 0.0)) return 0.0;
+  double m[4];
+  correction(e2, e, c.eta * c.phi < 0.0, 3, 4, m);
+  return std::min(kMaxBoundShape, ratio(4, e) * e2[2] / (e * e) * m[3]);
+}
+
+void FlexibilityCalibration::correction(const double* e2, double e, bool opposed, int first,
+                                        int last, double* m) const {
+  for (int p = first; p < last; ++p) m[p] = 1.0;
+  const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
+  if (nS == 0 || !(e > 0.0) || !std::isfinite(e)) return;
+  const double rest = e2[0] + e2[1];
+  if (!(rest > 0.0) || !(e2[2] > 0.0)) return;  // one kind, or xi with eta: the rule alone
+  // Spin's share between its knots, the ends 0 and 1 (no correction) implicit: the cell is
+  // [knot i - 1, knot i], "knot -1" = 0 and "knot nS" = 1.
+  const double s3 = e2[2] / (e * e);
+  std::size_t i = 0;
+  while (i < nS && corrS3_[i] <= s3) ++i;
+  const double sLo = i == 0 ? 0.0 : corrS3_[i - 1], sHi = i == nS ? 1.0 : corrS3_[i];
+  const double ws = std::min(1.0, (s3 - sLo) / (sHi - sLo));
+  const double t = e2[0] / rest;
+  std::size_t j = 1;
+  while (j + 1 < nT && corrT_[j] <= t) ++j;
+  const double wt = std::min(1.0, std::max(0.0, (t - corrT_[j - 1]) / (corrT_[j] - corrT_[j - 1])));
+  std::size_t k = 1;
+  double we = 1.0;
+  if (e < corrEps_.back()) {
+    while (corrEps_[k] <= e) ++k;
+    we = (e - corrEps_[k - 1]) / (corrEps_[k] - corrEps_[k - 1]);
+  } else {
+    k = nE - 1;  // held beyond the last knot
+  }
+  for (int p = first; p < last; ++p) {
+    const std::size_t base = (p * 2 + (opposed ? 1 : 0)) * nS;
+    auto at = [&](std::size_t is, std::size_t jt) {
+      const double* v = &corrLog_[((base + is) * nT + jt) * nE];
+      return v[k - 1] + we * (v[k] - v[k - 1]);
+    };
+    const double lo = i > 0 ? (1.0 - wt) * at(i - 1, j - 1) + wt * at(i - 1, j) : 0.0;
+    const double hi = i < nS ? (1.0 - wt) * at(i, j - 1) + wt * at(i, j) : 0.0;
+    m[p] = std::exp((1.0 - ws) * lo + ws * hi);
+  }
 }
 
 double FlexibilityCalibration::ratio(int kind, double e) const {
@@ -78,6 +121,13 @@ Flexibilities FlexibilityCalibration::flexibilities(double a, double b, double G
   L.L1 = rho * ((1.0 - w) * L.L1 + w * crss);
   L.L2 = rho * ((1.0 - w) * L.L2 + w * crss);
   L.L3 = rho * ((1.0 - w) * L.L3 + w * crss);
+  if (!corrLog_.empty()) {  // combined creepages with spin: the direction's own correction
+    double m[3];
+    correction(e2, e, c.eta * c.phi < 0.0, 0, 3, m);
+    L.L1 *= m[0];
+    L.L2 *= m[1];
+    L.L3 *= m[2];
+  }
   if (!eps_[3].empty())
     L.L3x = L.L3 * std::exp(std::isfinite(e) ? e2[2] * logRatio(3, e) / (e * e) : 0.0);
   return L;
@@ -114,6 +164,11 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
   std::string line;
   long n = 0;
   bool header = false;
+  // Combined correction rows per (a/b row, multiplier, opposed, spin share, xi share): knots,
+  // ratios.
+  std::map<std::tuple<std::size_t, int, int, double, double>,
+           std::pair<std::vector<double>, std::vector<double>>>
+      corr;
   while (std::getline(in, line)) {
     ++n;
     if (line.empty() || line[0] == '#') continue;
@@ -133,15 +188,34 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
                      : f[1] == "23"  ? 2
                      : f[1] == "23x" ? 3
                      : f[1] == "23s" ? 4
+                     : f[1] == "c1"  ? 5
+                     : f[1] == "c2"  ? 6
+                     : f[1] == "c3"  ? 7
+                     : f[1] == "cs"  ? 8
                                      : -1;
-    if (kind < 0) fail(path, n, "kind must be 11, 22, 23, 23x or 23s, got '" + f[1] + "'");
+    if (kind < 0)
+      fail(path, n, "kind must be 11, 22, 23, 23x, 23s, c1, c2, c3 or cs, got '" + f[1] + "'");
     if (!(ab > 0.0)) fail(path, n, "a_over_b must be > 0");
     if (!(r > 0.0)) fail(path, n, "ratio must be > 0");
     const double logAB = std::log(ab);
     if (t.rows_.empty() || t.rows_.back().logAB != logAB) {
       if (!t.rows_.empty() && !(logAB > t.rows_.back().logAB))
         fail(path, n, "a_over_b must increase from one block to the next");
-      t.rows_.push_back(Row{logAB, {}, {}});
+      t.rows_.push_back(Row{logAB, {}, {}, {}, {}, {}, {}});
+    }
+    if (kind >= 5) {
+      if (f.size() < 8) fail(path, n, "a c-kind row needs spin_share, xi_share and sign");
+      const double s3 = number(path, n, f[5]), xs = number(path, n, f[6]),
+                   sg = number(path, n, f[7]);
+      if (!(s3 > 0.0 && s3 < 1.0)) fail(path, n, "spin_share must be in (0, 1)");
+      if (!(xs >= 0.0 && xs <= 1.0)) fail(path, n, "xi_share must be in [0, 1]");
+      if (sg != 1.0 && sg != -1.0) fail(path, n, "sign must be 1 or -1");
+      auto& knots = corr[{t.rows_.size() - 1, kind - 5, sg < 0.0 ? 1 : 0, s3, xs}];
+      if (knots.first.empty() ? (e != 0.0 || r != 1.0) : !(e > knots.first.back()))
+        fail(path, n, "the knots of a kind start at epsilon 0, ratio 1 and increase");
+      knots.first.push_back(e);
+      knots.second.push_back(r);
+      continue;
     }
     Row& row = t.rows_.back();
     std::vector<double>& x = row.eps[kind];
@@ -156,6 +230,43 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
     for (int k = 0; k < 5; ++k)
       if ((k < 3 && row.eps[k].empty()) || row.eps[k] != t.rows_.front().eps[k])
         fail(path, n, "every a/b must hold every kind, with the same epsilon knots");
+  // The combined correction: a full grid (every multiplier, sign, spin share and xi share) with the
+  // same knots in every a/b, or none.
+  for (const auto& [key, knots] : corr) {
+    Row& row = t.rows_[std::get<0>(key)];
+    auto add = [](std::vector<double>* v, double x) {
+      if (std::find(v->begin(), v->end(), x) == v->end())
+        v->insert(std::upper_bound(v->begin(), v->end(), x), x);
+    };
+    add(&row.corrS3, std::get<3>(key));
+    add(&row.corrT, std::get<4>(key));
+    if (row.corrEps.empty()) row.corrEps = knots.first;
+    if (knots.first != row.corrEps || knots.first.size() < 2)
+      fail(path, n, "every combined correction must hold the same epsilon knots (at least two)");
+  }
+  for (std::size_t r = 0; r < t.rows_.size(); ++r) {
+    Row& row = t.rows_[r];
+    const Row& first = t.rows_.front();
+    if (row.corrS3 != first.corrS3 || row.corrT != first.corrT || row.corrEps != first.corrEps)
+      fail(path, n, "every a/b must hold the same combined correction grid");
+    if (row.corrS3.empty()) continue;
+    if (row.corrT.size() < 2 || row.corrT.front() != 0.0 || row.corrT.back() != 1.0)
+      fail(path, n, "the combined correction's xi shares must run from 0 to 1");
+    const std::size_t nS = row.corrS3.size(), nT = row.corrT.size(), nE = row.corrEps.size();
+    row.corr.assign(FlexibilityCalibration::kCorrections * 2 * nS * nT * nE, 1.0);
+    for (int p = 0; p < FlexibilityCalibration::kCorrections; ++p)
+      for (int o = 0; o < 2; ++o)
+        for (std::size_t i = 0; i < nS; ++i)
+          for (std::size_t j = 0; j < nT; ++j) {
+            const auto it = corr.find({r, p, o, row.corrS3[i], row.corrT[j]});
+            if (it == corr.end())
+              fail(path, n,
+                   "the combined correction misses a direction (every c1, c2, c3, sign, "
+                   "spin share and xi share)");
+            std::copy(it->second.second.begin(), it->second.second.end(),
+                      row.corr.begin() + (((p * 2 + o) * nS + i) * nT + j) * nE);
+          }
+  }
   return t;
 }
 
@@ -183,6 +294,12 @@ void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
     for (std::size_t j = 0; j < lo.ratio[k].size(); ++j)
       c->logRatio_[k][j] = std::log(lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]));
   }
+  c->corrS3_ = lo.corrS3;
+  c->corrT_ = lo.corrT;
+  c->corrEps_ = lo.corrEps;
+  c->corrLog_.resize(lo.corr.size());
+  for (std::size_t j = 0; j < lo.corr.size(); ++j)
+    c->corrLog_[j] = std::log(lo.corr[j] + t * (hi.corr[j] - lo.corr[j]));
 }
 
 }  // namespace wheel_rail_contact

@@ -26,8 +26,19 @@
 /// classic FastSim; kind 23s holds the shape per a/b identified for pure spin, in (0, 1],
 /// interpolated linearly.
 ///
+/// Combined creepages (kinds c1, c2, c3, optional): the rule above is exact for one kind and
+/// weakest where spin combines with xi or eta, so the step's L1, L2, L3 (L3x with L3) are
+/// multiplied by a correction tabulated over the creepage's direction and e: spin's share
+/// s3 = e3^2 / e^2 on interior knots (the correction is 1 at s3 = 0 and 1, where the rule is
+/// already fitted), xi's share of the rest t = e1^2 / (e1^2 + e2^2) on knots from 0 to 1, and the
+/// relative sign of eta and phi ((xi, eta, phi) and (-xi, eta, phi) are mirror images: only
+/// sign(eta phi) matters). ln multiplier interpolated bilinearly in (s3, t), linearly in e. The
+/// fourth (kind cs) multiplies the bound's shape: in full slip the flexibilities hardly act, and
+/// the bound's shape decides how the saturated traction splits into force and moment.
+///
 /// Table (CSV, '#' comment lines: command, Poisson ratio, grids, fit errors):
-///   a_over_b,kind,epsilon,ratio[,...]   kind in {11, 22, 23, 23x, 23s}
+///   a_over_b,kind,epsilon,ratio[,fit_error[,spin_share,xi_share,sign]]
+///   kind in {11, 22, 23, 23x, 23s, c1, c2, c3, cs}; c-kinds carry their direction (sign +1 or -1)
 /// Every a/b holds the same epsilon knots per kind (increasing, the first 0 with ratio 1); ln
 /// ratio is interpolated linearly in epsilon and held beyond the last knot; the ratio linearly in
 /// ln(a/b) between rows, clamped at the table's ends. The table is identified at nu = 0.28: at
@@ -55,6 +66,13 @@ class FlexibilityCalibration {
   /// of e^2, e3^2 / e^2, where the table has it, else 0 (parabolic, as classic).
   double boundShape(double a, double b, double G, const CreepCoefficients& k, double muFz,
                     const Creepages& c) const;
+  /// The combined correction's multipliers m[first..last) (0-2: of L1, L2, L3; 3: of the bound's
+  /// shape) for creepages with squares e2 (e1^2, e2^2, e3^2), e = their root sum, and
+  /// eta phi < 0 (`opposed`); 1 where the table has none.
+  void correction(const double* e2, double e, bool opposed, int first, int last, double* m) const;
+  /// The bound's shape is at most this (flattenedBound stays positive below 4).
+  static constexpr double kMaxBoundShape = 2.0;
+  static constexpr int kCorrections = 4;
   /// Ratio of kind k (0: 11, 1: 22, 2: 23, 3: 23x, 4: 23s) at normalised creepage e, and its
   /// logarithm.
   double ratio(int kind, double e) const;
@@ -67,6 +85,9 @@ class FlexibilityCalibration {
  private:
   friend class SteadyCalibration;
   std::vector<double> eps_[5], logRatio_[5];  // knots, ln ratio at them
+  // Combined correction: spin shares (interior knots), xi shares (0 to 1), e knots, and
+  // ln multiplier at index (((p * 2 + opposed) * nS3 + i) * nT + j) * nE + k, p = 0 to 3.
+  std::vector<double> corrS3_, corrT_, corrEps_, corrLog_;
 };
 
 /// The identified table over a/b.
@@ -89,6 +110,7 @@ class SteadyCalibration {
   struct Row {
     double logAB;
     std::vector<double> eps[5], ratio[5];
+    std::vector<double> corrS3, corrT, corrEps, corr;  // as FlexibilityCalibration's, ratios
   };
   std::vector<Row> rows_;  // sorted by a/b
 };
