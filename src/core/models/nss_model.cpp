@@ -19,6 +19,7 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi,
       calibration_(calibration.at(p.a0 / p.b0)),
       adaptive_(p.mesh != "fixed"),  // "auto": fitted to the patch, moved only when fz changes
       dynamic_(p.model == "nss"),
+      xFilterOfXi_(!calibration.empty()),
       chiTable_(dynamic_ ? chi.forMesh(p.nx) : ChiTable::uniform({})),  // chi is fitted per mesh
       ab0_(p.a0 / p.b0),
       ab_(ab0_) {
@@ -212,7 +213,12 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
   updateWeights(c, a, b);
   const FilterZ z11 = discretiseKind(0, a, V, dt), z22 = discretiseKind(1, a, V, dt),
                 z23 = discretiseKind(2, a, V, dt);
-  zx_ = weightedFilter(z11, wx_[0], z23, wx_[1]);
+  // Calibrated: x takes kind 11's filter whatever the spin. Along each strip the x drive,
+  // xi - phi y, is uniform in x like xi's, the drive chi11 was identified on; chi23 was identified
+  // on y's drive phi x, linear along the strip, and blended into x it cut the time term of xi's
+  // traction wherever spin was present (doc/calibrated_fastsim.md#non-steady-accuracy). Classic
+  // keeps the paper's eq. 15 in both directions.
+  zx_ = xFilterOfXi_ ? z11 : weightedFilter(z11, wx_[0], z23, wx_[1]);
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
   const bool second = zx_.secondOrder() || zy_.secondOrder();
   // The step after a second-order F ends (spin stopped) still marches s2, with b2 = a2 = 0: it
