@@ -73,11 +73,13 @@ class NssModel : public ContactModel {
   /// The step's flexibilities: Kalker's, scaled by the calibration for these creepages.
   Flexibilities flexibilities(const HertzEllipse& h, const StepInput& in, const Creepages& c) const;
   bool adaptive_ = false;
-  bool dynamic_ = false;      // nss (else shen-li)
-  bool xFilterOfXi_ = false;  // x's filter is kind 11's alone (calibrated), else eq. 15's blend
-  ChiTable chiTable_;         // for this mesh (nss), to re-pick chi when a/b changes
-  double ab0_ = 1.0;          // a0/b0: the a/b of every step without per-step geometry
-  double ab_ = 1.0;           // the a/b kalker_ and chi_ are for
+  bool dynamic_ = false;  // nss (else shen-li)
+  /// Calibrated: each direction's filter blends the kinds by the linear force they put along it
+  /// (x: kind 11 alone; y: C22 |eta| against C23 |phi| sqrt(ab)); classic: paper eq. 15.
+  bool forceWeightedFilters_ = false;
+  ChiTable chiTable_;  // for this mesh (nss), to re-pick chi when a/b changes
+  double ab0_ = 1.0;   // a0/b0: the a/b of every step without per-step geometry
+  double ab_ = 1.0;    // the a/b kalker_ and chi_ are for
   /// chi of the three kinds at a/b `ab`; false if a second-order one is not stable there.
   bool pickChi(double ab, SecondOrderChi* chi, bool* secondKind) const;
   /// Kalker's coefficients and chi at a/b `ab`, the history carried into them; false (nothing
