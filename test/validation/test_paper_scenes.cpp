@@ -65,7 +65,7 @@ TEST(PaperScenes, CombinedCreepages) {
 TEST(PaperScenes, CalibratedNssBeatsClassicOnCombinedCreepages) {
   // Combined creepages with spin: calibrated FastSim's steady curves are right in partial slip, and
   // its time-term filters blend the kinds by the forces they put along each direction (x: kind 11
-  // alone; doc/calibrated_fastsim.md#non-steady-accuracy). Margin against this 20x20 reference:
+  // alone; doc/calibrated_fastsim.md, "Non-steady accuracy"). Margin against this 20x20 reference:
   // 2.0 / 2.7 / 2.3 % of the peak against classic's 4.1 / 4.2 / 2.8 %. Constant load: the adaptive
   // mesh runs the same steps.
   for (int c = 1; c <= 3; ++c) {

@@ -223,7 +223,7 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
   // xi - phi y, is uniform in x, the shape of the drive chi11 was identified on, and spin's part
   // puts no force along x; chi23 was identified on y's drive phi x, linear along the strip, and
   // blended into x it cut the time term of xi's traction wherever spin was present
-  // (doc/calibrated_fastsim.md#non-steady-accuracy). Classic keeps the paper's eq. 15.
+  // (doc/calibrated_fastsim.md, "Non-steady accuracy"). Classic keeps the paper's eq. 15.
   zx_ = forceWeightedFilters_ ? z11 : weightedFilter(z11, wx_[0], z23, wx_[1]);
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
   const bool second = zx_.secondOrder() || zy_.secondOrder();

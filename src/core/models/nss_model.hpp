@@ -105,7 +105,7 @@ class NssModel : public ContactModel {
   TractionField field_, scratch_;
   std::vector<int> firstBefore_;  // fixed mesh: StripEntry::first per strip at the last bound
   FilterZ zx_, zy_;
-  double wx_[2], wy_[2];  // eq. 15 weights, kept while both vanish
+  double wx_[2], wy_[2];  // eq. 15 weights (calibrated: y by force), kept while both vanish
   StepOutput last_;
   double lastA_ = 0.0;        // a of the step that left the history (0: none yet) [m]
   double lastSpeed_ = 0.0;    // |V| of the step that left the filter state (0: none yet) [m/s]
