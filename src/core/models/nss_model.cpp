@@ -19,6 +19,7 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi,
       calibration_(calibration.at(p.a0 / p.b0)),
       adaptive_(p.mesh != "fixed"),  // "auto": fitted to the patch, moved only when fz changes
       dynamic_(p.model == "nss"),
+      forceWeightedFilters_(!calibration.empty()),
       chiTable_(dynamic_ ? chi.forMesh(p.nx) : ChiTable::uniform({})),  // chi is fitted per mesh
       ab0_(p.a0 / p.b0),
       ab_(ab0_) {
@@ -192,9 +193,15 @@ void NssModel::updateWeights(const Creepages& c, double a, double b) {
     wx_[0] = std::abs(c.xi);
     wx_[1] = spin;
   }
+  // Classic: paper eq. 15, |eta| against |phi| sqrt(ab). Calibrated: each kind by the linear force
+  // its drive puts along y, C22 |eta| against C23 |phi| sqrt(ab) (times G a b): the filter acts on
+  // the traction, and in adhesion eta's and spin's tractions integrate to those forces (the
+  // flexibilities L2 and L3 differ by C22 / C23, which eq. 15 leaves out).
+  const double etaWeight = forceWeightedFilters_ ? kalker_.c22 : 1.0,
+               spinWeight = forceWeightedFilters_ ? kalker_.c23 : 1.0;
   if (std::abs(c.eta) + spin > 0.0) {
-    wy_[0] = std::abs(c.eta);
-    wy_[1] = spin;
+    wy_[0] = std::abs(c.eta) * etaWeight;
+    wy_[1] = spin * spinWeight;
   }
 }
 
@@ -212,7 +219,12 @@ void NssModel::chooseFilters(const Creepages& c, double a, double b, double V, d
   updateWeights(c, a, b);
   const FilterZ z11 = discretiseKind(0, a, V, dt), z22 = discretiseKind(1, a, V, dt),
                 z23 = discretiseKind(2, a, V, dt);
-  zx_ = weightedFilter(z11, wx_[0], z23, wx_[1]);
+  // Calibrated: x takes kind 11's filter whatever the spin. Along each strip the x drive,
+  // xi - phi y, is uniform in x, the shape of the drive chi11 was identified on, and spin's part
+  // puts no force along x; chi23 was identified on y's drive phi x, linear along the strip, and
+  // blended into x it cut the time term of xi's traction wherever spin was present
+  // (doc/calibrated_fastsim.md, "Non-steady accuracy"). Classic keeps the paper's eq. 15.
+  zx_ = forceWeightedFilters_ ? z11 : weightedFilter(z11, wx_[0], z23, wx_[1]);
   zy_ = weightedFilter(z22, wy_[0], z23, wy_[1]);
   const bool second = zx_.secondOrder() || zy_.secondOrder();
   // The step after a second-order F ends (spin stopped) still marches s2, with b2 = a2 = 0: it

@@ -74,9 +74,12 @@ class NssModel : public ContactModel {
   Flexibilities flexibilities(const HertzEllipse& h, const StepInput& in, const Creepages& c) const;
   bool adaptive_ = false;
   bool dynamic_ = false;  // nss (else shen-li)
-  ChiTable chiTable_;     // for this mesh (nss), to re-pick chi when a/b changes
-  double ab0_ = 1.0;      // a0/b0: the a/b of every step without per-step geometry
-  double ab_ = 1.0;       // the a/b kalker_ and chi_ are for
+  /// Calibrated: each direction's filter blends the kinds by the linear force they put along it
+  /// (x: kind 11 alone; y: C22 |eta| against C23 |phi| sqrt(ab)); classic: paper eq. 15.
+  bool forceWeightedFilters_ = false;
+  ChiTable chiTable_;  // for this mesh (nss), to re-pick chi when a/b changes
+  double ab0_ = 1.0;   // a0/b0: the a/b of every step without per-step geometry
+  double ab_ = 1.0;    // the a/b kalker_ and chi_ are for
   /// chi of the three kinds at a/b `ab`; false if a second-order one is not stable there.
   bool pickChi(double ab, SecondOrderChi* chi, bool* secondKind) const;
   /// Kalker's coefficients and chi at a/b `ab`, the history carried into them; false (nothing
@@ -102,7 +105,7 @@ class NssModel : public ContactModel {
   TractionField field_, scratch_;
   std::vector<int> firstBefore_;  // fixed mesh: StripEntry::first per strip at the last bound
   FilterZ zx_, zy_;
-  double wx_[2], wy_[2];  // eq. 15 weights, kept while both vanish
+  double wx_[2], wy_[2];  // eq. 15 weights (calibrated: y by force), kept while both vanish
   StepOutput last_;
   double lastA_ = 0.0;        // a of the step that left the history (0: none yet) [m]
   double lastSpeed_ = 0.0;    // |V| of the step that left the filter state (0: none yet) [m/s]
