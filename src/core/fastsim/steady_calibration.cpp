@@ -50,10 +50,16 @@ double FlexibilityCalibration::boundShape(double a, double b, double G, const Cr
 void FlexibilityCalibration::correction(const double* e2, double e, bool opposed, int first,
                                         int last, double* m) const {
   for (int p = first; p < last; ++p) m[p] = 1.0;
+  if (logCorrection(e2, e, opposed, first, last, m))
+    for (int p = first; p < last; ++p) m[p] = std::exp(m[p]);
+}
+
+bool FlexibilityCalibration::logCorrection(const double* e2, double e, bool opposed, int first,
+                                           int last, double* lm) const {
   const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
-  if (nS == 0 || !(e > 0.0) || !std::isfinite(e)) return;
+  if (nS == 0 || !(e > 0.0) || !std::isfinite(e)) return false;
   const double rest = e2[0] + e2[1];
-  if (!(rest > 0.0) || !(e2[2] > 0.0)) return;  // one kind, or xi with eta: the rule alone
+  if (!(rest > 0.0) || !(e2[2] > 0.0)) return false;  // one kind, or xi with eta: the rule alone
   // Spin's share between its knots, the ends 0 and 1 (no correction) implicit: the cell is
   // [knot i - 1, knot i], "knot -1" = 0 and "knot nS" = 1.
   const double s3 = e2[2] / (e * e);
@@ -73,16 +79,18 @@ void FlexibilityCalibration::correction(const double* e2, double e, bool opposed
   } else {
     k = nE - 1;  // held beyond the last knot
   }
-  for (int p = first; p < last; ++p) {
-    const std::size_t base = (p * 2 + (opposed ? 1 : 0)) * nS;
-    auto at = [&](std::size_t is, std::size_t jt) {
-      const double* v = &corrLog_[((base + is) * nT + jt) * nE];
-      return v[k - 1] + we * (v[k] - v[k - 1]);
-    };
-    const double lo = i > 0 ? (1.0 - wt) * at(i - 1, j - 1) + wt * at(i - 1, j) : 0.0;
-    const double hi = i < nS ? (1.0 - wt) * at(i, j - 1) + wt * at(i, j) : 0.0;
-    m[p] = std::exp((1.0 - ws) * lo + ws * hi);
+  // The cell's four corners (spin share i - 1 and i, xi share j - 1 and j) at e's cell [k - 1, k],
+  // offsets into multiplier first's block; a corner at an implicit spin-share end is 0.
+  const std::size_t block = 2 * nS * nT * nE;
+  const double* v = corrLog_.data() + first * block + (opposed ? nS * nT * nE : 0) + k - 1;
+  const std::size_t lo0 = ((i > 0 ? i - 1 : 0) * nT + j - 1) * nE, hi0 = (i * nT + j - 1) * nE;
+  auto along = [we](const double* x) { return x[0] + we * (x[1] - x[0]); };
+  for (int p = first; p < last; ++p, v += block) {
+    const double lo = i > 0 ? (1.0 - wt) * along(v + lo0) + wt * along(v + lo0 + nE) : 0.0;
+    const double hi = i < nS ? (1.0 - wt) * along(v + hi0) + wt * along(v + hi0 + nE) : 0.0;
+    lm[p] = (1.0 - ws) * lo + ws * hi;
   }
+  return true;
 }
 
 double FlexibilityCalibration::ratio(int kind, double e) const {
@@ -111,9 +119,10 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   auto logRatioOf = [&](int kind) {
     return sharedKnots_ ? at(logRatio_[kind], shared) : logRatio(kind, e);
   };
-  // The combined correction's multipliers, of L1, L2, L3 and of the bound's shape, in one lookup.
-  double m[kCorrections] = {1.0, 1.0, 1.0, 1.0};
-  if (!corrLog_.empty()) correction(e2, e, c.eta * c.phi < 0.0, 0, kCorrections, m);
+  // The combined correction's ln multipliers, of L1, L2, L3 and of the bound's shape, in one
+  // lookup; each goes into the exp of the ratio it multiplies.
+  double lm[kCorrections];
+  const bool corrected = logCorrection(e2, e, c.eta * c.phi < 0.0, 0, kCorrections, lm);
   // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
   // curves better than the arithmetic one (identify_steady's combined rays,
@@ -121,7 +130,6 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   const double logRho =
       finite ? (e2[0] * logRatioOf(0) + e2[1] * logRatioOf(1) + e2[2] * logRatioOf(2)) / (e * e)
              : logRatioOf(0);
-  const double rho = std::exp(logRho);
   // Towards full slip the flexibilities blend into one, L_crss (Vollebregt and Voltr 2023,
   // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
   // theory, not along (xi / L1, eta / L2). A single creepage has L_crss = its own L, unchanged.
@@ -130,20 +138,23 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
                s2 = kphi * kphi, den = x2 / L.L1 + y2 / L.L2 + s2 / L.L3;
   const double w = finite ? std::min(1.0, e / 5.0) : 1.0;
   const double crss = den > 0.0 ? (x2 + y2 + s2) / den : L.L1;
-  L.L1 = rho * ((1.0 - w) * L.L1 + w * crss);
-  L.L2 = rho * ((1.0 - w) * L.L2 + w * crss);
-  L.L3 = rho * ((1.0 - w) * L.L3 + w * crss);
-  if (!corrLog_.empty()) {  // combined creepages with spin: the direction's own correction
-    L.L1 *= m[0];
-    L.L2 *= m[1];
-    L.L3 *= m[2];
+  if (corrected) {  // combined creepages with spin: the direction's own correction
+    L.L1 = std::exp(logRho + lm[0]) * ((1.0 - w) * L.L1 + w * crss);
+    L.L2 = std::exp(logRho + lm[1]) * ((1.0 - w) * L.L2 + w * crss);
+    L.L3 = std::exp(logRho + lm[2]) * ((1.0 - w) * L.L3 + w * crss);
+  } else {
+    const double rho = std::exp(logRho);
+    L.L1 = rho * ((1.0 - w) * L.L1 + w * crss);
+    L.L2 = rho * ((1.0 - w) * L.L2 + w * crss);
+    L.L3 = rho * ((1.0 - w) * L.L3 + w * crss);
   }
   // Without spin (e3 = 0) both spin terms below are exactly their classic values: no exp.
   if (!eps_[3].empty())
     L.L3x = L.L3 * (finite && e2[2] > 0.0 ? std::exp(e2[2] * logRatioOf(3) / (e * e)) : 1.0);
   // The bound's shape: shape_23s(e) times spin's share of e^2 (no friction: parabolic).
   if (!eps_[4].empty() && finite && e2[2] > 0.0)
-    s.boundShape = std::min(kMaxBoundShape, std::exp(logRatioOf(4)) * e2[2] / (e * e) * m[3]);
+    s.boundShape = std::min(kMaxBoundShape,
+                            std::exp(logRatioOf(4) + (corrected ? lm[3] : 0.0)) * e2[2] / (e * e));
   return s;
 }
 

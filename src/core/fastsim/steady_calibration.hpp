@@ -105,6 +105,9 @@ class FlexibilityCalibration {
     std::size_t i;
     double t;
   };
+  // correction()'s ln multipliers into lm[first..last); false (lm untouched) where there is none.
+  bool logCorrection(const double* e2, double e, bool opposed, int first, int last,
+                     double* lm) const;
   static KnotCell cell(const std::vector<double>& x, double e);
   static double at(const std::vector<double>& r, KnotCell c) {
     return c.i == r.size() ? r.back() : r[c.i - 1] + c.t * (r[c.i] - r[c.i - 1]);
