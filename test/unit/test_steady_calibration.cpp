@@ -1,6 +1,7 @@
 // The calibrated FastSim's table (steady_calibration.hpp) and the `fastsim` parameter.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -81,6 +82,38 @@ TEST(SteadyCalibration, ScalesEachFlexibilityByItsKindsRatioAtTheNormalisedCreep
   // No friction: full slip, the last knots.
   const Flexibilities Lf = c.flexibilities(a, b, G, k, 0.0, c1);
   EXPECT_NEAR(Lf.L1, 2.0 * L0.L1, 1e-12 * L0.L1);
+}
+
+TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
+  // The shipped table's kinds share their knots: step() locates e once for all of them and folds
+  // the combined correction into the ratios' exp. It must give what the rule gives kind by kind:
+  // each kind's own ratio(), the correction's multipliers, the blend towards L_crss.
+  const FlexibilityCalibration c = SteadyCalibration::shipped().at(0.7);
+  const double a = 5e-3, b = a / 0.7, G = 8.2e10, muFz = 2.4e4;
+  const CreepCoefficients k = kalkerCoefficients(0.7, 0.28);
+  const Flexibilities L0 = kalkerFlexibilities(a, b, G, k);
+  for (const Creepages cr : {Creepages{1e-3, -4e-4, 0.6}, Creepages{-3e-3, 2e-3, 1.5},
+                             Creepages{2e-4, 1e-3, -0.3}, Creepages{0.05, 0.02, 8.0}}) {
+    double e2[3];
+    const double e = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, cr, e2);
+    double m[FlexibilityCalibration::kCorrections];
+    c.correction(e2, e, cr.eta * cr.phi < 0.0, 0, FlexibilityCalibration::kCorrections, m);
+    const double rho = std::exp(
+        (e2[0] * c.logRatio(0, e) + e2[1] * c.logRatio(1, e) + e2[2] * c.logRatio(2, e)) / (e * e));
+    const double kphi = 3.0 * M_PI * a / 32.0 * cr.phi, x2 = cr.xi * cr.xi, y2 = cr.eta * cr.eta;
+    const double crss = (x2 + y2 + kphi * kphi) / (x2 / L0.L1 + y2 / L0.L2 + kphi * kphi / L0.L3);
+    const double w = std::min(1.0, e / 5.0);
+    const CalibratedStep s = c.step(a, b, G, k, muFz, cr);
+    EXPECT_NEAR(s.L.L1, rho * m[0] * ((1 - w) * L0.L1 + w * crss), 1e-14 * s.L.L1) << e;
+    EXPECT_NEAR(s.L.L2, rho * m[1] * ((1 - w) * L0.L2 + w * crss), 1e-14 * s.L.L2) << e;
+    EXPECT_NEAR(s.L.L3, rho * m[2] * ((1 - w) * L0.L3 + w * crss), 1e-14 * s.L.L3) << e;
+    EXPECT_NEAR(s.L.L3x, s.L.L3 * std::exp(e2[2] / (e * e) * c.logRatio(3, e)), 1e-14 * s.L.L3x);
+    EXPECT_NEAR(s.boundShape, c.ratio(4, e) * e2[2] / (e * e) * m[3], 1e-14 * s.boundShape);
+    EXPECT_NE(m[0], 1.0);  // the correction acts on these directions
+    // The separate calls are the same step.
+    EXPECT_EQ(c.flexibilities(a, b, G, k, muFz, cr).L1, s.L.L1);
+    EXPECT_EQ(c.boundShape(a, b, G, k, muFz, cr), s.boundShape);
+  }
 }
 
 TEST(SteadyCalibration, EmptyIsClassicFastSimExactly) {

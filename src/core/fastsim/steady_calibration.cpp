@@ -28,36 +28,38 @@ double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
   return std::sqrt(e1 * e1 + e2 * e2 + e3 * e3);
 }
 
-double FlexibilityCalibration::logRatio(int kind, double e) const {
-  const std::vector<double>& x = eps_[kind];
-  const std::vector<double>& r = logRatio_[kind];
-  if (x.empty()) return 0.0;
-  if (!(e < x.back())) return r.back();  // beyond the last knot (or NaN): held
+FlexibilityCalibration::KnotCell FlexibilityCalibration::cell(const std::vector<double>& x,
+                                                              double e) {
+  if (!(e < x.back())) return {x.size(), 1.0};  // beyond the last knot (or NaN): held
   // A short table (17 knots): a forward scan is as fast as bisection and branch-predictable.
   std::size_t i = 1;
   while (x[i] <= e) ++i;
-  const double t = (e - x[i - 1]) / (x[i] - x[i - 1]);
-  return r[i - 1] + t * (r[i] - r[i - 1]);
+  return {i, (e - x[i - 1]) / (x[i] - x[i - 1])};
+}
+
+double FlexibilityCalibration::logRatio(int kind, double e) const {
+  if (eps_[kind].empty()) return 0.0;
+  return at(logRatio_[kind], cell(eps_[kind], e));
 }
 
 double FlexibilityCalibration::boundShape(double a, double b, double G, const CreepCoefficients& k,
                                           double muFz, const Creepages& c) const {
-  if (eps_[4].empty()) return 0.0;
-  double e2[3];
-  const double e = normalisedCreepage(a, b, G, k, muFz, c, e2);
-  if (!(std::isfinite(e) && e > 0.0)) return 0.0;
-  double m[4];
-  correction(e2, e, c.eta * c.phi < 0.0, 3, 4, m);
-  return std::min(kMaxBoundShape, ratio(4, e) * e2[2] / (e * e) * m[3]);
+  return step(a, b, G, k, muFz, c).boundShape;
 }
 
 void FlexibilityCalibration::correction(const double* e2, double e, bool opposed, int first,
                                         int last, double* m) const {
   for (int p = first; p < last; ++p) m[p] = 1.0;
+  if (logCorrection(e2, e, opposed, first, last, m))
+    for (int p = first; p < last; ++p) m[p] = std::exp(m[p]);
+}
+
+bool FlexibilityCalibration::logCorrection(const double* e2, double e, bool opposed, int first,
+                                           int last, double* lm) const {
   const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
-  if (nS == 0 || !(e > 0.0) || !std::isfinite(e)) return;
+  if (nS == 0 || !(e > 0.0) || !std::isfinite(e)) return false;
   const double rest = e2[0] + e2[1];
-  if (!(rest > 0.0) || !(e2[2] > 0.0)) return;  // one kind, or xi with eta: the rule alone
+  if (!(rest > 0.0) || !(e2[2] > 0.0)) return false;  // one kind, or xi with eta: the rule alone
   // Spin's share between its knots, the ends 0 and 1 (no correction) implicit: the cell is
   // [knot i - 1, knot i], "knot -1" = 0 and "knot nS" = 1.
   const double s3 = e2[2] / (e * e);
@@ -77,16 +79,18 @@ void FlexibilityCalibration::correction(const double* e2, double e, bool opposed
   } else {
     k = nE - 1;  // held beyond the last knot
   }
-  for (int p = first; p < last; ++p) {
-    const std::size_t base = (p * 2 + (opposed ? 1 : 0)) * nS;
-    auto at = [&](std::size_t is, std::size_t jt) {
-      const double* v = &corrLog_[((base + is) * nT + jt) * nE];
-      return v[k - 1] + we * (v[k] - v[k - 1]);
-    };
-    const double lo = i > 0 ? (1.0 - wt) * at(i - 1, j - 1) + wt * at(i - 1, j) : 0.0;
-    const double hi = i < nS ? (1.0 - wt) * at(i, j - 1) + wt * at(i, j) : 0.0;
-    m[p] = std::exp((1.0 - ws) * lo + ws * hi);
+  // The cell's four corners (spin share i - 1 and i, xi share j - 1 and j) at e's cell [k - 1, k],
+  // offsets into multiplier first's block; a corner at an implicit spin-share end is 0.
+  const std::size_t block = 2 * nS * nT * nE;
+  const double* v = corrLog_.data() + first * block + (opposed ? nS * nT * nE : 0) + k - 1;
+  const std::size_t lo0 = ((i > 0 ? i - 1 : 0) * nT + j - 1) * nE, hi0 = (i * nT + j - 1) * nE;
+  auto along = [we](const double* x) { return x[0] + we * (x[1] - x[0]); };
+  for (int p = first; p < last; ++p, v += block) {
+    const double lo = i > 0 ? (1.0 - wt) * along(v + lo0) + wt * along(v + lo0 + nE) : 0.0;
+    const double hi = i < nS ? (1.0 - wt) * along(v + hi0) + wt * along(v + hi0 + nE) : 0.0;
+    lm[p] = (1.0 - ws) * lo + ws * hi;
   }
+  return true;
 }
 
 double FlexibilityCalibration::ratio(int kind, double e) const {
@@ -96,41 +100,62 @@ double FlexibilityCalibration::ratio(int kind, double e) const {
 Flexibilities FlexibilityCalibration::flexibilities(double a, double b, double G,
                                                     const CreepCoefficients& k, double muFz,
                                                     const Creepages& c) const {
-  Flexibilities L = kalkerFlexibilities(a, b, G, k);
-  if (classic()) return L;
+  return step(a, b, G, k, muFz, c).L;
+}
+
+CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
+                                            const CreepCoefficients& k, double muFz,
+                                            const Creepages& c) const {
+  CalibratedStep s;
+  Flexibilities& L = s.L;
+  L = kalkerFlexibilities(a, b, G, k);
+  if (classic()) return s;
   double e2[3];
   const double e = normalisedCreepage(a, b, G, k, muFz, c, e2);
-  if (!(e > 0.0)) return L;  // no creepage: linear theory
+  if (!(e > 0.0)) return s;              // no creepage: linear theory, the parabolic bound
+  const bool finite = std::isfinite(e);  // not finite: no friction, full slip (last knot)
+  // Every kind's ln ratio at e: one search where the kinds share their knots.
+  const KnotCell shared = cell(eps_[0], e);
+  auto logRatioOf = [&](int kind) {
+    return sharedKnots_ ? at(logRatio_[kind], shared) : logRatio(kind, e);
+  };
+  // The combined correction's ln multipliers, of L1, L2, L3 and of the bound's shape, in one
+  // lookup; each goes into the exp of the ratio it multiplies.
+  double lm[kCorrections];
+  const bool corrected = logCorrection(e2, e, c.eta * c.phi < 0.0, 0, kCorrections, lm);
   // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
   // curves better than the arithmetic one (identify_steady's combined rays,
   // doc/calibrated_fastsim.md).
   const double logRho =
-      std::isfinite(e)
-          ? (e2[0] * logRatio(0, e) + e2[1] * logRatio(1, e) + e2[2] * logRatio(2, e)) / (e * e)
-          : logRatio(0, e);  // no friction: full slip, last knot
-  const double rho = std::exp(logRho);
+      finite ? (e2[0] * logRatioOf(0) + e2[1] * logRatioOf(1) + e2[2] * logRatioOf(2)) / (e * e)
+             : logRatioOf(0);
   // Towards full slip the flexibilities blend into one, L_crss (Vollebregt and Voltr 2023,
   // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
   // theory, not along (xi / L1, eta / L2). A single creepage has L_crss = its own L, unchanged.
   // Weight min(1, e / 5): of e / 1.5, 3, 5, 10, 20 the one nearest the combined exact curves.
   const double kphi = 3.0 * M_PI * a / 32.0 * c.phi, x2 = c.xi * c.xi, y2 = c.eta * c.eta,
                s2 = kphi * kphi, den = x2 / L.L1 + y2 / L.L2 + s2 / L.L3;
-  const double w = std::isfinite(e) ? std::min(1.0, e / 5.0) : 1.0;
+  const double w = finite ? std::min(1.0, e / 5.0) : 1.0;
   const double crss = den > 0.0 ? (x2 + y2 + s2) / den : L.L1;
-  L.L1 = rho * ((1.0 - w) * L.L1 + w * crss);
-  L.L2 = rho * ((1.0 - w) * L.L2 + w * crss);
-  L.L3 = rho * ((1.0 - w) * L.L3 + w * crss);
-  if (!corrLog_.empty()) {  // combined creepages with spin: the direction's own correction
-    double m[3];
-    correction(e2, e, c.eta * c.phi < 0.0, 0, 3, m);
-    L.L1 *= m[0];
-    L.L2 *= m[1];
-    L.L3 *= m[2];
+  if (corrected) {  // combined creepages with spin: the direction's own correction
+    L.L1 = std::exp(logRho + lm[0]) * ((1.0 - w) * L.L1 + w * crss);
+    L.L2 = std::exp(logRho + lm[1]) * ((1.0 - w) * L.L2 + w * crss);
+    L.L3 = std::exp(logRho + lm[2]) * ((1.0 - w) * L.L3 + w * crss);
+  } else {
+    const double rho = std::exp(logRho);
+    L.L1 = rho * ((1.0 - w) * L.L1 + w * crss);
+    L.L2 = rho * ((1.0 - w) * L.L2 + w * crss);
+    L.L3 = rho * ((1.0 - w) * L.L3 + w * crss);
   }
+  // Without spin (e3 = 0) both spin terms below are exactly their classic values: no exp.
   if (!eps_[3].empty())
-    L.L3x = L.L3 * std::exp(std::isfinite(e) ? e2[2] * logRatio(3, e) / (e * e) : 0.0);
-  return L;
+    L.L3x = L.L3 * (finite && e2[2] > 0.0 ? std::exp(e2[2] * logRatioOf(3) / (e * e)) : 1.0);
+  // The bound's shape: shape_23s(e) times spin's share of e^2 (no friction: parabolic).
+  if (!eps_[4].empty() && finite && e2[2] > 0.0)
+    s.boundShape = std::min(kMaxBoundShape,
+                            std::exp(logRatioOf(4) + (corrected ? lm[3] : 0.0)) * e2[2] / (e * e));
+  return s;
 }
 
 namespace {
@@ -294,6 +319,9 @@ void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
     for (std::size_t j = 0; j < lo.ratio[k].size(); ++j)
       c->logRatio_[k][j] = std::log(lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]));
   }
+  c->sharedKnots_ = true;
+  for (int k = 1; k < 5; ++k)
+    if (!c->eps_[k].empty() && c->eps_[k] != c->eps_[0]) c->sharedKnots_ = false;
   c->corrS3_ = lo.corrS3;
   c->corrT_ = lo.corrT;
   c->corrEps_ = lo.corrEps;

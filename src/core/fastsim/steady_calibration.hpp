@@ -54,10 +54,21 @@
 
 namespace wheel_rail_contact {
 
+/// One step's calibrated parameters: the march's flexibilities and the bound's shape.
+struct CalibratedStep {
+  Flexibilities L;
+  double boundShape = 0.0;  // flattenedBound's shape; 0: the parabolic bound
+};
+
 /// The three ratio curves at one a/b; empty (the default) is classic FastSim: every ratio 1.
 class FlexibilityCalibration {
  public:
   bool classic() const { return eps_[0].empty(); }
+  /// The step's flexibilities and bound shape together (what flexibilities() and boundShape()
+  /// give), from one normalised creepage, one knot search and one correction lookup: what a
+  /// model calls each step. Classic: Kalker's flexibilities and shape 0.
+  CalibratedStep step(double a, double b, double G, const CreepCoefficients& k, double muFz,
+                      const Creepages& c) const;
   /// Kalker's flexibilities at patch (a, b), scaled for creepages c at mu fz = muFz. Classic:
   /// exactly kalkerFlexibilities(a, b, G, k).
   Flexibilities flexibilities(double a, double b, double G, const CreepCoefficients& k, double muFz,
@@ -85,6 +96,22 @@ class FlexibilityCalibration {
  private:
   friend class SteadyCalibration;
   std::vector<double> eps_[5], logRatio_[5];  // knots, ln ratio at them
+  // Where every kind present holds kind 11's knots (the shipped table), one search of e serves
+  // them all; set by SteadyCalibration::at.
+  bool sharedKnots_ = false;
+  // The knot cell [i - 1, i] holding e and e's place t in it; i = the knot count at and beyond the
+  // last knot (or for NaN), where the last value is held.
+  struct KnotCell {
+    std::size_t i;
+    double t;
+  };
+  // correction()'s ln multipliers into lm[first..last); false (lm untouched) where there is none.
+  bool logCorrection(const double* e2, double e, bool opposed, int first, int last,
+                     double* lm) const;
+  static KnotCell cell(const std::vector<double>& x, double e);
+  static double at(const std::vector<double>& r, KnotCell c) {
+    return c.i == r.size() ? r.back() : r[c.i - 1] + c.t * (r[c.i] - r[c.i - 1]);
+  }
   // Combined correction: spin shares (interior knots), xi shares (0 to 1), e knots, and
   // ln multiplier at index (((p * 2 + opposed) * nS3 + i) * nT + j) * nE + k, p = 0 to 3.
   std::vector<double> corrS3_, corrT_, corrEps_, corrLog_;

@@ -149,21 +149,17 @@ void NssModel::coverTrailingNodes() {
   }
 }
 
-void NssModel::boundOn(const PatchMesh& mesh, const HertzEllipse& h, const StepInput& in) {
-  const double mu = stepMu(in, p_.mu);
-  // Calibrated: the bound's shape follows spin's share of the step's creepage (classic: 0).
-  flattenedBound(
-      mesh, h.a, h.b, in.fz, mu,
-      calibration_.boundShape(h.a, h.b, p_.G, kalker_, mu * in.fz, {in.xi, in.eta, in.phi}),
-      &field_);
+void NssModel::boundOn(const PatchMesh& mesh, const HertzEllipse& h, const StepInput& in,
+                       double shape) {
+  flattenedBound(mesh, h.a, h.b, in.fz, stepMu(in, p_.mu), shape, &field_);
 }
 
-Flexibilities NssModel::flexibilities(const HertzEllipse& h, const StepInput& in,
-                                      const Creepages& c) const {
+CalibratedStep NssModel::calibrated(const HertzEllipse& h, const StepInput& in) const {
   // Calibrated: a new flexibility each step from its creepages, constant over the patch during the
-  // step. The history stays traction (the state the bound limits); only the drive w / L changes,
-  // as it does with the creepages themselves.
-  return calibration_.flexibilities(h.a, h.b, p_.G, kalker_, stepMu(in, p_.mu) * in.fz, c);
+  // step, and the bound's shape from spin's share of them. The history stays traction (the state
+  // the bound limits); only the drive w / L changes, as it does with the creepages themselves.
+  return calibration_.step(h.a, h.b, p_.G, kalker_, stepMu(in, p_.mu) * in.fz,
+                           {in.xi, in.eta, in.phi});
 }
 
 double NssModel::historyScale(double a) const {
@@ -238,7 +234,8 @@ CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool m
   // When the adaptive patch moves, the step runs on spare_ and carries the history over from mesh_
   // along the strips as it marches (AlongStripMap) into remapped_; adoptMovedPatch() then swaps.
   const PatchMesh& mesh = moves ? spare_ : mesh_;
-  boundOn(mesh, h, in);
+  const CalibratedStep cal = calibrated(h, in);
+  boundOn(mesh, h, in, cal.boundShape);
   if (!adaptive_) coverTrailingNodes();
   // Travel below 1e-9 a is no travel (a subnormal V made 1 / (V dt) infinite: NaN, found by
   // fuzzing): the step then holds the history as dt = 0 does, saturated at the current load.
@@ -250,7 +247,7 @@ CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool m
   const Creepages c{in.xi, in.eta, in.phi};
   keepRatePerTravel(in.V);
   chooseFilters(c, h.a, h.b, in.V, in.dt);
-  const Flexibilities L = flexibilities(h, in, c);
+  const Flexibilities& L = cal.L;
   const double r = historyScale(h.a);
   lastA_ = h.a;
   const CreepForces f =
@@ -320,13 +317,14 @@ StepOutput NssModel::steadyStep(const StepInput& given) {
   if (!screen(given, &in, &h, &out)) return out;
   reshaped_ = false;
   if (meshMustFollow(h)) mesh_.scale(h.a, h.b);  // no carry: the history is overwritten below
-  boundOn(mesh_, h, in);
+  const CalibratedStep cal = calibrated(h, in);
+  boundOn(mesh_, h, in, cal.boundShape);
   if (!adaptive_) coverTrailingNodes();
   const Creepages c{in.xi, in.eta, in.phi};
   updateWeights(c, h.a, h.b);
   lastSpeed_ = in.V;
   lastA_ = h.a;
-  const CreepForces f = steadyFastSim(mesh_, flexibilities(h, in, c), c, &field_);
+  const CreepForces f = steadyFastSim(mesh_, cal.L, c, &field_);
   // Under constant input the time-term march's fixed point is this traction with the filter at
   // rest (zero traction rate), so the next step() starts from it without a jump.
   state_.tx() = field_.tx.transpose();
@@ -343,7 +341,7 @@ StepOutput NssModel::steadyAlongside(const StepInput& given) {
   scratch_.bound = field_.bound;
   scratch_.entry = field_.entry;
   const Creepages c{in.xi, in.eta, in.phi};
-  const CreepForces f = steadyFastSim(mesh_, flexibilities(h, in, c), c, &scratch_);
+  const CreepForces f = steadyFastSim(mesh_, calibrated(h, in).L, c, &scratch_);
   StepOutput out = stepOutput(f, in.fz, h.a, h.b);
   frame_.toContact(&out);
   return out;

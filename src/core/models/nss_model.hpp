@@ -67,11 +67,12 @@ class NssModel : public ContactModel {
   CreepCoefficients kalker_;
   SteadyCalibration calibrationTable_;
   FlexibilityCalibration calibration_;  // calibrationTable_ at a/b ab_
-  /// The step's traction bound mu p on `mesh` (field_): parabolic, flattened by the
-  /// calibration's bound shape.
-  void boundOn(const PatchMesh& mesh, const HertzEllipse& h, const StepInput& in);
-  /// The step's flexibilities: Kalker's, scaled by the calibration for these creepages.
-  Flexibilities flexibilities(const HertzEllipse& h, const StepInput& in, const Creepages& c) const;
+  /// The step's traction bound mu p on `mesh` (field_): parabolic, flattened by `shape` (the
+  /// calibration's bound shape; classic: 0).
+  void boundOn(const PatchMesh& mesh, const HertzEllipse& h, const StepInput& in, double shape);
+  /// The step's flexibilities (Kalker's, scaled by the calibration for its creepages) and bound
+  /// shape.
+  CalibratedStep calibrated(const HertzEllipse& h, const StepInput& in) const;
   bool adaptive_ = false;
   bool dynamic_ = false;  // nss (else shen-li)
   /// Calibrated: each direction's filter blends the kinds by the linear force they put along it

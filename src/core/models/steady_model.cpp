@@ -44,12 +44,10 @@ StepOutput SteadyModel::step(const StepInput& in) {
   }
   if (fitted_) mesh_.scale(h.a, h.b);
   const Creepages c{fwd.xi, fwd.eta, fwd.phi};
-  flattenedBound(mesh_, h.a, h.b, fwd.fz, stepMu(fwd, p_.mu),
-                 calibration_.boundShape(h.a, h.b, p_.G, c_, stepMu(fwd, p_.mu) * fwd.fz, c),
-                 &field_);
-  const CreepForces f = steadyFastSim(
-      mesh_, calibration_.flexibilities(h.a, h.b, p_.G, c_, stepMu(fwd, p_.mu) * fwd.fz, c), c,
-      &field_);
+  const double mu = stepMu(fwd, p_.mu);
+  const CalibratedStep cal = calibration_.step(h.a, h.b, p_.G, c_, mu * fwd.fz, c);
+  flattenedBound(mesh_, h.a, h.b, fwd.fz, mu, cal.boundShape, &field_);
+  const CreepForces f = steadyFastSim(mesh_, cal.L, c, &field_);
   out = stepOutput(f, fwd.fz, h.a, h.b);
   if (backwards) mirrorForces(&out);
   last_ = out;
