@@ -1,5 +1,6 @@
 #include "core/fastsim/steady_calibration.hpp"
 
+#include "core/fastsim/nearest_mesh.hpp"
 #include "wheel_rail_contact/shipped_tables.hpp"
 
 #include <algorithm>
@@ -329,12 +330,8 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
 
 SteadyCalibration SteadyCalibration::forMesh(int nx) const {
   if (meshes_.size() <= 1) return *this;
-  // Increasing nx: the last of the equally near ones is the finer.
-  const Mesh* best = &meshes_.front();
-  for (const Mesh& m : meshes_)
-    if (std::abs(1.0 / m.nx - 1.0 / nx) <= std::abs(1.0 / best->nx - 1.0 / nx)) best = &m;
   SteadyCalibration t;
-  t.meshes_.push_back(*best);
+  t.meshes_.push_back(nearestMesh(meshes_, nx));
   return t;
 }
 
