@@ -14,6 +14,8 @@
 // peak weighed alike).
 // Combined creepages with spin: on a grid of directions (gridRay) and at each knot, multipliers
 // of L1, L2, L3 and of the bound's shape on top of the single kinds' table (kinds c1, c2, c3, cs).
+// Per FastSim mesh (--nx 5,10,20,30,40): FastSim's own discretisation error differs per mesh, the
+// exact curves do not, so one cache serves every mesh; each mesh's rows carry its fastsim_nx.
 // Options: identify_steady --help.
 #include <algorithm>
 #include <array>
@@ -25,6 +27,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -42,7 +45,8 @@ namespace {
 
 struct Options {
   std::string out, exact = "doc/data/steady_exact_curves.csv", curves, table;
-  int grid = 20, nx = 20;
+  int grid = 20, nx = 20;  // nx: the mesh being identified or evaluated, one of `meshes`
+  std::vector<int> meshes = {20};
   double nu = 0.28, G = 8.2e10, mu = 0.3, fz = 1e4;
   std::vector<double> ratios = {0.2, 0.5, 1, 2, 5};
   std::vector<double> knots = {0,    0.1, 0.2, 0.35, 0.5, 0.6, 0.75, 0.9, 1,
@@ -60,7 +64,7 @@ const char* const kUsage =
     "usage: identify_steady [--out config/steady_calibration.csv]\n"
     "                       [--exact doc/data/steady_exact_curves.csv]\n"
     "                       [--curves doc/data/steady_curves.csv] [--table FILE]\n"
-    "                       [--grid 20] [--nx 20] [--nu 0.28] [--ab 0.2,0.5,1,2,5]\n"
+    "                       [--grid 20] [--nx 20[,...]] [--nu 0.28] [--ab 0.2,0.5,1,2,5]\n"
     "                       [--knots 0,0.1,...] [--points 0.05,0.15,...]\n"
     "                       [--correction-knots 0,0.1,...]\n"
     "                       [--spin-shares 0.25,0.375,0.5,0.75,0.9]\n"
@@ -69,7 +73,9 @@ const char* const kUsage =
     "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
     "          --table classic: no table)\n"
     "--curves: write exact / classic / calibrated curves at --points for every ray\n"
-    "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis\n"
+    "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis, one table block\n"
+    "          per mesh (fastsim_nx); evaluation: each mesh on the table's nearest (one --nx\n"
+    "          with --curves)\n"
     "--spin-shares, --xi-shares: the combined correction's direction grid (none: no correction)\n"
     "--solve-grid: only solve the exact points the table and curves need (a long job; the cache\n"
     "          is saved as it goes); --grid-only: the direction grid's points, not the rays'\n";
@@ -86,7 +92,7 @@ void readOption(tools::Args& a, Options* o) {
   else if (a.is("--grid"))
     o->grid = a.integer();
   else if (a.is("--nx"))
-    o->nx = a.integer();
+    o->meshes = a.integers();
   else if (a.is("--nu"))
     o->nu = a.real();
   else if (a.is("--ab"))
@@ -518,12 +524,13 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
         for (int p = 0; p < 4; ++p)
           for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
             char line[200];
-            std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%g,%g,%d\n", g,
+            std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d,%g,%g,%d\n", g,
                           p < 3 ? (p == 0   ? "c1"
                                    : p == 1 ? "c2"
                                             : "c3")
                                 : "cs",
-                          o.corrKnots[i], fit.m[i][p], fit.error[i], s3, key.first, key.second);
+                          o.corrKnots[i], fit.m[i][p], fit.error[i], o.nx, s3, key.first,
+                          key.second);
             (*rows)[g] += line;
           }
     }
@@ -534,46 +541,62 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
   }
 }
 
-void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
+// One mesh's rows (fastsim_nx o.nx) in increasing a/b, its fit errors into `notes`.
+std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream* notes) {
   std::map<double, std::string> rows;  // per a/b: the table's blocks in increasing a/b
-  std::ostringstream notes;
   for (double g : o.ratios)
     for (int kind = 0; kind < 3; ++kind) {
       const KindFit fit = kind == 2 ? identifySpin(o, exact, g) : identifyKind(o, exact, g, kind);
       double worst = 0.0;
       for (std::size_t i = 0; i < o.knots.size(); ++i) {
         char line[160];
-        std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f\n", g, kRays[kind].name.c_str(),
-                      o.knots[i], fit.ratio[i], fit.error[i]);
+        std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, kRays[kind].name.c_str(),
+                      o.knots[i], fit.ratio[i], fit.error[i], o.nx);
         rows[g] += line;
         worst = std::max(worst, fit.error[i]);
       }
       if (kind == 2)  // spin's second parameter: same knots, the same fit's error
         for (std::size_t i = 0; i < o.knots.size(); ++i) {
           char line[160];
-          std::snprintf(line, sizeof line, "%g,23x,%g,%.6f,%.5f\n", g, o.knots[i], fit.ratioX[i],
-                        fit.error[i]);
+          std::snprintf(line, sizeof line, "%g,23x,%g,%.6f,%.5f,%d\n", g, o.knots[i], fit.ratioX[i],
+                        fit.error[i], o.nx);
           rows[g] += line;
         }
       if (kind == 2)
         for (std::size_t i = 0; i < o.knots.size(); ++i) {
           char line[160];
-          std::snprintf(line, sizeof line, "%g,23s,%g,%.6f,%.5f\n", g, o.knots[i], fit.shape,
-                        fit.error[i]);
+          std::snprintf(line, sizeof line, "%g,23s,%g,%.6f,%.5f,%d\n", g, o.knots[i], fit.shape,
+                        fit.error[i], o.nx);
           rows[g] += line;
         }
       char note[120];
       std::snprintf(note, sizeof note, "#   a/b %g kind %s: worst knot error %.4f\n", g,
                     kRays[kind].name.c_str(), worst);
-      notes << note;
+      *notes << note;
     }
-  if (!o.spinShares.empty()) {
-    {
-      std::ofstream single = tools::writeFile(o.out);
-      single << "a_over_b,kind,epsilon,ratio,fit_error\n";
-      for (const auto& [g, block] : rows) single << block;
-    }
-    identifyCorrection(o, exact, SteadyCalibration::load(o.out), &rows, &notes);
+  if (!o.spinShares.empty()) {  // the correction on top of the single kinds' table
+    std::stringstream single;
+    single << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n";
+    for (const auto& [g, block] : rows) single << block;
+    identifyCorrection(o, exact, SteadyCalibration::parse(single, "(single kinds)"), &rows, notes);
+  }
+  std::string block;
+  for (const auto& [g, text] : rows) block += text;
+  return block;
+}
+
+void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
+  std::string blocks;
+  std::ostringstream notes;
+  for (int nx : o.meshes) {
+    Options m = o;
+    m.nx = nx;
+    std::ostringstream meshNotes;
+    const std::string block = identifyMesh(m, exact, &meshNotes);
+    const std::string title =
+        "# FastSim mesh " + std::to_string(nx) + "x" + std::to_string(nx) + "\n";
+    notes << title << meshNotes.str();
+    blocks += title + block;
   }
   std::ofstream out = tools::writeFile(o.out);
   std::string command = "identify_steady";
@@ -584,18 +607,20 @@ void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
   out << "# Calibrated FastSim: flexibility ratio per creepage kind against normalised creepage\n"
       << "# (src/core/fastsim/steady_calibration.hpp). Identified " << date << " by: " << command
       << "\n# against our exact solver (" << o.grid << "x" << o.grid << ", nu " << o.nu
-      << "; exact curves cached in " << o.exact << ") on FastSim " << o.nx << "x" << o.nx
-      << "; other nu: the same ratios.\n"
+      << "; exact curves cached in " << o.exact << ") per FastSim mesh (fastsim_nx; a model "
+      << "takes the mesh nearest its nx in 1/nx); other nu: the same ratios.\n"
       << "# fit_error: max(|dFx|, |dFy|) / (mu fz) at the knot (spin, kinds 23 and 23x fitted "
          "together, and the combined correction c1, c2, c3: the larger of that and 0.2 |dMz| / "
          "peak |Mz|)\n"
-      << notes.str() << "a_over_b,kind,epsilon,ratio,fit_error,spin_share,xi_share,sign\n";
-  for (const auto& [g, block] : rows) out << block;
+      << notes.str()
+      << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx,spin_share,xi_share,sign\n"
+      << blocks;
   std::cout << notes.str();
 }
 
 // Curves and their errors per a/b and ray: exact, classic, calibrated.
-void writeCurves(const Options& o, ExactCache* exact, const SteadyCalibration& table) {
+void writeCurves(const Options& o, ExactCache* exact, const SteadyCalibration& meshes) {
+  const SteadyCalibration table = meshes.forMesh(o.nx);
   std::ofstream out;
   if (!o.curves.empty()) {
     out = tools::writeFile(o.curves);
@@ -605,6 +630,7 @@ void writeCurves(const Options& o, ExactCache* exact, const SteadyCalibration& t
         << "a_over_b,ray,epsilon,xi,eta,phi,fx_exact,fy_exact,mz_exact,fx_classic,fy_classic,"
            "mz_classic,fx_calibrated,fy_calibrated,mz_calibrated\n";
   }
+  std::printf("FastSim %dx%d\n", o.nx, o.nx);
   std::printf("%-5s %-5s %9s %9s %9s %9s   (force: max |dF| / mu fz; Mz: max |dMz| / peak |Mz|)\n",
               "a/b", "ray", "F clas", "F cal", "Mz clas", "Mz cal");
   for (double g : o.ratios) {
@@ -666,6 +692,11 @@ void solveGrid(const Options& o, ExactCache* exact) {
 }
 
 int run(const Options& o, int argc, char** argv) {
+  if (o.meshes.empty()) throw std::runtime_error("--nx: at least one mesh");
+  for (int nx : o.meshes)
+    if (nx < 2) throw std::runtime_error("--nx: every mesh needs at least 2 nodes per axis");
+  if (!o.curves.empty() && o.meshes.size() != 1)
+    throw std::runtime_error("--curves: one --nx (the curves file holds one mesh)");
   ExactCache exact(o.exact, o);
   struct Saver {  // keeps what was solved even when a later step throws
     ExactCache* c;
@@ -678,10 +709,15 @@ int run(const Options& o, int argc, char** argv) {
 
   if (!o.out.empty()) writeTable(o, &exact, argc, argv);
   const std::string path = !o.out.empty() ? o.out : o.table;  // empty: the shipped table
-  writeCurves(o, &exact,
-              path == "classic" ? SteadyCalibration()
-              : path.empty()    ? SteadyCalibration::shipped()
-                                : SteadyCalibration::load(path));
+  const SteadyCalibration table = path == "classic" ? SteadyCalibration()
+                                  : path.empty()    ? SteadyCalibration::shipped()
+                                                    : SteadyCalibration::load(path);
+  for (int nx : o.meshes) {
+    Options m = o;
+    m.nx = nx;
+    writeCurves(m, &exact, table);
+  }
+  std::cout << "exact points solved (not in the cache): " << exact.solved() << "\n";
   return 0;
 }
 

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/fastsim/patch_mesh.hpp"
 #include "core/fastsim/steady_calibration.hpp"
@@ -152,6 +154,48 @@ TEST(SteadyCalibration, RefusesMalformedTablesNamingTheLine) {
             std::string::npos);
 }
 
+TEST(SteadyCalibration, OneBlockPerMeshTheNearestInOneOverNx) {
+  // Two meshes, 5 and 20 nodes per strip (columns found by name, in any order after ratio).
+  const std::string h = "a_over_b,kind,epsilon,ratio,fastsim_nx,fit_error\n";
+  auto mesh = [](int nx, double r) {
+    const std::string n = std::to_string(nx), v = std::to_string(r);
+    return "1,11,0,1," + n + "\n1,11,1," + v + "," + n + ",0\n1,22,0,1," + n + "\n1,23,0,1," + n +
+           "\n";
+  };
+  const SteadyCalibration t = SteadyCalibration::load(writeTable(h + mesh(20, 2) + mesh(5, 4)));
+  EXPECT_EQ(t.meshes(), (std::vector<int>{5, 20}));
+  EXPECT_THROW(t.at(1.0), std::logic_error);  // which mesh is the caller's to say
+  EXPECT_DOUBLE_EQ(t.forMesh(5).at(1.0).ratio(0, 1.0), 4.0);
+  EXPECT_DOUBLE_EQ(t.forMesh(20).at(1.0).ratio(0, 1.0), 2.0);
+  // Nearest in 1/nx: 8 is as near 5 as 20 (1/5 - 1/8 = 1/8 - 1/20), a tie for the finer mesh; 7
+  // is nearer 5, 40 nearer 20.
+  EXPECT_DOUBLE_EQ(t.forMesh(8).at(1.0).ratio(0, 1.0), 2.0);
+  EXPECT_DOUBLE_EQ(t.forMesh(7).at(1.0).ratio(0, 1.0), 4.0);
+  EXPECT_DOUBLE_EQ(t.forMesh(40).at(1.0).ratio(0, 1.0), 2.0);
+  EXPECT_EQ(t.forMesh(7).meshes(), (std::vector<int>{5}));
+  // A table without fastsim_nx serves every mesh.
+  const SteadyCalibration any = SteadyCalibration::load(writeTable(kTwoRows));
+  EXPECT_EQ(any.meshes(), (std::vector<int>{0}));
+  EXPECT_DOUBLE_EQ(any.forMesh(5).at(0.5).ratio(0, 1.0), 2.0);
+  // Errors name the line.
+  EXPECT_NE(message(h + mesh(20, 2) + mesh(5, 4) + mesh(20, 2)).find(":10: fastsim_nx 20: each"),
+            std::string::npos);
+  EXPECT_NE(message(h + "1,11,0,1\n").find(":2: fastsim_nx missing"), std::string::npos);
+  EXPECT_NE(message(h + "1,11,0,1,1\n").find(":2: fastsim_nx must be an integer >= 2"),
+            std::string::npos);
+  EXPECT_NE(message(h + "1,11,0,1,5.5\n").find(":2: fastsim_nx must be an integer"),
+            std::string::npos);
+  EXPECT_NE(message(h + "1,11,0,1,5,0,7\n").find(":2: more fields than the header"),
+            std::string::npos);
+  EXPECT_NE(message("a_over_b,kind,epsilon,ratio,nx\n").find(":1: unknown column 'nx'"),
+            std::string::npos);
+  EXPECT_NE(message("a_over_b,kind,epsilon,ratio,sign,sign\n").find(":1: column 'sign' repeated"),
+            std::string::npos);
+  // Each mesh is checked on its own, and named.
+  EXPECT_NE(message(h + mesh(20, 2) + "1,11,0,1,5\n").find("same epsilon knots (fastsim_nx 5)"),
+            std::string::npos);
+}
+
 TEST(SteadyCalibration, SpinsSecondParameterAndBoundShapeFollowSpinsShare) {
   const std::string path = writeTable(
       "a_over_b,kind,epsilon,ratio\n1,11,0,1\n1,11,1,1\n1,22,0,1\n1,22,1,1\n1,23,0,1\n"
@@ -293,12 +337,17 @@ TEST(SteadyCalibration, FlattenedBoundsClosedFormSumsAreTheNodeSums) {
 TEST(SteadyCalibration, ShippedTableKeepsLinearTheory) {
   // Ratio 1 at zero creepage: Kalker's coefficients hold exactly in the linear limit. Near it
   // (e = 0.01, where the force is 1 % of mu fz) every ratio is within 1 % of 1.
-  const SteadyCalibration t = SteadyCalibration::shipped();
-  for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0}) {
-    const FlexibilityCalibration c = t.at(ab);
-    for (int k = 0; k < 3; ++k) {
-      EXPECT_EQ(c.ratio(k, 0.0), 1.0);
-      EXPECT_NEAR(c.ratio(k, 0.01), 1.0, 0.01) << ab << " " << k;
+  const SteadyCalibration shipped = SteadyCalibration::shipped();
+  // One table per FastSim mesh of the chi table's (identify_steady --nx 5,10,20,30,40).
+  EXPECT_EQ(shipped.meshes(), (std::vector<int>{5, 10, 20, 30, 40}));
+  for (int nx : shipped.meshes()) {
+    const SteadyCalibration t = shipped.forMesh(nx);
+    for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0}) {
+      const FlexibilityCalibration c = t.at(ab);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(c.ratio(k, 0.0), 1.0);
+        EXPECT_NEAR(c.ratio(k, 0.01), 1.0, 0.01) << nx << " " << ab << " " << k;
+      }
     }
   }
 }

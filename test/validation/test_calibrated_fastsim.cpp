@@ -43,10 +43,10 @@ struct CurveError {
 };
 
 CurveError fastsimError(double ab, const std::vector<CurvePoint>& curve,
-                        const FlexibilityCalibration& cal) {
+                        const FlexibilityCalibration& cal, int nx = 20) {
   const double a = 5e-3 * std::sqrt(ab), b = 5e-3 / std::sqrt(ab);
   const CreepCoefficients k = kalkerCoefficients(ab, kNu);
-  const PatchMesh mesh(20, 20, a, b);
+  const PatchMesh mesh(nx, nx, a, b);
   TractionField f;
   f.resize(mesh.size());
   double peak = 0.0;
@@ -67,7 +67,7 @@ class CalibratedSteady : public testing::Test {
  protected:
   static void SetUpTestSuite() {
     curves_ = readExact();
-    table_ = SteadyCalibration::shipped();
+    table_ = SteadyCalibration::shipped().forMesh(20);
   }
   CurveError error(double ab, const char* ray, bool calibrated) const {
     const auto it = curves_.find({ab, ray});
@@ -155,5 +155,29 @@ TEST_F(CalibratedSteady, SpinMomentNoWorseThanClassic) {
     const double cal = error(ab, "23", true).moment, classic = error(ab, "23", false).moment;
     EXPECT_LT(cal, 0.14) << ab;
     EXPECT_LE(cal, classic + 1e-3) << ab;
+  }
+}
+
+TEST_F(CalibratedSteady, EachMeshsTableMeetsTheSingleCreepageTargetOnItsOwnMesh) {
+  // identify_steady --nx 5,10,20,30,40: one table per FastSim mesh, each identified on that mesh
+  // against the same exact curves; on the cached curves (the knots and 12 points between them,
+  // linear theory to full slip), on its own mesh: issue 19's 0.01 mu fz for xi and eta on every
+  // mesh and for spin from 20x20 on. Spin on the coarse meshes is FastSim's own limit there (5
+  // nodes per strip cannot carry both the spin force and moment): at most 0.037 at 5x5 and 0.011
+  // at 10x10 (the 20x20 table there: 0.053-0.107 and 0.024-0.039 on the 12 points),
+  // doc/calibrated_fastsim.md "Per-mesh tables".
+  const SteadyCalibration shipped = SteadyCalibration::shipped();
+  ASSERT_EQ(shipped.meshes(), (std::vector<int>{5, 10, 20, 30, 40}));
+  for (int nx : shipped.meshes()) {
+    const SteadyCalibration t = shipped.forMesh(nx);
+    for (double ab : {0.2, 1.0, 5.0})
+      for (const char* ray : {"11", "22", "23"}) {
+        const auto it = curves_.find({ab, ray});
+        ASSERT_NE(it, curves_.end()) << ab << " " << ray;
+        const bool coarseSpin = std::string(ray) == "23" && nx < 20;
+        const double bound = !coarseSpin ? 0.01 : nx == 5 ? 0.04 : 0.0125;
+        EXPECT_LT(fastsimError(ab, it->second, t.at(ab), nx).force, bound)
+            << nx << "x" << nx << " " << ab << " " << ray;
+      }
   }
 }

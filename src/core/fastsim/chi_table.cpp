@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/fastsim/nearest_mesh.hpp"
 #include "wheel_rail_contact/shipped_tables.hpp"
 
 namespace wheel_rail_contact {
@@ -171,12 +172,8 @@ ChiTable ChiTable::parse(std::istream& in, const std::string& path) {
 
 ChiTable ChiTable::forMesh(int nx) const {
   if (meshes_.size() <= 1) return *this;
-  // Increasing nx: the last of the equally near ones is the finer.
-  const Mesh* best = &meshes_.front();
-  for (const Mesh& m : meshes_)
-    if (std::abs(1.0 / m.nx - 1.0 / nx) <= std::abs(1.0 / best->nx - 1.0 / nx)) best = &m;
   ChiTable t;
-  t.meshes_.push_back(*best);
+  t.meshes_.push_back(nearestMesh(meshes_, nx));
   return t;
 }
 

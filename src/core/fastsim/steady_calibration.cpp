@@ -1,5 +1,6 @@
 #include "core/fastsim/steady_calibration.hpp"
 
+#include "core/fastsim/nearest_mesh.hpp"
 #include "wheel_rail_contact/shipped_tables.hpp"
 
 #include <algorithm>
@@ -171,11 +172,20 @@ double number(const std::string& path, long line, const std::string& s) {
   return v;
 }
 
+// The optional columns after a_over_b,kind,epsilon,ratio, found by their names in the header.
+enum Column { kFitError, kFastsimNx, kSpinShare, kXiShare, kSign, kColumns };
+const char* const kColumnNames[kColumns] = {"fit_error", "fastsim_nx", "spin_share", "xi_share",
+                                            "sign"};
+
 }  // namespace
 
 SteadyCalibration SteadyCalibration::shipped() {
-  std::istringstream in(shippedTable("steady_calibration"));
-  return parse(in, "(shipped) steady_calibration.csv");
+  // Parsed once: every calibrated model is built from it (five meshes, about 100 000 lines).
+  static const SteadyCalibration table = [] {
+    std::istringstream in(shippedTable("steady_calibration"));
+    return parse(in, "(shipped) steady_calibration.csv");
+  }();
+  return table;
 }
 
 SteadyCalibration SteadyCalibration::load(const std::string& path) {
@@ -189,24 +199,58 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
   std::string line;
   long n = 0;
   bool header = false;
-  // Combined correction rows per (a/b row, multiplier, opposed, spin share, xi share): knots,
-  // ratios.
-  std::map<std::tuple<std::size_t, int, int, double, double>,
+  int column[kColumns];
+  std::fill(column, column + kColumns, -1);
+  std::size_t nColumns = 0;
+  // Combined correction rows per (mesh, a/b row, multiplier, opposed, spin share, xi share):
+  // knots, ratios.
+  std::map<std::tuple<std::size_t, std::size_t, int, int, double, double>,
            std::pair<std::vector<double>, std::vector<double>>>
       corr;
   while (std::getline(in, line)) {
     ++n;
     if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      if (line.rfind("a_over_b,kind,epsilon,ratio", 0) != 0)
-        fail(path, n, "expected header a_over_b,kind,epsilon,ratio");
-      header = true;
-      continue;
-    }
     std::vector<std::string> f;
     std::stringstream ss(line);
     for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
+    if (!header) {
+      if (f.size() < 4 || f[0] != "a_over_b" || f[1] != "kind" || f[2] != "epsilon" ||
+          f[3] != "ratio")
+        fail(path, n, "expected header a_over_b,kind,epsilon,ratio");
+      for (std::size_t i = 4; i < f.size(); ++i) {
+        const auto name = std::find(kColumnNames, kColumnNames + kColumns, f[i]);
+        if (name == kColumnNames + kColumns)
+          fail(path, n,
+               "unknown column '" + f[i] + "' (fit_error, fastsim_nx, spin_share, xi_share, sign)");
+        int& c = column[name - kColumnNames];
+        if (c >= 0) fail(path, n, "column '" + f[i] + "' repeated");
+        c = static_cast<int>(i);
+      }
+      nColumns = f.size();
+      header = true;
+      continue;
+    }
     if (f.size() < 4) fail(path, n, "expected a_over_b,kind,epsilon,ratio");
+    if (f.size() > nColumns) fail(path, n, "more fields than the header has columns");
+    auto given = [&](Column c) {
+      return column[c] >= 0 && static_cast<std::size_t>(column[c]) < f.size() &&
+             !f[column[c]].empty();
+    };
+    int nx = 0;
+    if (column[kFastsimNx] >= 0) {
+      if (!given(kFastsimNx)) fail(path, n, "fastsim_nx missing");
+      const double v = number(path, n, f[column[kFastsimNx]]);
+      if (!(v >= 2.0 && v <= 100000.0) || v != std::floor(v))
+        fail(path, n, "fastsim_nx must be an integer >= 2");
+      nx = static_cast<int>(v);
+    }
+    if (t.meshes_.empty() || t.meshes_.back().nx != nx) {
+      for (const Mesh& m : t.meshes_)
+        if (m.nx == nx)
+          fail(path, n, "fastsim_nx " + std::to_string(nx) + ": each mesh's rows in one block");
+      t.meshes_.push_back(Mesh{nx, {}});
+    }
+    std::vector<Row>& rows = t.meshes_.back().rows;
     const double ab = number(path, n, f[0]), e = number(path, n, f[2]), r = number(path, n, f[3]);
     const int kind = f[1] == "11"    ? 0
                      : f[1] == "22"  ? 1
@@ -223,26 +267,29 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
     if (!(ab > 0.0)) fail(path, n, "a_over_b must be > 0");
     if (!(r > 0.0)) fail(path, n, "ratio must be > 0");
     const double logAB = std::log(ab);
-    if (t.rows_.empty() || t.rows_.back().logAB != logAB) {
-      if (!t.rows_.empty() && !(logAB > t.rows_.back().logAB))
+    if (rows.empty() || rows.back().logAB != logAB) {
+      if (!rows.empty() && !(logAB > rows.back().logAB))
         fail(path, n, "a_over_b must increase from one block to the next");
-      t.rows_.push_back(Row{logAB, {}, {}, {}, {}, {}, {}});
+      rows.push_back(Row{logAB, {}, {}, {}, {}, {}, {}});
     }
     if (kind >= 5) {
-      if (f.size() < 8) fail(path, n, "a c-kind row needs spin_share, xi_share and sign");
-      const double s3 = number(path, n, f[5]), xs = number(path, n, f[6]),
-                   sg = number(path, n, f[7]);
+      if (!given(kSpinShare) || !given(kXiShare) || !given(kSign))
+        fail(path, n, "a c-kind row needs spin_share, xi_share and sign");
+      const double s3 = number(path, n, f[column[kSpinShare]]),
+                   xs = number(path, n, f[column[kXiShare]]),
+                   sg = number(path, n, f[column[kSign]]);
       if (!(s3 > 0.0 && s3 < 1.0)) fail(path, n, "spin_share must be in (0, 1)");
       if (!(xs >= 0.0 && xs <= 1.0)) fail(path, n, "xi_share must be in [0, 1]");
       if (sg != 1.0 && sg != -1.0) fail(path, n, "sign must be 1 or -1");
-      auto& knots = corr[{t.rows_.size() - 1, kind - 5, sg < 0.0 ? 1 : 0, s3, xs}];
+      auto& knots =
+          corr[{t.meshes_.size() - 1, rows.size() - 1, kind - 5, sg < 0.0 ? 1 : 0, s3, xs}];
       if (knots.first.empty() ? (e != 0.0 || r != 1.0) : !(e > knots.first.back()))
         fail(path, n, "the knots of a kind start at epsilon 0, ratio 1 and increase");
       knots.first.push_back(e);
       knots.second.push_back(r);
       continue;
     }
-    Row& row = t.rows_.back();
+    Row& row = rows.back();
     std::vector<double>& x = row.eps[kind];
     if (kind == 4 && !(r <= 1.0)) fail(path, n, "a bound shape (23s) must be in (0, 1]");
     if (x.empty() ? (e != 0.0 || (kind != 4 && r != 1.0)) : !(e > x.back()))
@@ -251,48 +298,72 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
     row.ratio[kind].push_back(r);
   }
   if (!header) fail(path, n, "no header");
-  for (const Row& row : t.rows_)
-    for (int k = 0; k < 5; ++k)
-      if ((k < 3 && row.eps[k].empty()) || row.eps[k] != t.rows_.front().eps[k])
-        fail(path, n, "every a/b must hold every kind, with the same epsilon knots");
-  // The combined correction: a full grid (every multiplier, sign, spin share and xi share) with the
-  // same knots in every a/b, or none.
-  for (const auto& [key, knots] : corr) {
-    Row& row = t.rows_[std::get<0>(key)];
-    auto add = [](std::vector<double>* v, double x) {
-      if (std::find(v->begin(), v->end(), x) == v->end())
-        v->insert(std::upper_bound(v->begin(), v->end(), x), x);
-    };
-    add(&row.corrS3, std::get<3>(key));
-    add(&row.corrT, std::get<4>(key));
-    if (row.corrEps.empty()) row.corrEps = knots.first;
-    if (knots.first != row.corrEps || knots.first.size() < 2)
-      fail(path, n, "every combined correction must hold the same epsilon knots (at least two)");
+  for (std::size_t m = 0; m < t.meshes_.size(); ++m) {
+    std::vector<Row>& rows = t.meshes_[m].rows;
+    const std::string mesh = t.meshes_[m].nx > 0
+                                 ? " (fastsim_nx " + std::to_string(t.meshes_[m].nx) + ")"
+                                 : std::string();
+    for (const Row& row : rows)
+      for (int k = 0; k < 5; ++k)
+        if ((k < 3 && row.eps[k].empty()) || row.eps[k] != rows.front().eps[k])
+          fail(path, n, "every a/b must hold every kind, with the same epsilon knots" + mesh);
+    // The combined correction: a full grid (every multiplier, sign, spin share and xi share) with
+    // the same knots in every a/b, or none.
+    for (const auto& [key, knots] : corr) {
+      if (std::get<0>(key) != m) continue;
+      Row& row = rows[std::get<1>(key)];
+      auto add = [](std::vector<double>* v, double x) {
+        if (std::find(v->begin(), v->end(), x) == v->end())
+          v->insert(std::upper_bound(v->begin(), v->end(), x), x);
+      };
+      add(&row.corrS3, std::get<4>(key));
+      add(&row.corrT, std::get<5>(key));
+      if (row.corrEps.empty()) row.corrEps = knots.first;
+      if (knots.first != row.corrEps || knots.first.size() < 2)
+        fail(path, n,
+             "every combined correction must hold the same epsilon knots (at least two)" + mesh);
+    }
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      Row& row = rows[r];
+      const Row& first = rows.front();
+      if (row.corrS3 != first.corrS3 || row.corrT != first.corrT || row.corrEps != first.corrEps)
+        fail(path, n, "every a/b must hold the same combined correction grid" + mesh);
+      if (row.corrS3.empty()) continue;
+      if (row.corrT.size() < 2 || row.corrT.front() != 0.0 || row.corrT.back() != 1.0)
+        fail(path, n, "the combined correction's xi shares must run from 0 to 1" + mesh);
+      const std::size_t nS = row.corrS3.size(), nT = row.corrT.size(), nE = row.corrEps.size();
+      row.corr.assign(FlexibilityCalibration::kCorrections * 2 * nS * nT * nE, 1.0);
+      for (int p = 0; p < FlexibilityCalibration::kCorrections; ++p)
+        for (int o = 0; o < 2; ++o)
+          for (std::size_t i = 0; i < nS; ++i)
+            for (std::size_t j = 0; j < nT; ++j) {
+              const auto it = corr.find({m, r, p, o, row.corrS3[i], row.corrT[j]});
+              if (it == corr.end())
+                fail(path, n,
+                     "the combined correction misses a direction (every c1, c2, c3, sign, "
+                     "spin share and xi share)" +
+                         mesh);
+              std::copy(it->second.second.begin(), it->second.second.end(),
+                        row.corr.begin() + (((p * 2 + o) * nS + i) * nT + j) * nE);
+            }
+    }
   }
-  for (std::size_t r = 0; r < t.rows_.size(); ++r) {
-    Row& row = t.rows_[r];
-    const Row& first = t.rows_.front();
-    if (row.corrS3 != first.corrS3 || row.corrT != first.corrT || row.corrEps != first.corrEps)
-      fail(path, n, "every a/b must hold the same combined correction grid");
-    if (row.corrS3.empty()) continue;
-    if (row.corrT.size() < 2 || row.corrT.front() != 0.0 || row.corrT.back() != 1.0)
-      fail(path, n, "the combined correction's xi shares must run from 0 to 1");
-    const std::size_t nS = row.corrS3.size(), nT = row.corrT.size(), nE = row.corrEps.size();
-    row.corr.assign(FlexibilityCalibration::kCorrections * 2 * nS * nT * nE, 1.0);
-    for (int p = 0; p < FlexibilityCalibration::kCorrections; ++p)
-      for (int o = 0; o < 2; ++o)
-        for (std::size_t i = 0; i < nS; ++i)
-          for (std::size_t j = 0; j < nT; ++j) {
-            const auto it = corr.find({r, p, o, row.corrS3[i], row.corrT[j]});
-            if (it == corr.end())
-              fail(path, n,
-                   "the combined correction misses a direction (every c1, c2, c3, sign, "
-                   "spin share and xi share)");
-            std::copy(it->second.second.begin(), it->second.second.end(),
-                      row.corr.begin() + (((p * 2 + o) * nS + i) * nT + j) * nE);
-          }
-  }
+  std::sort(t.meshes_.begin(), t.meshes_.end(),
+            [](const Mesh& x, const Mesh& y) { return x.nx < y.nx; });
   return t;
+}
+
+SteadyCalibration SteadyCalibration::forMesh(int nx) const {
+  if (meshes_.size() <= 1) return *this;
+  SteadyCalibration t;
+  t.meshes_.push_back(nearestMesh(meshes_, nx));
+  return t;
+}
+
+std::vector<int> SteadyCalibration::meshes() const {
+  std::vector<int> nx;
+  for (const Mesh& m : meshes_) nx.push_back(m.nx);
+  return nx;
 }
 
 FlexibilityCalibration SteadyCalibration::at(double a_over_b) const {
@@ -302,15 +373,19 @@ FlexibilityCalibration SteadyCalibration::at(double a_over_b) const {
 }
 
 void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
-  if (rows_.empty()) {
+  if (meshes_.empty()) {
     *c = FlexibilityCalibration();
     return;
   }
+  if (meshes_.size() != 1)
+    throw std::logic_error("SteadyCalibration: a table of " + std::to_string(meshes_.size()) +
+                           " FastSim meshes: narrow it with forMesh() first");
+  const std::vector<Row>& rows = meshes_.front().rows;
   const double x = std::log(a_over_b);
   std::size_t i = 0;
-  while (i + 1 < rows_.size() && rows_[i + 1].logAB <= x) ++i;
-  const Row& lo = rows_[i];
-  const Row& hi = rows_[std::min(i + 1, rows_.size() - 1)];
+  while (i + 1 < rows.size() && rows[i + 1].logAB <= x) ++i;
+  const Row& lo = rows[i];
+  const Row& hi = rows[std::min(i + 1, rows.size() - 1)];
   const double t =
       (&lo == &hi || !(x > lo.logAB)) ? 0.0 : std::min(1.0, (x - lo.logAB) / (hi.logAB - lo.logAB));
   for (int k = 0; k < 5; ++k) {

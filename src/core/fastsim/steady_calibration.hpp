@@ -37,8 +37,12 @@
 /// the bound's shape decides how the saturated traction splits into force and moment.
 ///
 /// Table (CSV, '#' comment lines: command, Poisson ratio, grids, fit errors):
-///   a_over_b,kind,epsilon,ratio[,fit_error[,spin_share,xi_share,sign]]
+///   a_over_b,kind,epsilon,ratio[,...]   optional columns, named in the header, in any order:
+///   fit_error, fastsim_nx, spin_share, xi_share, sign (an empty or missing field: not given)
 ///   kind in {11, 22, 23, 23x, 23s, c1, c2, c3, cs}; c-kinds carry their direction (sign +1 or -1)
+/// fastsim_nx: the FastSim mesh's nodes per strip the row was identified on (FastSim's own
+/// discretisation error differs per mesh, the exact curves do not); each mesh's rows in one block.
+/// A table without the column is one mesh that serves every nx.
 /// Every a/b holds the same epsilon knots per kind (increasing, the first 0 with ratio 1); ln
 /// ratio is interpolated linearly in epsilon and held beyond the last knot; the ratio linearly in
 /// ln(a/b) between rows, clamped at the table's ends. The table is identified at nu = 0.28: at
@@ -117,29 +121,44 @@ class FlexibilityCalibration {
   std::vector<double> corrS3_, corrT_, corrEps_, corrLog_;
 };
 
-/// The identified table over a/b.
+/// The identified table over a/b, per FastSim mesh.
 class SteadyCalibration {
  public:
   /// Reads a table. Throws std::runtime_error naming the file and line on a malformed,
   /// non-finite or non-positive ratio, knots not increasing or not starting at (0, 1), or a/b rows
-  /// whose knots differ (23x, 23s: in every a/b or in none; 23s in (0, 1], any at knot 0).
+  /// whose knots differ (23x, 23s: in every a/b or in none; 23s in (0, 1], any at knot 0), an
+  /// unknown or repeated column, a fastsim_nx below 2 or missing in a row, or a mesh in two blocks.
   static SteadyCalibration load(const std::string& path);
-  /// The table shipped with the package (config/steady_calibration.csv, compiled in).
+  /// The same from a stream; `source` names it in messages.
+  static SteadyCalibration parse(std::istream& in, const std::string& source);
+  /// The table shipped with the package (config/steady_calibration.csv, meshes 5x5 to 40x40,
+  /// compiled in; parsed once per process).
   static SteadyCalibration shipped();
+  /// The mesh identified nearest nx nodes per strip, as a table of its own: nearest in 1/nx (the
+  /// march's step along the strip; a tie goes to the finer mesh), as ChiTable::forMesh. A table
+  /// of one mesh (or none) is itself.
+  SteadyCalibration forMesh(int nx) const;
+  /// nx of each mesh the table holds, increasing (one 0: a table without fastsim_nx).
+  std::vector<int> meshes() const;
+  /// The calibration at a/b. On a table of one mesh: narrow a table of several with forMesh()
+  /// first (std::logic_error otherwise).
   FlexibilityCalibration at(double a_over_b) const;
   /// The same into `c`, reusing the storage it holds (a model re-picking at a new a/b each step
   /// allocates nothing).
   void at(double a_over_b, FlexibilityCalibration* c) const;
-  bool empty() const { return rows_.empty(); }
+  bool empty() const { return meshes_.empty(); }
 
  private:
-  static SteadyCalibration parse(std::istream& in, const std::string& path);
   struct Row {
     double logAB;
     std::vector<double> eps[5], ratio[5];
     std::vector<double> corrS3, corrT, corrEps, corr;  // as FlexibilityCalibration's, ratios
   };
-  std::vector<Row> rows_;  // sorted by a/b
+  struct Mesh {
+    int nx = 0;             // 0: any
+    std::vector<Row> rows;  // sorted by a/b
+  };
+  std::vector<Mesh> meshes_;  // sorted by nx
 };
 
 }  // namespace wheel_rail_contact

@@ -15,8 +15,8 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi,
     : p_(p),
       ref_{p.a0, p.b0, p.fz0},
       kalker_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
-      calibrationTable_(calibration),
-      calibration_(calibration.at(p.a0 / p.b0)),
+      calibrationTable_(calibration.forMesh(p.nx)),  // identified per mesh, as chi
+      calibration_(calibrationTable_.at(p.a0 / p.b0)),
       adaptive_(p.mesh != "fixed"),  // "auto": fitted to the patch, moved only when fz changes
       dynamic_(p.model == "nss"),
       forceWeightedFilters_(!calibration.empty()),

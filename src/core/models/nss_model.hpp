@@ -23,7 +23,8 @@ class NssModel : public ContactModel {
  public:
   /// `chi` is used when p.model == "nss" (shen-li ignores it). Allocates everything here: step()
   /// allocates nothing.
-  /// `calibration`: the calibrated FastSim's table (empty: classic FastSim).
+  /// `calibration`: the calibrated FastSim's table (empty: classic FastSim); of several meshes,
+  /// the one nearest p.nx (SteadyCalibration::forMesh).
   NssModel(const ContactParameters& p, const ChiTable& chi,
            const SteadyCalibration& calibration = SteadyCalibration());
   StepOutput step(const StepInput& in) override;

@@ -12,8 +12,8 @@ SteadyModel::SteadyModel(const ContactParameters& p, Mesh mesh,
       c_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
       ab0_(p.a0 / p.b0),
       ab_(ab0_),
-      calibrationTable_(calibration),
-      calibration_(calibration.at(ab0_)),
+      calibrationTable_(calibration.forMesh(p.nx)),  // identified per mesh
+      calibration_(calibrationTable_.at(ab0_)),
       fitted_(mesh == Mesh::kFittedToPatch) {
   const HertzEllipse sized = ref_.at(fitted_ ? p.fz0 : effectiveFzMax(p));
   mesh_ = PatchMesh(p.nx, p.ny, sized.a, sized.b);

@@ -17,7 +17,8 @@ class SteadyModel : public ContactModel {
   /// nodes outside it skipped (the same-mesh reference for nss on the fixed mesh in the
   /// benchmarks).
   enum class Mesh { kFittedToPatch, kSizedForFzMax };
-  /// `calibration`: the calibrated FastSim's table (empty: classic FastSim).
+  /// `calibration`: the calibrated FastSim's table (empty: classic FastSim); of several meshes,
+  /// the one nearest p.nx (SteadyCalibration::forMesh).
   explicit SteadyModel(const ContactParameters& p, Mesh mesh = Mesh::kFittedToPatch,
                        const SteadyCalibration& calibration = SteadyCalibration());
   StepOutput step(const StepInput& in) override;

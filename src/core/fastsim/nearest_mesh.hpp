@@ -1,0 +1,21 @@
+/// The FastSim mesh a per-mesh table serves a model on (ChiTable, SteadyCalibration): both are
+/// identified per nodes per strip nx, because they absorb the march's discretisation along the
+/// strips.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+namespace wheel_rail_contact {
+
+/// Of `meshes` (non-empty, sorted by increasing nx, each with a member nx), the one nearest nx
+/// nodes per strip in 1/nx (the march's step along the strip); a tie goes to the finer mesh.
+template <class Mesh>
+const Mesh& nearestMesh(const std::vector<Mesh>& meshes, int nx) {
+  const Mesh* best = &meshes.front();
+  for (const Mesh& m : meshes)  // increasing nx: the last of the equally near ones is the finer
+    if (std::abs(1.0 / m.nx - 1.0 / nx) <= std::abs(1.0 / best->nx - 1.0 / nx)) best = &m;
+  return *best;
+}
+
+}  // namespace wheel_rail_contact
