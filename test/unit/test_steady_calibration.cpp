@@ -90,7 +90,7 @@ TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
   // The shipped table's kinds share their knots: step() locates e once for all of them and folds
   // the combined correction into the ratios' exp. It must give what the rule gives kind by kind:
   // each kind's own ratio(), the correction's multipliers, the blend towards L_crss.
-  const FlexibilityCalibration c = SteadyCalibration::shipped().at(0.7);
+  const FlexibilityCalibration c = SteadyCalibration::shipped().forMesh(20).at(0.7);
   const double a = 5e-3, b = a / 0.7, G = 8.2e10, muFz = 2.4e4;
   const CreepCoefficients k = kalkerCoefficients(0.7, 0.28);
   const Flexibilities L0 = kalkerFlexibilities(a, b, G, k);
