@@ -191,8 +191,10 @@ void checkReset(ContactModel& m, const ContactParameters& p, const StepInput& in
   const auto fresh = makeContactModel(p);
   // The exact solver keeps its factorisation and normal solution across reset() (caches, not
   // state), so its iterative solve ends elsewhere within its tolerance (1e-8 of max |tau|): allow
-  // 1e-6 of mu fz. FastSim models must agree bit for bit.
-  const double tol = p.model == "exact" ? 1e-6 * p.mu * std::abs(in.fz) : 0.0;
+  // 1e-6 of mu fz, mu the step's own where it gives one (p.mu may be 0 then). FastSim models must
+  // agree bit for bit.
+  const double mu = in.mu != 0.0 ? std::abs(in.mu) : p.mu;
+  const double tol = p.model == "exact" ? 1e-6 * mu * std::abs(in.fz) : 0.0;
   const auto same = [tol](double x, double y, double length) {
     return x == y || std::abs(x - y) <= tol * length;
   };
