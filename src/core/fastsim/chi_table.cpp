@@ -165,8 +165,7 @@ ChiTable ChiTable::parse(std::istream& in, const std::string& path) {
         fail(path, n,
              std::string("no rows for kind ") + coefficientCode(static_cast<CreepageKind>(k)) +
                  (m.nx ? " at fastsim_nx " + std::to_string(m.nx) : ""));
-  std::sort(t.meshes_.begin(), t.meshes_.end(),
-            [](const Mesh& a, const Mesh& b) { return a.nx < b.nx; });
+  sortByNodes(&t.meshes_);
   return t;
 }
 
@@ -178,9 +177,7 @@ ChiTable ChiTable::forMesh(int nx) const {
 }
 
 std::vector<int> ChiTable::meshes() const {
-  std::vector<int> nx;
-  for (const Mesh& m : meshes_) nx.push_back(m.nx);
-  return nx;
+  return nodeCounts(meshes_);
 }
 
 const ChiTable::Mesh& ChiTable::only() const {

@@ -3,6 +3,7 @@
 /// strips.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -16,6 +17,21 @@ const Mesh& nearestMesh(const std::vector<Mesh>& meshes, int nx) {
   for (const Mesh& m : meshes)  // increasing nx: the last of the equally near ones is the finer
     if (std::abs(1.0 / m.nx - 1.0 / nx) <= std::abs(1.0 / best->nx - 1.0 / nx)) best = &m;
   return *best;
+}
+
+/// Sorts `meshes` by increasing nx, as nearestMesh needs them.
+template <class Mesh>
+void sortByNodes(std::vector<Mesh>* meshes) {
+  std::sort(meshes->begin(), meshes->end(),
+            [](const Mesh& x, const Mesh& y) { return x.nx < y.nx; });
+}
+
+/// The nx of each of `meshes`, in their order.
+template <class Mesh>
+std::vector<int> nodeCounts(const std::vector<Mesh>& meshes) {
+  std::vector<int> nx;
+  for (const Mesh& m : meshes) nx.push_back(m.nx);
+  return nx;
 }
 
 }  // namespace wheel_rail_contact

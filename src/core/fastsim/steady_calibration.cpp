@@ -348,8 +348,7 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
             }
     }
   }
-  std::sort(t.meshes_.begin(), t.meshes_.end(),
-            [](const Mesh& x, const Mesh& y) { return x.nx < y.nx; });
+  sortByNodes(&t.meshes_);
   return t;
 }
 
@@ -361,9 +360,7 @@ SteadyCalibration SteadyCalibration::forMesh(int nx) const {
 }
 
 std::vector<int> SteadyCalibration::meshes() const {
-  std::vector<int> nx;
-  for (const Mesh& m : meshes_) nx.push_back(m.nx);
-  return nx;
+  return nodeCounts(meshes_);
 }
 
 FlexibilityCalibration SteadyCalibration::at(double a_over_b) const {
