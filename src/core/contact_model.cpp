@@ -81,9 +81,11 @@ bool screenStep(const StepInput& in, StepOutput* out) {
 
 namespace {
 
-// The calibrated FastSim's table when p asks for it (calibratedFastSim), else empty (classic).
-SteadyCalibration steadyCalibration(const ContactParameters& p) {
-  if (p.model == "exact" || !calibratedFastSim(p)) return SteadyCalibration();
+// The calibrated FastSim's table when p asks for it (calibratedFastSim), else empty (classic): the
+// parsed shipped table itself, not a copy (each model keeps only its own mesh's part).
+const SteadyCalibration& steadyCalibration(const ContactParameters& p) {
+  static const SteadyCalibration classic;
+  if (p.model == "exact" || !calibratedFastSim(p)) return classic;
   try {
     return SteadyCalibration::shipped();
   } catch (const std::runtime_error& e) {
@@ -95,7 +97,7 @@ SteadyCalibration steadyCalibration(const ContactParameters& p) {
 
 std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
   validate(p);
-  const SteadyCalibration calibration = steadyCalibration(p);
+  const SteadyCalibration& calibration = steadyCalibration(p);
   if (p.model == "steady")
     return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kFittedToPatch, calibration);
   if (p.model == "exact") return std::make_unique<ExactModel>(p);

@@ -179,7 +179,7 @@ const char* const kColumnNames[kColumns] = {"fit_error", "fastsim_nx", "spin_sha
 
 }  // namespace
 
-SteadyCalibration SteadyCalibration::shipped() {
+const SteadyCalibration& SteadyCalibration::shipped() {
   // Parsed once: every calibrated model is built from it (five meshes, about 100 000 lines).
   static const SteadyCalibration table = [] {
     std::istringstream in(shippedTable("steady_calibration"));

@@ -133,7 +133,7 @@ class SteadyCalibration {
   static SteadyCalibration parse(std::istream& in, const std::string& source);
   /// The table shipped with the package (config/steady_calibration.csv, meshes 5x5 to 40x40,
   /// compiled in; parsed once per process).
-  static SteadyCalibration shipped();
+  static const SteadyCalibration& shipped();
   /// The mesh identified nearest nx nodes per strip, as a table of its own: nearest in 1/nx (the
   /// march's step along the strip; a tie goes to the finer mesh), as ChiTable::forMesh. A table
   /// of one mesh (or none) is itself.
