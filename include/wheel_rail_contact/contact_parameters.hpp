@@ -29,7 +29,8 @@ struct ContactParameters {
   std::string chi_table;
   /// FastSim's steady part in steady, shen-li, nss and auto: "calibrated" (flexibilities
   /// identified against the exact solver, config/steady_calibration.csv) or "classic" (Kalker's
-  /// 1982 FastSim); empty = classic (see calibratedFastSim).
+  /// 1982 FastSim); empty = calibrated for nss and auto, classic for the baselines steady and
+  /// shen-li (see calibratedFastSim).
   std::string fastsim;
 };
 

@@ -352,12 +352,13 @@ TEST(SteadyCalibration, ShippedTableKeepsLinearTheory) {
   }
 }
 
-TEST(FastSimParameter, ClassicUnlessAskedForByName) {
+TEST(FastSimParameter, CalibratedForNssAndAutoClassicForTheBaselinesUnlessNamed) {
   ContactParameters p;
   for (const char* m : {"steady", "shen-li", "nss", "auto"}) {
     p.model = m;
     p.fastsim.clear();
-    EXPECT_FALSE(calibratedFastSim(p)) << m;
+    const bool recommended = p.model == "nss" || p.model == "auto";
+    EXPECT_EQ(calibratedFastSim(p), recommended) << m;
     setParameter(&p, "fastsim", "calibrated");
     EXPECT_TRUE(calibratedFastSim(p)) << m;
     setParameter(&p, "fastsim", "classic");

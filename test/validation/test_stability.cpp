@@ -119,8 +119,15 @@ struct Creep {
 const Creep kCreeps[] = {
     {1e-5, -2e-5, 0.05}, {2e-3, 1e-3, 1.0}, {3e-2, -1e-2, -2.0}, {0, 2e-4, 6.0}};
 
-StepOutput steadyAt(double V, const Creep& c, double fz) {
-  return model("steady", "fixed")->step({0.0, V, c.xi, c.eta, c.phi, fz});
+// Steady FastSim in the FastSim variant a transient model uses by default: nss's is calibrated,
+// shen-li's classic.
+StepOutput steadyAt(double V, const Creep& c, double fz, const std::string& of = "shen-li") {
+  ContactParameters p;
+  p.model = "steady";
+  p.mesh = "fixed";
+  p.nx = p.ny = 12;
+  p.fastsim = of == "nss" || of == "auto" ? "calibrated" : "classic";
+  return makeContactModel(p)->step({0.0, V, c.xi, c.eta, c.phi, fz});
 }
 
 }  // namespace
@@ -191,11 +198,14 @@ TEST(RollingBackwards, TransientModelsSettleOnTheSteadyBackwardsAnswer) {
         EXPECT_NEAR(back.mz, -fwd.mz, tol * p.a0) << name << " " << mesh;
         if (std::string(mesh) == "fixed") continue;
         // Shen-Li's fixed point is steady FastSim's; nss's, in slip, moves with V dt / dx by up to
-        // about 2 % of mu Fz (its filter), in either direction alike.
-        const StepOutput ref = steadyAt(-V, c, p.fz0);
-        const bool nssSlip = std::string(name) == "nss" && c.xi != kCreeps[0].xi;
+        // about 2 % of mu Fz (its filter), in either direction alike. In the nearly linear case
+        // (slip only at the trailing edge) classic nss stays within 1e-5 of it; calibrated nss,
+        // whose x filter is kind 11's alone, within 2e-4 down to steps of 0.01 element.
+        const StepOutput ref = steadyAt(-V, c, p.fz0, name);
+        const bool nss = std::string(name) == "nss", nssSlip = nss && c.xi != kCreeps[0].xi;
         const double scale =
-            (nssSlip ? 3e-2 * p.mu * p.fz0 : 1e-6 * std::hypot(ref.fx, ref.fy)) + tol;
+            (nssSlip ? 3e-2 * p.mu * p.fz0 : (nss ? 2e-4 : 1e-6) * std::hypot(ref.fx, ref.fy)) +
+            tol;
         EXPECT_NEAR(back.fx, ref.fx, scale) << name << " xi " << c.xi;
         EXPECT_NEAR(back.fy, ref.fy, scale) << name << " xi " << c.xi;
       }
@@ -295,7 +305,7 @@ TEST(RollingBackwards, ReversalEndsOnTheSteadyBackwardsForce) {
     EXPECT_EQ(held.status, StepStatus::kStandstill);
     StepOutput o;
     for (int k = 0; k < 2000; ++k) o = m->step({1e-5, -10.0, c.xi, c.eta, c.phi, p.fz0});  // 33 a
-    const StepOutput ref = steadyAt(-10.0, c, p.fz0);
+    const StepOutput ref = steadyAt(-10.0, c, p.fz0, name);
     const double tol = (std::string(name) == "nss" ? 3e-2 : 1e-4) * p.mu * p.fz0;
     EXPECT_NEAR(o.fx, ref.fx, tol) << name;
     EXPECT_NEAR(o.fy, ref.fy, tol) << name;

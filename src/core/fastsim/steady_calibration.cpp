@@ -51,11 +51,11 @@ double FlexibilityCalibration::boundShape(double a, double b, double G, const Cr
 void FlexibilityCalibration::correction(const double* e2, double e, bool opposed, int first,
                                         int last, double* m) const {
   for (int p = first; p < last; ++p) m[p] = 1.0;
-  if (logCorrection(e2, e, opposed, first, last, m))
+  if (logCorrection(e2, e, opposed ? 1.0 : 0.0, first, last, m))
     for (int p = first; p < last; ++p) m[p] = std::exp(m[p]);
 }
 
-bool FlexibilityCalibration::logCorrection(const double* e2, double e, bool opposed, int first,
+bool FlexibilityCalibration::logCorrection(const double* e2, double e, double opposed, int first,
                                            int last, double* lm) const {
   const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
   if (nS == 0 || !(e > 0.0) || !std::isfinite(e)) return false;
@@ -82,14 +82,22 @@ bool FlexibilityCalibration::logCorrection(const double* e2, double e, bool oppo
   }
   // The cell's four corners (spin share i - 1 and i, xi share j - 1 and j) at e's cell [k - 1, k],
   // offsets into multiplier first's block; a corner at an implicit spin-share end is 0.
-  const std::size_t block = 2 * nS * nT * nE;
-  const double* v = corrLog_.data() + first * block + (opposed ? nS * nT * nE : 0) + k - 1;
+  const std::size_t branch = nS * nT * nE, block = 2 * branch;
+  const double* v = corrLog_.data() + first * block + k - 1;
   const std::size_t lo0 = ((i > 0 ? i - 1 : 0) * nT + j - 1) * nE, hi0 = (i * nT + j - 1) * nE;
   auto along = [we](const double* x) { return x[0] + we * (x[1] - x[0]); };
+  auto inCell = [&](const double* w) {
+    const double lo = i > 0 ? (1.0 - wt) * along(w + lo0) + wt * along(w + lo0 + nE) : 0.0;
+    const double hi = i < nS ? (1.0 - wt) * along(w + hi0) + wt * along(w + hi0 + nE) : 0.0;
+    return (1.0 - ws) * lo + ws * hi;
+  };
   for (int p = first; p < last; ++p, v += block) {
-    const double lo = i > 0 ? (1.0 - wt) * along(v + lo0) + wt * along(v + lo0 + nE) : 0.0;
-    const double hi = i < nS ? (1.0 - wt) * along(v + hi0) + wt * along(v + hi0 + nE) : 0.0;
-    lm[p] = (1.0 - ws) * lo + ws * hi;
+    if (opposed <= 0.0)
+      lm[p] = inCell(v);
+    else if (opposed >= 1.0)
+      lm[p] = inCell(v + branch);
+    else
+      lm[p] = (1.0 - opposed) * inCell(v) + opposed * inCell(v + branch);
   }
   return true;
 }
@@ -107,6 +115,12 @@ Flexibilities FlexibilityCalibration::flexibilities(double a, double b, double G
 CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
                                             const CreepCoefficients& k, double muFz,
                                             const Creepages& c) const {
+  return step(a, b, G, k, muFz, c, c.eta * c.phi < 0.0 ? 1.0 : 0.0);
+}
+
+CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
+                                            const CreepCoefficients& k, double muFz,
+                                            const Creepages& c, double opposed) const {
   CalibratedStep s;
   Flexibilities& L = s.L;
   L = kalkerFlexibilities(a, b, G, k);
@@ -123,7 +137,7 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   // The combined correction's ln multipliers, of L1, L2, L3 and of the bound's shape, in one
   // lookup; each goes into the exp of the ratio it multiplies.
   double lm[kCorrections];
-  const bool corrected = logCorrection(e2, e, c.eta * c.phi < 0.0, 0, kCorrections, lm);
+  const bool corrected = logCorrection(e2, e, opposed, 0, kCorrections, lm);
   // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
   // curves better than the arithmetic one (identify_steady's combined rays,

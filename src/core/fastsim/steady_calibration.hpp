@@ -73,6 +73,12 @@ class FlexibilityCalibration {
   /// model calls each step. Classic: Kalker's flexibilities and shape 0.
   CalibratedStep step(double a, double b, double G, const CreepCoefficients& k, double muFz,
                       const Creepages& c) const;
+  /// The same with the correction's two branches (eta phi > 0 and eta phi < 0, identified apart)
+  /// blended: `opposed` in [0, 1] is the weight of the eta phi < 0 branch (step() above: 1 where
+  /// eta phi < 0, else 0). A model rolling through a reversal sees eta change sign at once in its
+  /// forward frame (rolling_direction.hpp) and moves this weight over travel instead.
+  CalibratedStep step(double a, double b, double G, const CreepCoefficients& k, double muFz,
+                      const Creepages& c, double opposed) const;
   /// Kalker's flexibilities at patch (a, b), scaled for creepages c at mu fz = muFz. Classic:
   /// exactly kalkerFlexibilities(a, b, G, k).
   Flexibilities flexibilities(double a, double b, double G, const CreepCoefficients& k, double muFz,
@@ -110,7 +116,8 @@ class FlexibilityCalibration {
     double t;
   };
   // correction()'s ln multipliers into lm[first..last); false (lm untouched) where there is none.
-  bool logCorrection(const double* e2, double e, bool opposed, int first, int last,
+  // `opposed`: the weight of the eta phi < 0 branch, in [0, 1].
+  bool logCorrection(const double* e2, double e, double opposed, int first, int last,
                      double* lm) const;
   static KnotCell cell(const std::vector<double>& x, double e);
   static double at(const std::vector<double>& r, KnotCell c) {

@@ -104,6 +104,7 @@ void NssModel::reset() {
   if (ab_ != ab0_) followAOverB(ab0_);  // a fresh model's coefficients (no history to carry)
   reshaped_ = false;
   lastSpeed_ = 0.0;
+  opposed_ = -1.0;
   std::fill(firstBefore_.begin(), firstBefore_.end(), p_.nx);  // no node loaded
   frame_.reset();
   if (adaptive_) mesh_.scale(ref_.a0, ref_.b0);
@@ -158,8 +159,29 @@ CalibratedStep NssModel::calibrated(const HertzEllipse& h, const StepInput& in) 
   // Calibrated: a new flexibility each step from its creepages, constant over the patch during the
   // step, and the bound's shape from spin's share of them. The history stays traction (the state
   // the bound limits); only the drive w / L changes, as it does with the creepages themselves.
-  return calibration_.step(h.a, h.b, p_.G, kalker_, stepMu(in, p_.mu) * in.fz,
-                           {in.xi, in.eta, in.phi});
+  const Creepages c{in.xi, in.eta, in.phi};
+  return calibration_.step(h.a, h.b, p_.G, kalker_, stepMu(in, p_.mu) * in.fz, c,
+                           opposed_ >= 0.0 ? opposed_ : (c.eta * c.phi < 0.0 ? 1.0 : 0.0));
+}
+
+void NssModel::followBranch(const StepInput& in, double travel, double a) {
+  // The correction was identified apart for eta phi > 0 and < 0, and its bound shape decides how
+  // the saturated traction splits. At a reversal eta changes sign at once in the forward frame
+  // while the traction standing in the patch is carried on: switching branches there moved the
+  // bound under that traction within no travel (a force jump of tens of times what the step's
+  // travel allows). The steady traction of the other branch builds as material crosses the
+  // patch, so the branch's weight follows over travel with relaxation length a. Where eta phi = 0
+  // the branches meet and the weight is kept.
+  const double ep = in.eta * in.phi;
+  if (opposed_ < 0.0 || travel < 0.0) {
+    opposed_ = ep < 0.0 ? 1.0 : 0.0;
+    return;
+  }
+  if (ep == 0.0) return;
+  const double target = ep < 0.0 ? 1.0 : 0.0;
+  if (opposed_ == target) return;
+  opposed_ = target + (opposed_ - target) * std::exp(-travel / a);
+  if (std::abs(opposed_ - target) < 1e-12) opposed_ = target;  // settled: one branch again
 }
 
 double NssModel::historyScale(double a) const {
@@ -234,6 +256,7 @@ CreepForces NssModel::advance(const StepInput& in, const HertzEllipse& h, bool m
   // When the adaptive patch moves, the step runs on spare_ and carries the history over from mesh_
   // along the strips as it marches (AlongStripMap) into remapped_; adoptMovedPatch() then swaps.
   const PatchMesh& mesh = moves ? spare_ : mesh_;
+  followBranch(in, in.dt > 0.0 ? in.V * in.dt : 0.0, h.a);
   const CalibratedStep cal = calibrated(h, in);
   boundOn(mesh, h, in, cal.boundShape);
   if (!adaptive_) coverTrailingNodes();
@@ -317,6 +340,7 @@ StepOutput NssModel::steadyStep(const StepInput& given) {
   if (!screen(given, &in, &h, &out)) return out;
   reshaped_ = false;
   if (meshMustFollow(h)) mesh_.scale(h.a, h.b);  // no carry: the history is overwritten below
+  followBranch(in, -1.0, h.a);
   const CalibratedStep cal = calibrated(h, in);
   boundOn(mesh_, h, in, cal.boundShape);
   if (!adaptive_) coverTrailingNodes();

@@ -72,8 +72,13 @@ class NssModel : public ContactModel {
   /// calibration's bound shape; classic: 0).
   void boundOn(const PatchMesh& mesh, const HertzEllipse& h, const StepInput& in, double shape);
   /// The step's flexibilities (Kalker's, scaled by the calibration for its creepages) and bound
-  /// shape.
+  /// shape, with the correction's eta phi < 0 branch at weight opposed_.
   CalibratedStep calibrated(const HertzEllipse& h, const StepInput& in) const;
+  /// Moves opposed_ towards the branch of this step's eta phi over `travel` [m] (relaxation
+  /// length a); negative travel: settled at once (a steady step).
+  void followBranch(const StepInput& in, double travel, double a);
+  /// Weight of the calibration's eta phi < 0 branch (below 0: none yet, the step's own branch).
+  double opposed_ = -1.0;
   bool adaptive_ = false;
   bool dynamic_ = false;  // nss (else shen-li)
   /// Calibrated: each direction's filter blends the kinds by the linear force they put along it
