@@ -56,4 +56,8 @@ double effectiveFzMax(const ContactParameters& p);
 /// fastsim resolved: true when the model runs the calibrated FastSim (see ContactParameters).
 bool calibratedFastSim(const ContactParameters& p);
 
+/// The FastSim variant the model runs, for start-up lines: "calibrated FastSim", "classic
+/// FastSim", or "no FastSim" (model exact).
+const char* fastsimVariantName(const ContactParameters& p);
+
 }  // namespace wheel_rail_contact

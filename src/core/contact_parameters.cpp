@@ -146,4 +146,9 @@ bool calibratedFastSim(const ContactParameters& p) {
   return p.fastsim == "calibrated";
 }
 
+const char* fastsimVariantName(const ContactParameters& p) {
+  if (p.model == "exact") return "no FastSim";
+  return calibratedFastSim(p) ? "calibrated FastSim" : "classic FastSim";
+}
+
 }  // namespace wheel_rail_contact

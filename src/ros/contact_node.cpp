@@ -110,10 +110,11 @@ bool ContactNode::readParameters() {
 
     stepper_ = std::make_unique<ContactStepper>(makeContactModel(p), o, p);
     ROS_INFO(
-        "contact_node %s: model %s, G %g Pa, nu %g, mu %g, a0 %g m, b0 %g m, fz0 %g N, "
+        "contact_node %s: model %s (%s), G %g Pa, nu %g, mu %g, a0 %g m, b0 %g m, fz0 %g N, "
         "mesh %s %dx%d, frame '%s', load pairing %s (load_wait %g s)",
-        nh_.getNamespace().c_str(), p.model.c_str(), p.G, p.nu, p.mu, p.a0, p.b0, p.fz0,
-        p.mesh.c_str(), p.nx, p.ny, frameId_.c_str(), toString(o.load_pairing), o.load_wait);
+        nh_.getNamespace().c_str(), p.model.c_str(), fastsimVariantName(p), p.G, p.nu, p.mu, p.a0,
+        p.b0, p.fz0, p.mesh.c_str(), p.nx, p.ny, frameId_.c_str(), toString(o.load_pairing),
+        o.load_wait);
     const std::string chosen = stepper_->modelChoices();
     if (!chosen.empty())
       ROS_INFO("contact_node %s: %s", nh_.getNamespace().c_str(), chosen.c_str());

@@ -159,10 +159,10 @@ bool VehicleNode::readParameters() {
       const VehicleContactConfig& c = vehicle_->config(i);
       const ContactParameters& p = c.parameters;
       ROS_INFO(
-          "vehicle_node %s: contact %s: model %s, G %g Pa, nu %g, mu %g, a0 %g m, b0 %g m, "
-          "fz0 %g N, mesh %s %dx%d, frame '%s'",
-          nh_.getNamespace().c_str(), c.name.c_str(), p.model.c_str(), p.G, p.nu, p.mu, p.a0, p.b0,
-          p.fz0, p.mesh.c_str(), p.nx, p.ny, c.frameId.c_str());
+          "vehicle_node %s: contact %s: model %s (%s), G %g Pa, nu %g, mu %g, a0 %g m, b0 %g "
+          "m, fz0 %g N, mesh %s %dx%d, frame '%s'",
+          nh_.getNamespace().c_str(), c.name.c_str(), p.model.c_str(), fastsimVariantName(p), p.G,
+          p.nu, p.mu, p.a0, p.b0, p.fz0, p.mesh.c_str(), p.nx, p.ny, c.frameId.c_str());
       const std::string chosen = vehicle_->stepper(i).modelChoices();
       if (!chosen.empty())
         ROS_INFO("vehicle_node %s: contact %s: %s", nh_.getNamespace().c_str(), c.name.c_str(),

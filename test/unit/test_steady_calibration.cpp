@@ -359,11 +359,14 @@ TEST(FastSimParameter, CalibratedForNssAndAutoClassicForTheBaselinesUnlessNamed)
     p.fastsim.clear();
     const bool recommended = p.model == "nss" || p.model == "auto";
     EXPECT_EQ(calibratedFastSim(p), recommended) << m;
+    EXPECT_STREQ(fastsimVariantName(p), recommended ? "calibrated FastSim" : "classic FastSim");
     setParameter(&p, "fastsim", "calibrated");
     EXPECT_TRUE(calibratedFastSim(p)) << m;
     setParameter(&p, "fastsim", "classic");
     EXPECT_FALSE(calibratedFastSim(p)) << m;
   }
+  p.model = "exact";
+  EXPECT_STREQ(fastsimVariantName(p), "no FastSim");
   p.fastsim = "exact";
   try {
     validate(p);
