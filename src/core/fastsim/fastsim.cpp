@@ -83,8 +83,9 @@ namespace {
 }
 
 // The flattening's factor on the bound q, q (ca - cb q) (flattenedBound), from the parabolic
-// bound's node sums: sum1 = Sum_j (a_j / a) Sum_i q, sum2 the same of q^2 (the quadrature's
-// weights, dy being common). The rescale keeps sum1.
+// bound's node sums: sum1 = Sum_j (a_j / a) Sum_i w_i q, sum2 the same of q^2 (w_i the force
+// quadrature's weights, dy being common). The rescale keeps sum1, so the bound still integrates to
+// mu fz.
 struct Flattening {
   double ca = 1.0, cb = 0.0;
   // perPeak: 1 / p0, p0 the parabola's peak (inversePeak).
@@ -154,9 +155,11 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
     out[mesh.index(0, j)] = endShape;  // parked until the scale is known
   }
   if constexpr (kFlat) {
-    // The node sums of the shape (unweighted, the end nodes at their parked shape, clipped at zero
-    // as the bound is), Sum shape and Sum shape^2 times a_j / a, in closed form per strip: the
-    // interior nodes' shape is ry - c^2 u^2 (stripEntry), their moments the mesh's.
+    // The node sums of the shape, Sum shape and Sum shape^2 times a_j / a, in closed form per
+    // strip: the interior nodes' shape is ry - c^2 u^2 (stripEntry), their moments the mesh's; the
+    // end nodes at their parked shape, clipped at zero as the bound is, and weighted as the
+    // force's quadrature weights them (stripShapeSum). Unweighted, the flattened bound's quadrature
+    // could exceed mu fz where the patch covers few nodes of a fixed mesh (found by fuzzing).
     const double perU2 = (ka / nx) * (ka / nx);
     for (int j = 0; j < ny; ++j) {
       const int first = entry[j].first;
@@ -164,7 +167,8 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
       const PatchMesh::InteriorMoments& m = mesh.interiorMoments(first);
       const double h = mesh.halfNorm(j), yn = mesh.yNorm(j) * kb, ry = 1.0 - yn * yn;
       const double c2 = perU2 * h * h, c2u2 = c2 * m.u2, end = std::max(out[mesh.index(0, j)], 0.0);
-      const double ends = 2 * first == nx - 1 ? 1.0 : 2.0;  // one loaded node, or two ends
+      // One loaded node (weight 1 + 2w), or two ends (1 + w each).
+      const double ends = (2 * first == nx - 1 ? 1.0 : 2.0) + 2.0 * entry[j].w;
       shapeSum += h * (m.count * ry - c2u2 + ends * end);
       shapeSquareSum += h * (ry * (m.count * ry - 2.0 * c2u2) + c2 * c2 * m.u4 + ends * end * end);
     }
