@@ -30,17 +30,18 @@ double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
 }
 
 FlexibilityCalibration::KnotCell FlexibilityCalibration::cell(const std::vector<double>& x,
+                                                              const std::vector<double>& perWidth,
                                                               double e) {
   if (!(e < x.back())) return {x.size(), 1.0};  // beyond the last knot (or NaN): held
   // A short table (17 knots): a forward scan is as fast as bisection and branch-predictable.
   std::size_t i = 1;
   while (x[i] <= e) ++i;
-  return {i, (e - x[i - 1]) / (x[i] - x[i - 1])};
+  return {i, (e - x[i - 1]) * perWidth[i]};
 }
 
 double FlexibilityCalibration::logRatio(int kind, double e) const {
   if (eps_[kind].empty()) return 0.0;
-  return at(logRatio_[kind], cell(eps_[kind], e));
+  return at(logRatio_[kind], cell(kind, e));
 }
 
 double FlexibilityCalibration::boundShape(double a, double b, double G, const CreepCoefficients& k,
@@ -57,41 +58,45 @@ void FlexibilityCalibration::correction(const double* e2, double e, bool opposed
 
 bool FlexibilityCalibration::logCorrection(const double* e2, double e, bool opposed, int first,
                                            int last, double* lm) const {
-  const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
-  if (nS == 0 || !(e > 0.0) || !std::isfinite(e)) return false;
+  if (corrS3_.empty() || !(e > 0.0) || !std::isfinite(e)) return false;
   const double rest = e2[0] + e2[1];
   if (!(rest > 0.0) || !(e2[2] > 0.0)) return false;  // one kind, or xi with eta: the rule alone
-  // Spin's share between its knots, the ends 0 and 1 (no correction) implicit: the cell is
-  // [knot i - 1, knot i], "knot -1" = 0 and "knot nS" = 1.
-  const double s3 = e2[2] / (e * e);
+  lookUpCorrection(e2[2] / (e * e), e2[0] / rest, e, opposed, first, last, lm);
+  return true;
+}
+
+void FlexibilityCalibration::lookUpCorrection(double s3, double t, double e, bool opposed,
+                                              int first, int last, double* lm) const {
+  const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
+  // Spin's share between its knots, the ends 0 and 1 implicit: the cell is [row i - 1, row i].
   std::size_t i = 0;
   while (i < nS && corrS3_[i] <= s3) ++i;
-  const double sLo = i == 0 ? 0.0 : corrS3_[i - 1], sHi = i == nS ? 1.0 : corrS3_[i];
-  const double ws = std::min(1.0, (s3 - sLo) / (sHi - sLo));
-  const double t = e2[0] / rest;
+  const double ws = std::min(1.0, (s3 - (i == 0 ? 0.0 : corrS3_[i - 1])) * corrS3PerWidth_[i]);
+  ++i;
   std::size_t j = 1;
   while (j + 1 < nT && corrT_[j] <= t) ++j;
-  const double wt = std::min(1.0, std::max(0.0, (t - corrT_[j - 1]) / (corrT_[j] - corrT_[j - 1])));
+  const double wt = std::min(1.0, std::max(0.0, (t - corrT_[j - 1]) * corrTPerWidth_[j]));
   std::size_t k = 1;
   double we = 1.0;
   if (e < corrEps_.back()) {
     while (corrEps_[k] <= e) ++k;
-    we = (e - corrEps_[k - 1]) / (corrEps_[k] - corrEps_[k - 1]);
+    we = (e - corrEps_[k - 1]) * corrEpsPerWidth_[k];
   } else {
     k = nE - 1;  // held beyond the last knot
   }
-  // The cell's four corners (spin share i - 1 and i, xi share j - 1 and j) at e's cell [k - 1, k],
-  // offsets into multiplier first's block; a corner at an implicit spin-share end is 0.
-  const std::size_t block = 2 * nS * nT * nE;
-  const double* v = corrLog_.data() + first * block + (opposed ? nS * nT * nE : 0) + k - 1;
-  const std::size_t lo0 = ((i > 0 ? i - 1 : 0) * nT + j - 1) * nE, hi0 = (i * nT + j - 1) * nE;
-  auto along = [we](const double* x) { return x[0] + we * (x[1] - x[0]); };
-  for (int p = first; p < last; ++p, v += block) {
-    const double lo = i > 0 ? (1.0 - wt) * along(v + lo0) + wt * along(v + lo0 + nE) : 0.0;
-    const double hi = i < nS ? (1.0 - wt) * along(v + hi0) + wt * along(v + hi0 + nE) : 0.0;
-    lm[p] = (1.0 - ws) * lo + ws * hi;
+  // The cell's four corners (spin-share rows i - 1 and i, xi shares j - 1 and j), each at e's
+  // cell [k - 1, k]: the four multipliers of a grid point lie side by side.
+  constexpr std::size_t P = kCorrections;
+  const std::size_t alongT = nE * P, alongS = nT * alongT;
+  const double* lo = corrLog_.data() + (opposed ? (nS + 2) * alongS : 0) + (i - 1) * alongS +
+                     (j - 1) * alongT + (k - 1) * P;
+  const double* hi = lo + alongS;
+  auto along = [we](const double* x) { return x[0] + we * (x[P] - x[0]); };
+  for (int p = first; p < last; ++p) {
+    const double l = (1.0 - wt) * along(lo + p) + wt * along(lo + alongT + p);
+    const double h = (1.0 - wt) * along(hi + p) + wt * along(hi + alongT + p);
+    lm[p] = (1.0 - ws) * l + ws * h;
   }
-  return true;
 }
 
 double FlexibilityCalibration::ratio(int kind, double e) const {
@@ -116,20 +121,26 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   if (!(e > 0.0)) return s;              // no creepage: linear theory, the parabolic bound
   const bool finite = std::isfinite(e);  // not finite: no friction, full slip (last knot)
   // Every kind's ln ratio at e: one search where the kinds share their knots.
-  const KnotCell shared = cell(eps_[0], e);
+  const KnotCell shared = cell(0, e);
   auto logRatioOf = [&](int kind) {
     return sharedKnots_ ? at(logRatio_[kind], shared) : logRatio(kind, e);
   };
+  // Each kind's share of e^2 (one division for the three).
+  const double perE2 = finite ? 1.0 / (e * e) : 0.0;
+  const double share[3] = {e2[0] * perE2, e2[1] * perE2, e2[2] * perE2};
   // The combined correction's ln multipliers, of L1, L2, L3 and of the bound's shape, in one
-  // lookup; each goes into the exp of the ratio it multiplies.
+  // lookup; each goes into the exp of the ratio it multiplies. None for one kind or xi with eta.
   double lm[kCorrections];
-  const bool corrected = logCorrection(e2, e, c.eta * c.phi < 0.0, 0, kCorrections, lm);
+  const double rest = e2[0] + e2[1];
+  const bool corrected = finite && !corrS3_.empty() && e2[2] > 0.0 && rest > 0.0;
+  if (corrected)
+    lookUpCorrection(share[2], e2[0] / rest, e, c.eta * c.phi < 0.0, 0, kCorrections, lm);
   // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
   // curves better than the arithmetic one (identify_steady's combined rays,
   // doc/calibrated_fastsim.md).
   const double logRho =
-      finite ? (e2[0] * logRatioOf(0) + e2[1] * logRatioOf(1) + e2[2] * logRatioOf(2)) / (e * e)
+      finite ? share[0] * logRatioOf(0) + share[1] * logRatioOf(1) + share[2] * logRatioOf(2)
              : logRatioOf(0);
   // Towards full slip the flexibilities blend into one, L_crss (Vollebregt and Voltr 2023,
   // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
@@ -151,11 +162,11 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   }
   // Without spin (e3 = 0) both spin terms below are exactly their classic values: no exp.
   if (!eps_[3].empty())
-    L.L3x = L.L3 * (finite && e2[2] > 0.0 ? std::exp(e2[2] * logRatioOf(3) / (e * e)) : 1.0);
+    L.L3x = L.L3 * (finite && e2[2] > 0.0 ? std::exp(share[2] * logRatioOf(3)) : 1.0);
   // The bound's shape: shape_23s(e) times spin's share of e^2 (no friction: parabolic).
   if (!eps_[4].empty() && finite && e2[2] > 0.0)
-    s.boundShape = std::min(kMaxBoundShape,
-                            std::exp(logRatioOf(4) + (corrected ? lm[3] : 0.0)) * e2[2] / (e * e));
+    s.boundShape =
+        std::min(kMaxBoundShape, std::exp(logRatioOf(4) + (corrected ? lm[3] : 0.0)) * share[2]);
   return s;
 }
 
@@ -176,6 +187,12 @@ double number(const std::string& path, long line, const std::string& s) {
 enum Column { kFitError, kFastsimNx, kSpinShare, kXiShare, kSign, kColumns };
 const char* const kColumnNames[kColumns] = {"fit_error", "fastsim_nx", "spin_share", "xi_share",
                                             "sign"};
+
+// 1 / (x[i] - x[i - 1]) into w[i], w[0] = 0 (FlexibilityCalibration's cell weights).
+void reciprocalWidths(const std::vector<double>& x, std::vector<double>* w) {
+  w->resize(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) (*w)[i] = i == 0 ? 0.0 : 1.0 / (x[i] - x[i - 1]);
+}
 
 }  // namespace
 
@@ -390,6 +407,7 @@ void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
     c->logRatio_[k].resize(lo.ratio[k].size());
     for (std::size_t j = 0; j < lo.ratio[k].size(); ++j)
       c->logRatio_[k][j] = std::log(lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]));
+    reciprocalWidths(c->eps_[k], &c->perWidth_[k]);
   }
   c->sharedKnots_ = true;
   for (int k = 1; k < 5; ++k)
@@ -397,9 +415,27 @@ void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
   c->corrS3_ = lo.corrS3;
   c->corrT_ = lo.corrT;
   c->corrEps_ = lo.corrEps;
-  c->corrLog_.resize(lo.corr.size());
-  for (std::size_t j = 0; j < lo.corr.size(); ++j)
-    c->corrLog_[j] = std::log(lo.corr[j] + t * (hi.corr[j] - lo.corr[j]));
+  const std::size_t nS = lo.corrS3.size(), nT = lo.corrT.size(), nE = lo.corrEps.size();
+  // Spin-share cells with the implicit ends 0 and 1: knots 0, corrS3..., 1.
+  c->corrS3PerWidth_.resize(nS == 0 ? 0 : nS + 1);
+  for (std::size_t q = 0; q < c->corrS3PerWidth_.size(); ++q)
+    c->corrS3PerWidth_[q] =
+        1.0 / ((q == nS ? 1.0 : lo.corrS3[q]) - (q == 0 ? 0.0 : lo.corrS3[q - 1]));
+  reciprocalWidths(c->corrT_, &c->corrTPerWidth_);
+  reciprocalWidths(c->corrEps_, &c->corrEpsPerWidth_);
+  // Row's layout ((((p * 2 + opposed) * nS + q) * nT + j) * nE + k) into FlexibilityCalibration's
+  // (grid point by grid point, the end rows 0).
+  constexpr int P = FlexibilityCalibration::kCorrections;
+  c->corrLog_.assign(nS == 0 ? 0 : 2 * (nS + 2) * nT * nE * P, 0.0);
+  for (int p = 0; p < P; ++p)
+    for (std::size_t o = 0; o < (nS == 0 ? 0 : 2); ++o)
+      for (std::size_t q = 0; q < nS; ++q)
+        for (std::size_t j = 0; j < nT; ++j)
+          for (std::size_t k = 0; k < nE; ++k) {
+            const std::size_t from = (((p * 2 + o) * nS + q) * nT + j) * nE + k;
+            c->corrLog_[(((o * (nS + 2) + q + 1) * nT + j) * nE + k) * P + p] =
+                std::log(lo.corr[from] + t * (hi.corr[from] - lo.corr[from]));
+          }
 }
 
 }  // namespace wheel_rail_contact
