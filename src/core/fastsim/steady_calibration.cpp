@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -14,9 +16,50 @@
 
 namespace wheel_rail_contact {
 
-double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
-                                                  const CreepCoefficients& k, double muFz,
-                                                  const Creepages& c, double* squares) {
+namespace {
+
+// The step's exps, inline: with x = (m + i / 128) ln 2 + r, |r| <= ln 2 / 256,
+// exp(x) = 2^m 2^(i / 128) exp(r), 2^(i / 128) from a table and exp(r) - 1 from its Taylor
+// polynomial to r^5 (truncation below 1e-18 relative): within an ulp of std::exp, with no call
+// and no special cases. Where |x| >= 700 (or NaN), where 2^m leaves the normal range, std::exp.
+// (The scheme is glibc's exp with a table of 128.)
+struct Exp2Table {
+  // bits of 2^(i / 128) less i << 45: adding k << 45 (k = 128 m + i) then gives 2^m 2^(i / 128).
+  std::uint64_t bits[128];
+  Exp2Table() {
+    for (int i = 0; i < 128; ++i) {
+      const double v = std::exp2(i / 128.0);
+      std::memcpy(&bits[i], &v, sizeof v);
+      bits[i] -= static_cast<std::uint64_t>(i) << 45;
+    }
+  }
+};
+const Exp2Table& exp2Table() {
+  static const Exp2Table table;
+  return table;
+}
+
+inline double stepExp(double x, const Exp2Table& table) {
+  if (!(std::fabs(x) < 700.0)) return std::exp(x);
+  constexpr double perLn2 = 128.0 / M_LN2, shift = 0x1.8p52;
+  constexpr double ln2Hi = 0x1.62e42fefa0000p-8, ln2Lo = 0x1.cf79abc9e3b3ap-47;  // ln 2 / 128
+  // k = round(x 128 / ln 2) in the low bits of kd (the shift's mantissa holds it).
+  double kd = x * perLn2 + shift;
+  std::uint64_t ki;
+  std::memcpy(&ki, &kd, sizeof ki);
+  kd -= shift;
+  const double r = x - kd * ln2Hi - kd * ln2Lo, r2 = r * r;
+  const double p = r + r2 * (0.5 + r * (1.0 / 6.0)) + r2 * r2 * (1.0 / 24.0 + r * (1.0 / 120.0));
+  const std::uint64_t sbits = table.bits[ki & 127] + (ki << 45);
+  double scale;
+  std::memcpy(&scale, &sbits, sizeof scale);
+  return scale + scale * p;
+}
+
+// e1^2, e2^2, e3^2 and e (FlexibilityCalibration::normalisedCreepage), here with internal linkage
+// so that step() inlines it.
+inline double creepageSquares(double a, double b, double G, const CreepCoefficients& k, double muFz,
+                              const Creepages& c, double* squares) {
   const double ab = a * b, s = G * ab / muFz;
   const double e1 = s * k.c11 * c.xi, e2 = s * k.c22 * c.eta,
                e3 = s * std::sqrt(ab) * k.c23 * c.phi;
@@ -29,9 +72,16 @@ double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
   return std::sqrt(e1 * e1 + e2 * e2 + e3 * e3);
 }
 
-FlexibilityCalibration::KnotCell FlexibilityCalibration::cell(const std::vector<double>& x,
-                                                              const std::vector<double>& perWidth,
-                                                              double e) {
+}  // namespace
+
+double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
+                                                  const CreepCoefficients& k, double muFz,
+                                                  const Creepages& c, double* squares) {
+  return creepageSquares(a, b, G, k, muFz, c, squares);
+}
+
+inline FlexibilityCalibration::KnotCell FlexibilityCalibration::cell(
+    const std::vector<double>& x, const std::vector<double>& perWidth, double e) {
   if (!(e < x.back())) return {x.size(), 1.0};  // beyond the last knot (or NaN): held
   // A short table (17 knots): a forward scan is as fast as bisection and branch-predictable.
   std::size_t i = 1;
@@ -65,8 +115,8 @@ bool FlexibilityCalibration::logCorrection(const double* e2, double e, bool oppo
   return true;
 }
 
-void FlexibilityCalibration::lookUpCorrection(double s3, double t, double e, bool opposed,
-                                              int first, int last, double* lm) const {
+inline void FlexibilityCalibration::lookUpCorrection(double s3, double t, double e, bool opposed,
+                                                     int first, int last, double* lm) const {
   const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
   // Spin's share between its knots, the ends 0 and 1 implicit: the cell is [row i - 1, row i].
   std::size_t i = 0;
@@ -117,7 +167,7 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   L = kalkerFlexibilities(a, b, G, k);
   if (classic()) return s;
   double e2[3];
-  const double e = normalisedCreepage(a, b, G, k, muFz, c, e2);
+  const double e = creepageSquares(a, b, G, k, muFz, c, e2);
   if (!(e > 0.0)) return s;              // no creepage: linear theory, the parabolic bound
   const bool finite = std::isfinite(e);  // not finite: no friction, full slip (last knot)
   // Every kind's ln ratio at e: one search where the kinds share their knots.
@@ -146,27 +196,29 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
   // theory, not along (xi / L1, eta / L2). A single creepage has L_crss = its own L, unchanged.
   // Weight min(1, e / 5): of e / 1.5, 3, 5, 10, 20 the one nearest the combined exact curves.
+  // L_crss = (xi^2 + eta^2 + (k phi)^2) / (xi^2 / L1 + eta^2 / L2 + (k phi)^2 / L3), in one
+  // division: numerator and denominator times L1 L2 L3.
   const double kphi = 3.0 * M_PI * a / 32.0 * c.phi, x2 = c.xi * c.xi, y2 = c.eta * c.eta,
-               s2 = kphi * kphi, den = x2 / L.L1 + y2 / L.L2 + s2 / L.L3;
+               s2 = kphi * kphi, L23 = L.L2 * L.L3, L12 = L.L1 * L.L2;
+  const double den = x2 * L23 + (y2 * L.L3 + s2 * L.L2) * L.L1;
   const double w = finite ? std::min(1.0, e / 5.0) : 1.0;
-  const double crss = den > 0.0 ? (x2 + y2 + s2) / den : L.L1;
-  if (corrected) {  // combined creepages with spin: the direction's own correction
-    L.L1 = std::exp(logRho + lm[0]) * ((1.0 - w) * L.L1 + w * crss);
-    L.L2 = std::exp(logRho + lm[1]) * ((1.0 - w) * L.L2 + w * crss);
-    L.L3 = std::exp(logRho + lm[2]) * ((1.0 - w) * L.L3 + w * crss);
-  } else {
-    const double rho = std::exp(logRho);
-    L.L1 = rho * ((1.0 - w) * L.L1 + w * crss);
-    L.L2 = rho * ((1.0 - w) * L.L2 + w * crss);
-    L.L3 = rho * ((1.0 - w) * L.L3 + w * crss);
-  }
-  // Without spin (e3 = 0) both spin terms below are exactly their classic values: no exp.
-  if (!eps_[3].empty())
-    L.L3x = L.L3 * (finite && e2[2] > 0.0 ? std::exp(share[2] * logRatioOf(3)) : 1.0);
+  const double crss = den > 0.0 ? (x2 + y2 + s2) * (L12 * L.L3) / den : L.L1;
+  // The step's exps (inline): the ratios of L1, L2, L3 (the correction's multipliers folded in),
+  // of the spin drive's L3x to L3 and the bound's shape.
+  const Exp2Table& table = exp2Table();
+  const double r1 = stepExp(corrected ? logRho + lm[0] : logRho, table);
+  const double r2 = corrected ? stepExp(logRho + lm[1], table) : r1;
+  const double r3 = corrected ? stepExp(logRho + lm[2], table) : r1;
+  L.L1 = r1 * ((1.0 - w) * L.L1 + w * crss);
+  L.L2 = r2 * ((1.0 - w) * L.L2 + w * crss);
+  L.L3 = r3 * ((1.0 - w) * L.L3 + w * crss);
+  // Without spin (e3 = 0) both spin terms are exactly their classic values: no exp.
+  const bool spin = finite && e2[2] > 0.0;
+  if (!eps_[3].empty()) L.L3x = L.L3 * (spin ? stepExp(share[2] * logRatioOf(3), table) : 1.0);
   // The bound's shape: shape_23s(e) times spin's share of e^2 (no friction: parabolic).
-  if (!eps_[4].empty() && finite && e2[2] > 0.0)
-    s.boundShape =
-        std::min(kMaxBoundShape, std::exp(logRatioOf(4) + (corrected ? lm[3] : 0.0)) * share[2]);
+  if (spin && !eps_[4].empty())
+    s.boundShape = std::min(kMaxBoundShape,
+                            stepExp(logRatioOf(4) + (corrected ? lm[3] : 0.0), table) * share[2]);
   return s;
 }
 
