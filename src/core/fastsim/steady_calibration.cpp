@@ -176,7 +176,8 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
     return sharedKnots_ ? at(logRatio_[kind], shared) : logRatio(kind, e);
   };
   // Each kind's share of e^2 (one division for the three).
-  const double perE2 = finite ? 1.0 / (e * e) : 0.0;
+  // (From the squares' sum, not e * e: the division need not wait for e's square root.)
+  const double perE2 = finite ? 1.0 / (e2[0] + e2[1] + e2[2]) : 0.0;
   const double share[3] = {e2[0] * perE2, e2[1] * perE2, e2[2] * perE2};
   // The combined correction's ln multipliers, of L1, L2, L3 and of the bound's shape, in one
   // lookup; each goes into the exp of the ratio it multiplies. None for one kind or xi with eta.
