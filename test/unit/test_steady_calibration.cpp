@@ -307,7 +307,9 @@ TEST(SteadyCalibration, FlattenedBoundKeepsTheTotalAndThePatch) {
     // Flatter: the centre node carries less than the parabola's peak (where a strip has more
     // nodes than its two ends).
     const int centre = mesh.index(mesh.nx() / 2, mesh.ny() / 2);
-    if (scale > 0.5) EXPECT_LT(g.bound[centre], f.bound[centre]);
+    if (scale > 0.5) {
+      EXPECT_LT(g.bound[centre], f.bound[centre]);
+    }
   }
 }
 

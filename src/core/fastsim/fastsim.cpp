@@ -122,12 +122,13 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
       // The node sums are the mesh's shape sums S1, S2 times k and k^2, and 1 / p0 = pi / (2 I k)
       // (I its shape integral): the rescale sum1 / (alpha sum1 - beta sum2) is 1 / (alpha - s R),
       // R = (3 pi / 8) S2 / (I S1), free of the step's load and size; then q (ca - cb q) with
-      // q = k shape, folded: shape (lo - hi shape). (As Flattening, in fewer divisions in a row.)
-      const double perI = (3.0 * M_PI / 8.0) / mesh.shapeIntegral(), alpha = 1.0 + 0.5 * s;
-      const double after = alpha - s * perI * mesh.shapeSquareSum() / mesh.shapeSum();
+      // q = k shape, folded: shape (lo - hi shape). (As Flattening; the mesh keeps 1 / I and
+      // S2 / S1, so the step divides once.)
+      const double perI = (3.0 * M_PI / 8.0) * mesh.inverseShapeIntegral(), alpha = 1.0 + 0.5 * s;
+      const double after = alpha - s * perI * mesh.shapeSquareRatio();
       double lo = k, hi = 0.0;
       if (after > 0.0) {
-        const double kc = k / after;
+        const double kc = mu * fz / (mesh.shapeIntegral() * a * b * after);
         lo = kc * alpha;
         hi = kc * s * perI;
       }

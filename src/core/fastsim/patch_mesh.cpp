@@ -31,6 +31,8 @@ PatchMesh::PatchMesh(int nx, int ny, double a, double b) : nx_(nx), ny_(ny) {
     shapeSums_[0] += strip * halfNorm_(j);
   }
   shapeSums_[1] = shapeSquares;
+  inverseShapeIntegral_ = 1.0 / shapeIntegral_;
+  shapeSquareRatio_ = shapeSums_[1] / shapeSums_[0];
   interior_.resize(nx);
   for (int first = 0; first < nx; ++first)
     for (int u = nx - 3 - 2 * first; u > -(nx - 1 - 2 * first); u -= 2) {  // exact in doubles

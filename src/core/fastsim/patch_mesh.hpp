@@ -46,6 +46,10 @@ class PatchMesh {
   /// Sum over nodes of a_j / a times the shape, and times its square (flattenedBound's node sums).
   double shapeSum() const { return shapeSums_[0]; }
   double shapeSquareSum() const { return shapeSums_[1]; }
+  /// 1 / shapeIntegral() and shapeSquareSum() / shapeSum(), kept so that flattenedBound's step
+  /// where the patch fills the mesh needs one division, not four.
+  double inverseShapeIntegral() const { return inverseShapeIntegral_; }
+  double shapeSquareRatio() const { return shapeSquareRatio_; }
   /// Over the interior nodes of a strip whose first loaded node is `first` (StripEntry, < nx):
   /// u = L - 2, L - 4, ..., 2 - L, L = nx - 1 - 2 first, u = nx - 1 - 2i the node's distance from
   /// the strip's centre in half elements: their count, Sum u^2 and Sum u^4 (flattenedBound's node
@@ -68,6 +72,7 @@ class PatchMesh {
   Eigen::ArrayXd shape_;     ///< 1 - (x/a)^2 - (y/b)^2, size nx*ny
   double shapeIntegral_ = 0.0;
   double shapeSums_[2] = {0.0, 0.0};
+  double inverseShapeIntegral_ = 0.0, shapeSquareRatio_ = 0.0;
   std::vector<InteriorMoments> interior_;  ///< by first loaded node, size nx
 };
 

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -14,9 +16,50 @@
 
 namespace wheel_rail_contact {
 
-double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
-                                                  const CreepCoefficients& k, double muFz,
-                                                  const Creepages& c, double* squares) {
+namespace {
+
+// The step's exps, inline: with x = (m + i / 128) ln 2 + r, |r| <= ln 2 / 256,
+// exp(x) = 2^m 2^(i / 128) exp(r), 2^(i / 128) from a table and exp(r) - 1 from its Taylor
+// polynomial to r^5 (truncation below 1e-18 relative): within an ulp of std::exp, with no call
+// and no special cases. Where |x| >= 700 (or NaN), where 2^m leaves the normal range, std::exp.
+// (The scheme is glibc's exp with a table of 128.)
+struct Exp2Table {
+  // bits of 2^(i / 128) less i << 45: adding k << 45 (k = 128 m + i) then gives 2^m 2^(i / 128).
+  std::uint64_t bits[128];
+  Exp2Table() {
+    for (int i = 0; i < 128; ++i) {
+      const double v = std::exp2(i / 128.0);
+      std::memcpy(&bits[i], &v, sizeof v);
+      bits[i] -= static_cast<std::uint64_t>(i) << 45;
+    }
+  }
+};
+const Exp2Table& exp2Table() {
+  static const Exp2Table table;
+  return table;
+}
+
+inline double stepExp(double x, const Exp2Table& table) {
+  if (!(std::fabs(x) < 700.0)) return std::exp(x);
+  constexpr double perLn2 = 128.0 / M_LN2, shift = 0x1.8p52;
+  constexpr double ln2Hi = 0x1.62e42fefa0000p-8, ln2Lo = 0x1.cf79abc9e3b3ap-47;  // ln 2 / 128
+  // k = round(x 128 / ln 2) in the low bits of kd (the shift's mantissa holds it).
+  double kd = x * perLn2 + shift;
+  std::uint64_t ki;
+  std::memcpy(&ki, &kd, sizeof ki);
+  kd -= shift;
+  const double r = x - kd * ln2Hi - kd * ln2Lo, r2 = r * r;
+  const double p = r + r2 * (0.5 + r * (1.0 / 6.0)) + r2 * r2 * (1.0 / 24.0 + r * (1.0 / 120.0));
+  const std::uint64_t sbits = table.bits[ki & 127] + (ki << 45);
+  double scale;
+  std::memcpy(&scale, &sbits, sizeof scale);
+  return scale + scale * p;
+}
+
+// e1^2, e2^2, e3^2 and e (FlexibilityCalibration::normalisedCreepage), here with internal linkage
+// so that step() inlines it.
+inline double creepageSquares(double a, double b, double G, const CreepCoefficients& k, double muFz,
+                              const Creepages& c, double* squares) {
   const double ab = a * b, s = G * ab / muFz;
   const double e1 = s * k.c11 * c.xi, e2 = s * k.c22 * c.eta,
                e3 = s * std::sqrt(ab) * k.c23 * c.phi;
@@ -29,18 +72,26 @@ double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
   return std::sqrt(e1 * e1 + e2 * e2 + e3 * e3);
 }
 
-FlexibilityCalibration::KnotCell FlexibilityCalibration::cell(const std::vector<double>& x,
-                                                              double e) {
+}  // namespace
+
+double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
+                                                  const CreepCoefficients& k, double muFz,
+                                                  const Creepages& c, double* squares) {
+  return creepageSquares(a, b, G, k, muFz, c, squares);
+}
+
+inline FlexibilityCalibration::KnotCell FlexibilityCalibration::cell(
+    const std::vector<double>& x, const std::vector<double>& perWidth, double e) {
   if (!(e < x.back())) return {x.size(), 1.0};  // beyond the last knot (or NaN): held
   // A short table (17 knots): a forward scan is as fast as bisection and branch-predictable.
   std::size_t i = 1;
   while (x[i] <= e) ++i;
-  return {i, (e - x[i - 1]) / (x[i] - x[i - 1])};
+  return {i, (e - x[i - 1]) * perWidth[i]};
 }
 
 double FlexibilityCalibration::logRatio(int kind, double e) const {
   if (eps_[kind].empty()) return 0.0;
-  return at(logRatio_[kind], cell(eps_[kind], e));
+  return at(logRatio_[kind], cell(kind, e));
 }
 
 double FlexibilityCalibration::boundShape(double a, double b, double G, const CreepCoefficients& k,
@@ -57,49 +108,53 @@ void FlexibilityCalibration::correction(const double* e2, double e, bool opposed
 
 bool FlexibilityCalibration::logCorrection(const double* e2, double e, double opposed, int first,
                                            int last, double* lm) const {
-  const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
-  if (nS == 0 || !(e > 0.0) || !std::isfinite(e)) return false;
+  if (corrS3_.empty() || !(e > 0.0) || !std::isfinite(e)) return false;
   const double rest = e2[0] + e2[1];
   if (!(rest > 0.0) || !(e2[2] > 0.0)) return false;  // one kind, or xi with eta: the rule alone
-  // Spin's share between its knots, the ends 0 and 1 (no correction) implicit: the cell is
-  // [knot i - 1, knot i], "knot -1" = 0 and "knot nS" = 1.
-  const double s3 = e2[2] / (e * e);
+  lookUpCorrection(e2[2] / (e * e), e2[0] / rest, e, opposed, first, last, lm);
+  return true;
+}
+
+inline void FlexibilityCalibration::lookUpCorrection(double s3, double t, double e, double opposed,
+                                                     int first, int last, double* lm) const {
+  const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
+  // Spin's share between its knots, the ends 0 and 1 implicit: the cell is [row i - 1, row i].
   std::size_t i = 0;
   while (i < nS && corrS3_[i] <= s3) ++i;
-  const double sLo = i == 0 ? 0.0 : corrS3_[i - 1], sHi = i == nS ? 1.0 : corrS3_[i];
-  const double ws = std::min(1.0, (s3 - sLo) / (sHi - sLo));
-  const double t = e2[0] / rest;
+  const double ws = std::min(1.0, (s3 - (i == 0 ? 0.0 : corrS3_[i - 1])) * corrS3PerWidth_[i]);
+  ++i;
   std::size_t j = 1;
   while (j + 1 < nT && corrT_[j] <= t) ++j;
-  const double wt = std::min(1.0, std::max(0.0, (t - corrT_[j - 1]) / (corrT_[j] - corrT_[j - 1])));
+  const double wt = std::min(1.0, std::max(0.0, (t - corrT_[j - 1]) * corrTPerWidth_[j]));
   std::size_t k = 1;
   double we = 1.0;
   if (e < corrEps_.back()) {
     while (corrEps_[k] <= e) ++k;
-    we = (e - corrEps_[k - 1]) / (corrEps_[k] - corrEps_[k - 1]);
+    we = (e - corrEps_[k - 1]) * corrEpsPerWidth_[k];
   } else {
     k = nE - 1;  // held beyond the last knot
   }
-  // The cell's four corners (spin share i - 1 and i, xi share j - 1 and j) at e's cell [k - 1, k],
-  // offsets into multiplier first's block; a corner at an implicit spin-share end is 0.
-  const std::size_t branch = nS * nT * nE, block = 2 * branch;
-  const double* v = corrLog_.data() + first * block + k - 1;
-  const std::size_t lo0 = ((i > 0 ? i - 1 : 0) * nT + j - 1) * nE, hi0 = (i * nT + j - 1) * nE;
-  auto along = [we](const double* x) { return x[0] + we * (x[1] - x[0]); };
-  auto inCell = [&](const double* w) {
-    const double lo = i > 0 ? (1.0 - wt) * along(w + lo0) + wt * along(w + lo0 + nE) : 0.0;
-    const double hi = i < nS ? (1.0 - wt) * along(w + hi0) + wt * along(w + hi0 + nE) : 0.0;
-    return (1.0 - ws) * lo + ws * hi;
+  // The cell's four corners (spin-share rows i - 1 and i, xi shares j - 1 and j), each at e's
+  // cell [k - 1, k]: the four multipliers of a grid point lie side by side; the eta phi < 0
+  // branch's block follows the eta phi > 0 one.
+  constexpr std::size_t P = kCorrections;
+  const std::size_t alongT = nE * P, alongS = nT * alongT, branch = (nS + 2) * alongS;
+  const double* lo = corrLog_.data() + (i - 1) * alongS + (j - 1) * alongT + (k - 1) * P;
+  auto along = [we](const double* x) { return x[0] + we * (x[P] - x[0]); };
+  auto inCell = [&](const double* l0, int p) {
+    const double* h0 = l0 + alongS;
+    const double l = (1.0 - wt) * along(l0 + p) + wt * along(l0 + alongT + p);
+    const double h = (1.0 - wt) * along(h0 + p) + wt * along(h0 + alongT + p);
+    return (1.0 - ws) * l + ws * h;
   };
-  for (int p = first; p < last; ++p, v += block) {
-    if (opposed <= 0.0)
-      lm[p] = inCell(v);
-    else if (opposed >= 1.0)
-      lm[p] = inCell(v + branch);
-    else
-      lm[p] = (1.0 - opposed) * inCell(v) + opposed * inCell(v + branch);
+  if (opposed <= 0.0) {
+    for (int p = first; p < last; ++p) lm[p] = inCell(lo, p);
+  } else if (opposed >= 1.0) {
+    for (int p = first; p < last; ++p) lm[p] = inCell(lo + branch, p);
+  } else {
+    for (int p = first; p < last; ++p)
+      lm[p] = (1.0 - opposed) * inCell(lo, p) + opposed * inCell(lo + branch, p);
   }
-  return true;
 }
 
 double FlexibilityCalibration::ratio(int kind, double e) const {
@@ -126,50 +181,58 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   L = kalkerFlexibilities(a, b, G, k);
   if (classic()) return s;
   double e2[3];
-  const double e = normalisedCreepage(a, b, G, k, muFz, c, e2);
+  const double e = creepageSquares(a, b, G, k, muFz, c, e2);
   if (!(e > 0.0)) return s;              // no creepage: linear theory, the parabolic bound
   const bool finite = std::isfinite(e);  // not finite: no friction, full slip (last knot)
   // Every kind's ln ratio at e: one search where the kinds share their knots.
-  const KnotCell shared = cell(eps_[0], e);
+  const KnotCell shared = cell(0, e);
   auto logRatioOf = [&](int kind) {
     return sharedKnots_ ? at(logRatio_[kind], shared) : logRatio(kind, e);
   };
+  // Each kind's share of e^2 (one division for the three).
+  // (From the squares' sum, not e * e: the division need not wait for e's square root.)
+  const double perE2 = finite ? 1.0 / (e2[0] + e2[1] + e2[2]) : 0.0;
+  const double share[3] = {e2[0] * perE2, e2[1] * perE2, e2[2] * perE2};
   // The combined correction's ln multipliers, of L1, L2, L3 and of the bound's shape, in one
-  // lookup; each goes into the exp of the ratio it multiplies.
+  // lookup; each goes into the exp of the ratio it multiplies. None for one kind or xi with eta.
   double lm[kCorrections];
-  const bool corrected = logCorrection(e2, e, opposed, 0, kCorrections, lm);
+  const double rest = e2[0] + e2[1];
+  const bool corrected = finite && !corrS3_.empty() && e2[2] > 0.0 && rest > 0.0;
+  if (corrected) lookUpCorrection(share[2], e2[0] / rest, e, opposed, 0, kCorrections, lm);
   // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
   // curves better than the arithmetic one (identify_steady's combined rays,
   // doc/calibrated_fastsim.md).
   const double logRho =
-      finite ? (e2[0] * logRatioOf(0) + e2[1] * logRatioOf(1) + e2[2] * logRatioOf(2)) / (e * e)
+      finite ? share[0] * logRatioOf(0) + share[1] * logRatioOf(1) + share[2] * logRatioOf(2)
              : logRatioOf(0);
   // Towards full slip the flexibilities blend into one, L_crss (Vollebregt and Voltr 2023,
   // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
   // theory, not along (xi / L1, eta / L2). A single creepage has L_crss = its own L, unchanged.
   // Weight min(1, e / 5): of e / 1.5, 3, 5, 10, 20 the one nearest the combined exact curves.
+  // L_crss = (xi^2 + eta^2 + (k phi)^2) / (xi^2 / L1 + eta^2 / L2 + (k phi)^2 / L3), in one
+  // division: numerator and denominator times L1 L2 L3.
   const double kphi = 3.0 * M_PI * a / 32.0 * c.phi, x2 = c.xi * c.xi, y2 = c.eta * c.eta,
-               s2 = kphi * kphi, den = x2 / L.L1 + y2 / L.L2 + s2 / L.L3;
+               s2 = kphi * kphi, L23 = L.L2 * L.L3, L12 = L.L1 * L.L2;
+  const double den = x2 * L23 + (y2 * L.L3 + s2 * L.L2) * L.L1;
   const double w = finite ? std::min(1.0, e / 5.0) : 1.0;
-  const double crss = den > 0.0 ? (x2 + y2 + s2) / den : L.L1;
-  if (corrected) {  // combined creepages with spin: the direction's own correction
-    L.L1 = std::exp(logRho + lm[0]) * ((1.0 - w) * L.L1 + w * crss);
-    L.L2 = std::exp(logRho + lm[1]) * ((1.0 - w) * L.L2 + w * crss);
-    L.L3 = std::exp(logRho + lm[2]) * ((1.0 - w) * L.L3 + w * crss);
-  } else {
-    const double rho = std::exp(logRho);
-    L.L1 = rho * ((1.0 - w) * L.L1 + w * crss);
-    L.L2 = rho * ((1.0 - w) * L.L2 + w * crss);
-    L.L3 = rho * ((1.0 - w) * L.L3 + w * crss);
-  }
-  // Without spin (e3 = 0) both spin terms below are exactly their classic values: no exp.
-  if (!eps_[3].empty())
-    L.L3x = L.L3 * (finite && e2[2] > 0.0 ? std::exp(e2[2] * logRatioOf(3) / (e * e)) : 1.0);
+  const double crss = den > 0.0 ? (x2 + y2 + s2) * (L12 * L.L3) / den : L.L1;
+  // The step's exps (inline): the ratios of L1, L2, L3 (the correction's multipliers folded in),
+  // of the spin drive's L3x to L3 and the bound's shape.
+  const Exp2Table& table = exp2Table();
+  const double r1 = stepExp(corrected ? logRho + lm[0] : logRho, table);
+  const double r2 = corrected ? stepExp(logRho + lm[1], table) : r1;
+  const double r3 = corrected ? stepExp(logRho + lm[2], table) : r1;
+  L.L1 = r1 * ((1.0 - w) * L.L1 + w * crss);
+  L.L2 = r2 * ((1.0 - w) * L.L2 + w * crss);
+  L.L3 = r3 * ((1.0 - w) * L.L3 + w * crss);
+  // Without spin (e3 = 0) both spin terms are exactly their classic values: no exp.
+  const bool spin = finite && e2[2] > 0.0;
+  if (!eps_[3].empty()) L.L3x = L.L3 * (spin ? stepExp(share[2] * logRatioOf(3), table) : 1.0);
   // The bound's shape: shape_23s(e) times spin's share of e^2 (no friction: parabolic).
-  if (!eps_[4].empty() && finite && e2[2] > 0.0)
+  if (spin && !eps_[4].empty())
     s.boundShape = std::min(kMaxBoundShape,
-                            std::exp(logRatioOf(4) + (corrected ? lm[3] : 0.0)) * e2[2] / (e * e));
+                            stepExp(logRatioOf(4) + (corrected ? lm[3] : 0.0), table) * share[2]);
   return s;
 }
 
@@ -190,6 +253,12 @@ double number(const std::string& path, long line, const std::string& s) {
 enum Column { kFitError, kFastsimNx, kSpinShare, kXiShare, kSign, kColumns };
 const char* const kColumnNames[kColumns] = {"fit_error", "fastsim_nx", "spin_share", "xi_share",
                                             "sign"};
+
+// 1 / (x[i] - x[i - 1]) into w[i], w[0] = 0 (FlexibilityCalibration's cell weights).
+void reciprocalWidths(const std::vector<double>& x, std::vector<double>* w) {
+  w->resize(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) (*w)[i] = i == 0 ? 0.0 : 1.0 / (x[i] - x[i - 1]);
+}
 
 }  // namespace
 
@@ -404,6 +473,7 @@ void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
     c->logRatio_[k].resize(lo.ratio[k].size());
     for (std::size_t j = 0; j < lo.ratio[k].size(); ++j)
       c->logRatio_[k][j] = std::log(lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]));
+    reciprocalWidths(c->eps_[k], &c->perWidth_[k]);
   }
   c->sharedKnots_ = true;
   for (int k = 1; k < 5; ++k)
@@ -411,9 +481,27 @@ void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
   c->corrS3_ = lo.corrS3;
   c->corrT_ = lo.corrT;
   c->corrEps_ = lo.corrEps;
-  c->corrLog_.resize(lo.corr.size());
-  for (std::size_t j = 0; j < lo.corr.size(); ++j)
-    c->corrLog_[j] = std::log(lo.corr[j] + t * (hi.corr[j] - lo.corr[j]));
+  const std::size_t nS = lo.corrS3.size(), nT = lo.corrT.size(), nE = lo.corrEps.size();
+  // Spin-share cells with the implicit ends 0 and 1: knots 0, corrS3..., 1.
+  c->corrS3PerWidth_.resize(nS == 0 ? 0 : nS + 1);
+  for (std::size_t q = 0; q < c->corrS3PerWidth_.size(); ++q)
+    c->corrS3PerWidth_[q] =
+        1.0 / ((q == nS ? 1.0 : lo.corrS3[q]) - (q == 0 ? 0.0 : lo.corrS3[q - 1]));
+  reciprocalWidths(c->corrT_, &c->corrTPerWidth_);
+  reciprocalWidths(c->corrEps_, &c->corrEpsPerWidth_);
+  // Row's layout ((((p * 2 + opposed) * nS + q) * nT + j) * nE + k) into FlexibilityCalibration's
+  // (grid point by grid point, the end rows 0).
+  constexpr int P = FlexibilityCalibration::kCorrections;
+  c->corrLog_.assign(nS == 0 ? 0 : 2 * (nS + 2) * nT * nE * P, 0.0);
+  for (int p = 0; p < P; ++p)
+    for (std::size_t o = 0; o < (nS == 0 ? 0 : 2); ++o)
+      for (std::size_t q = 0; q < nS; ++q)
+        for (std::size_t j = 0; j < nT; ++j)
+          for (std::size_t k = 0; k < nE; ++k) {
+            const std::size_t from = (((p * 2 + o) * nS + q) * nT + j) * nE + k;
+            c->corrLog_[(((o * (nS + 2) + q + 1) * nT + j) * nE + k) * P + p] =
+                std::log(lo.corr[from] + t * (hi.corr[from] - lo.corr[from]));
+          }
 }
 
 }  // namespace wheel_rail_contact

@@ -106,6 +106,9 @@ class FlexibilityCalibration {
  private:
   friend class SteadyCalibration;
   std::vector<double> eps_[5], logRatio_[5];  // knots, ln ratio at them
+  // 1 / (eps_[k][i] - eps_[k][i - 1]) at i (index 0 unused): a knot cell's weight without a
+  // division.
+  std::vector<double> perWidth_[5];
   // Where every kind present holds kind 11's knots (the shipped table), one search of e serves
   // them all; set by SteadyCalibration::at.
   bool sharedKnots_ = false;
@@ -119,13 +122,23 @@ class FlexibilityCalibration {
   // `opposed`: the weight of the eta phi < 0 branch, in [0, 1].
   bool logCorrection(const double* e2, double e, double opposed, int first, int last,
                      double* lm) const;
-  static KnotCell cell(const std::vector<double>& x, double e);
+  // The same from spin's share s3 = e3^2 / e^2 and xi's share of the rest t (in [0, 1] but for
+  // rounding), for a finite e > 0 and a table with a correction (what logCorrection checks first).
+  void lookUpCorrection(double s3, double t, double e, double opposed, int first, int last,
+                        double* lm) const;
+  static KnotCell cell(const std::vector<double>& x, const std::vector<double>& perWidth, double e);
+  KnotCell cell(int kind, double e) const { return cell(eps_[kind], perWidth_[kind], e); }
   static double at(const std::vector<double>& r, KnotCell c) {
     return c.i == r.size() ? r.back() : r[c.i - 1] + c.t * (r[c.i] - r[c.i - 1]);
   }
-  // Combined correction: spin shares (interior knots), xi shares (0 to 1), e knots, and
-  // ln multiplier at index (((p * 2 + opposed) * nS3 + i) * nT + j) * nE + k, p = 0 to 3.
+  // Combined correction: spin shares (interior knots), xi shares (0 to 1), e knots, and the
+  // multipliers' logarithms, the four of a grid point side by side, at index
+  // ((((opposed * (nS + 2) + i) * nT + j) * nE + k) * kCorrections + p): spin-share rows i = 0 and
+  // nS + 1 are the implicit ends s3 = 0 and 1 (ln multiplier 0), row i the knot corrS3_[i - 1].
+  // The reciprocal widths of the spin-share cells (nS + 1, the ends included), the xi-share cells
+  // and the e cells (at a cell's upper index) spare the lookup its divisions.
   std::vector<double> corrS3_, corrT_, corrEps_, corrLog_;
+  std::vector<double> corrS3PerWidth_, corrTPerWidth_, corrEpsPerWidth_;
 };
 
 /// The identified table over a/b, per FastSim mesh.
