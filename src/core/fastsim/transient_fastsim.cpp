@@ -275,6 +275,39 @@ struct StateUpdate {
   }
 };
 
+// A slipping node's direction under TransientState::Saturation::kSlipEquation. The adhesion guess
+// solves, per direction i, (1 + h beta_i) tau_i = rhs_i, i.e. guess_i = d_i rhs_i with
+// d_i = 1 / (1 + h beta_i); scaled onto the bound it leaves a residual (1 + h beta_i) tau_i -
+// rhs_i (the discrete slip times h / L) parallel to tau only when beta_x = beta_y. With x and y on
+// different filters (b0 differs) the slip direction then carries the time term's anisotropy, and
+// does so even under constant input, where the time term itself vanishes: the fixed point moved
+// with h beta, i.e. with the step length. Here the residual is parallel to the traction:
+// tau_i = rhs_i / (1 + h beta_i + lambda) = guess_i / (1 + lambda d_i), lambda > 0 putting |tau|
+// on the bound g; under constant input that is steady FastSim's saturated traction at any step.
+// Newton on 1 / |tau(lambda)| - 1 / g, concave in lambda (the trust-region secular equation),
+// climbs to the root without passing it from any lambda below it, such as the isotropic answer for
+// the larger d. Only the direction is kept: (tx, ty) leaves with the guess's size, above g, and
+// StripSums::node saturates and flags it as it does every slipping node.
+inline void turnToSlipEquation(double dx, double dy, double g, double* tx, double* ty) {
+  const double gx = *tx, gy = *ty, size2 = gx * gx + gy * gy;
+  if (dx == dy || gx == 0.0 || gy == 0.0 || !(g > 0.0) || !(size2 > g * g) || !(size2 > 1e-300))
+    return;  // the guess's direction is the slip equation's, or the node does not slip
+  const double size = std::sqrt(size2);
+  double lambda = (size / g - 1.0) / std::max(dx, dy), ux = gx, uy = gy;
+  for (int it = 0; it < 30; ++it) {
+    const double px = 1.0 / (1.0 + lambda * dx), py = 1.0 / (1.0 + lambda * dy);
+    ux = gx * px;
+    uy = gy * py;
+    const double n2 = ux * ux + uy * uy, n = std::sqrt(n2);
+    const double step = (1.0 / g - 1.0 / n) * (n2 * n) / (ux * ux * dx * px + uy * uy * dy * py);
+    lambda += step;
+    if (!(step > 1e-12 * lambda)) break;
+  }
+  const double scale = size / std::sqrt(ux * ux + uy * uy);
+  *tx = ux * scale;
+  *ty = uy * scale;
+}
+
 // One strip of the march: where its history starts, its running traction and sums, and its two
 // steps (from the patch's leading edge to the first loaded node, and between nodes).
 template <bool kSecond, class Source>
@@ -282,6 +315,7 @@ struct StripMarch {
   const double* history;  // Source::strip
   PackedStep entry, full;
   int first, enter, leave;  // the strip's node 0; its loaded nodes [enter, leave)
+  bool slipEquation;        // TransientState::Saturation::kSlipEquation
   double tx = 0.0, ty = 0.0;
   StripSums sums = {};
   [[gnu::always_inline]] void node(int k, const PackedStep& m, const Source& source,
@@ -297,6 +331,7 @@ struct StripMarch {
     const Pair guess = m.memory * old - m.lag * s - m.push;  // PackedStep's history
     tx = guess(0) + m.decayX * tx;
     ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
+    if (slipEquation) turnToSlipEquation(m.decayX, m.decayY, out.bound[k], &tx, &ty);
     sums.node(k, xn[k], out.bound[k], &tx, &ty, out);
     update(k, Pair(tx, ty), o);
   }
@@ -341,6 +376,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, gphiX = c.phi / L.spinX(),
                a = mesh.a();
   const double* const xn = mesh.xNorms().data();
+  const bool slipEquation = st->saturation() == TransientState::Saturation::kSlipEquation;
   const FieldPointers out(f);
   const int nx = mesh.nx(), ny = mesh.ny();
   ForceSums sums;
@@ -359,7 +395,8 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
                  PackedStep(beta, X.lagPerLength, r, mesh.stripStep(j), driveX, gy, gphi, a),
                  first,
                  enter,
-                 leave};
+                 leave,
+                 slipEquation};
   };
   auto finish = [&](int j, const Strip& s) {
     sums.addStrip(mesh, j, s.sums, f->entry[j], out.tx, out.ty);

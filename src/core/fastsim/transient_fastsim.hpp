@@ -29,6 +29,14 @@ class TransientState {
   /// like s: in transposed direct form II every state is a combination of past rates g and h),
   /// zero while the filter is first order: the first-order march neither reads nor writes it.
   static constexpr int kRows = 6;
+  /// How the march turns a slipping node's traction onto the bound. kAlongGuess (the paper's, and
+  /// steady FastSim's): the adhesion guess scaled down. kSlipEquation: the traction whose residual
+  /// in the discretised slip equation (the slip) is parallel to it; the same when x and y share a
+  /// filter, and when they do not the only one of the two whose fixed point under constant input
+  /// is steady FastSim's at every step length (transient_fastsim.cpp, turnToSlipEquation).
+  enum class Saturation { kAlongGuess, kSlipEquation };
+  void setSaturation(Saturation s) { saturation_ = s; }
+  Saturation saturation() const { return saturation_; }
   void resize(int n);
   void clear();
   /// Restores the states held decayed. Const: it changes how the state is stored, not the state.
@@ -76,6 +84,7 @@ class TransientState {
   std::vector<int> ends_, from_;
   bool fromZero_ = false;  // from_ holds zeros for every strip
   int nx_ = 0;
+  Saturation saturation_ = Saturation::kAlongGuess;
 };
 
 /// One step of length dt > 0 at speed V > 0. Marches each strip from the patch's leading edge
