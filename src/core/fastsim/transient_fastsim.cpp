@@ -126,12 +126,15 @@ using Pair = Eigen::Array2d;
 // push_y = p0 + pushPerXn x/a. The upstream decay stays scalar, on the march's serial chain.
 struct PackedStep {
   Pair memory, lag, push;
+  Pair inverseDecay, memoryRate;  // 1 + h beta; h beta r (slipsAlongTheResidual)
   double decayX, decayY, pushPerXn;
   // beta: (X.beta, Y.beta); lagPerLength is the same for both directions.
   PackedStep(const Pair& beta, double lagPerLength, double r, double h, double driveX, double gy,
              double gphi, double a) {
     const Pair hb = h * beta, decay = 1.0 / (1.0 + hb);
     memory = hb * r * decay;
+    inverseDecay = 1.0 + hb;
+    memoryRate = hb * r;
     lag = h * lagPerLength * decay;
     push = h * Pair(driveX, gy + 0.5 * h * gphi) * decay;
     decayX = decay(0);
@@ -275,47 +278,42 @@ struct StateUpdate {
   }
 };
 
-// A slipping node's direction under TransientState::Saturation::kSlipEquation. The adhesion guess
-// solves, per direction i, (1 + h beta_i) tau_i = rhs_i, i.e. guess_i = d_i rhs_i with
-// d_i = 1 / (1 + h beta_i); scaled onto the bound it leaves a residual (1 + h beta_i) tau_i -
-// rhs_i (the discrete slip times h / L) parallel to tau only when beta_x = beta_y. With x and y on
-// different filters (b0 differs) the slip direction then carries the time term's anisotropy, and
-// does so even under constant input, where the time term itself vanishes: the fixed point moved
-// with h beta, i.e. with the step length. Here the residual is parallel to the traction:
-// tau_i = rhs_i / (1 + h beta_i + lambda) = guess_i / (1 + lambda d_i), lambda > 0 putting |tau|
-// on the bound g; under constant input that is steady FastSim's saturated traction at any step.
-// Newton on 1 / |tau(lambda)| - 1 / g, concave in lambda (the trust-region secular equation),
-// climbs to the root without passing it from any lambda below it, such as the isotropic answer for
-// the larger d. Only the direction is kept: (tx, ty) leaves with the guess's size, above g, and
-// StripSums::node saturates and flags it as it does every slipping node.
-inline void turnToSlipEquation(double dx, double dy, double g, double* tx, double* ty) {
-  const double gx = *tx, gy = *ty, size2 = gx * gx + gy * gy;
-  if (dx == dy || gx == 0.0 || gy == 0.0 || !(g > 0.0) || !(size2 > g * g) || !(size2 > 1e-300))
-    return;  // the guess's direction is the slip equation's, or the node does not slip
-  const double size = std::sqrt(size2);
-  double lambda = (size / g - 1.0) / std::max(dx, dy), ux = gx, uy = gy;
-  for (int it = 0; it < 30; ++it) {
-    const double px = 1.0 / (1.0 + lambda * dx), py = 1.0 / (1.0 + lambda * dy);
-    ux = gx * px;
-    uy = gy * py;
-    const double n2 = ux * ux + uy * uy, n = std::sqrt(n2);
-    const double step = (1.0 / g - 1.0 / n) * (n2 * n) / (ux * ux * dx * px + uy * uy * dy * py);
-    lambda += step;
-    if (!(step > 1e-12 * lambda)) break;
-  }
-  const double scale = size / std::sqrt(ux * ux + uy * uy);
-  *tx = ux * scale;
-  *ty = uy * scale;
+// A slipping node under TransientState::Saturation::kResidualAlongTraction; false (nothing done)
+// if the guess (tx, ty) does not slip. Per direction i the adhesion guess solves
+//   (1 + h beta_i) tau_i = rhs_i = v_i + h beta_i r tau_old_i,
+// v_i the steady slip equation's part (upstream traction, drive, filter state). Scaling the guess
+// onto the bound g keeps the direction of rhs_i / (1 + h beta_i): with x and y on different filters
+// (beta_x != beta_y) the residual left, the discrete slip, is not along the traction, and the
+// direction carries the filters' memories even under constant input, where the time term
+// vanishes: the fixed point moved with h beta, i.e. with the step length. A residual along the
+// traction (Coulomb) is tau_i = rhs_i / (1 + h beta_i + lambda), lambda >= 0 putting |tau| on g:
+// a root search per node (Newton took three steps, and doubled the cost of a step in slip). Here
+// lambda = |v| / g - 1 from the steady part, exact where tau_old is the traction itself on the
+// bound (then tau (1 + lambda) = v): under constant input the march settles on steady FastSim's
+// traction at any step length, and with beta_x = beta_y the direction is the guess's whatever
+// lambda. The result is put on the bound as StripSums::node does.
+inline bool slipsAlongTheResidual(const PackedStep& m, const Pair& old, double g, double* tx,
+                                  double* ty) {
+  const double t2 = *tx * *tx + *ty * *ty;
+  if (!(t2 > g * g) || !(t2 > 1e-300)) return false;  // adhesion, or StripSums::node's tiny path
+  const Pair rhs = Pair(*tx, *ty) * m.inverseDecay, steady = rhs - m.memoryRate * old;
+  const double lambda = std::max(0.0, std::sqrt((steady * steady).sum()) / g - 1.0);
+  const Pair d = rhs / (m.inverseDecay + lambda);
+  const double d2 = (d * d).sum();
+  if (!(d2 > 1e-300)) return false;  // a bound of zero, or next to it: StripSums::node's way
+  const double s = g / std::sqrt(d2);
+  *tx = d(0) * s;
+  *ty = d(1) * s;
+  return true;
 }
 
 // One strip of the march: where its history starts, its running traction and sums, and its two
 // steps (from the patch's leading edge to the first loaded node, and between nodes).
-template <bool kSecond, class Source>
+template <bool kSecond, bool kResidualAlongTraction, class Source>
 struct StripMarch {
   const double* history;  // Source::strip
   PackedStep entry, full;
   int first, enter, leave;  // the strip's node 0; its loaded nodes [enter, leave)
-  bool slipEquation;        // TransientState::Saturation::kSlipEquation
   double tx = 0.0, ty = 0.0;
   StripSums sums = {};
   [[gnu::always_inline]] void node(int k, const PackedStep& m, const Source& source,
@@ -331,7 +329,13 @@ struct StripMarch {
     const Pair guess = m.memory * old - m.lag * s - m.push;  // PackedStep's history
     tx = guess(0) + m.decayX * tx;
     ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
-    if (slipEquation) turnToSlipEquation(m.decayX, m.decayY, out.bound[k], &tx, &ty);
+    if constexpr (kResidualAlongTraction) {
+      if (slipsAlongTheResidual(m, old, out.bound[k], &tx, &ty)) {
+        sums.add(k, xn[k], out.bound[k], true, tx, ty, out);
+        update(k, Pair(tx, ty), o);
+        return;
+      }
+    }
     sums.node(k, xn[k], out.bound[k], &tx, &ty, out);
     update(k, Pair(tx, ty), o);
   }
@@ -364,7 +368,7 @@ void unloadedNodes(const PatchMesh& mesh, const std::vector<StripEntry>& entries
   }
 }
 
-template <bool kSecond, class Source>
+template <bool kSecond, bool kResidualAlongTraction, class Source>
 CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c, double V,
                   double dt, const FilterZ& zx, const FilterZ& zy, double historyScale,
                   Source history, TransientState* st, TractionField* f) {
@@ -376,11 +380,10 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, gphiX = c.phi / L.spinX(),
                a = mesh.a();
   const double* const xn = mesh.xNorms().data();
-  const bool slipEquation = st->saturation() == TransientState::Saturation::kSlipEquation;
   const FieldPointers out(f);
   const int nx = mesh.nx(), ny = mesh.ny();
   ForceSums sums;
-  using Strip = StripMarch<kSecond, Source>;
+  using Strip = StripMarch<kSecond, kResidualAlongTraction, Source>;
   // The nodes outside the patch do not touch the loaded ones: they go first, in a pass of their
   // own.
   unloadedNodes(mesh, f->entry, TransientStorage::outsideFrom(*st), history, out, update);
@@ -395,8 +398,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
                  PackedStep(beta, X.lagPerLength, r, mesh.stripStep(j), driveX, gy, gphi, a),
                  first,
                  enter,
-                 leave,
-                 slipEquation};
+                 leave};
   };
   auto finish = [&](int j, const Strip& s) {
     sums.addStrip(mesh, j, s.sums, f->entry[j], out.tx, out.ty);
@@ -438,6 +440,18 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     finish(j, A);
   }
   return sums.forces();
+}
+
+// The march with the saturation `st` asks for (TransientState::Saturation), chosen once a step:
+// the classic march carries no test of it per node.
+template <bool kSecond, class Source>
+CreepForces marchSaturating(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
+                            double V, double dt, const FilterZ& zx, const FilterZ& zy,
+                            double historyScale, Source history, TransientState* st,
+                            TractionField* f) {
+  if (st->saturation() == TransientState::Saturation::kResidualAlongTraction)
+    return march<kSecond, true>(mesh, L, c, V, dt, zx, zy, historyScale, history, st, f);
+  return march<kSecond, false>(mesh, L, c, V, dt, zx, zy, historyScale, history, st, f);
 }
 
 }  // namespace
@@ -510,13 +524,13 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
                              bool marchSecond) {
   if (marchSecond || zx.secondOrder() || zy.secondOrder()) {
     TransientStorage::eager(mesh.ny(), st);  // the second-order march reads every node as it is
-    return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
+    return marchSaturating<true>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
   }
   // Outside the patch the traction is zero and s <- -poleOld s, i.e. d = -a1 r (TimeTerm).
   const Pair d(-zx.a1 * historyScale, -zy.a1 * historyScale);
   const bool lazy = TransientStorage::lazyBefore(mesh, f->entry, d, st, f);
   const CreepForces forces =
-      march<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
+      marchSaturating<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
   if (lazy) TransientStorage::lazyAfter(mesh, f->entry, d, st);
   return forces;
 }
@@ -529,8 +543,8 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
   TransientStorage::writtenInFull(mesh.ny(), st);
   const CarriedHistory carried(map, previous);  // reads `previous` materialized
   if (marchSecond || zx.secondOrder() || zy.secondOrder())
-    return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
-  return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
+    return marchSaturating<true>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
+  return marchSaturating<false>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
 }
 
 AlongStripMap::AlongStripMap(int nx) : offset_(nx, 0), weights_(4, nx) {}

@@ -29,12 +29,13 @@ class TransientState {
   /// like s: in transposed direct form II every state is a combination of past rates g and h),
   /// zero while the filter is first order: the first-order march neither reads nor writes it.
   static constexpr int kRows = 6;
-  /// How the march turns a slipping node's traction onto the bound. kAlongGuess (the paper's, and
-  /// steady FastSim's): the adhesion guess scaled down. kSlipEquation: the traction whose residual
-  /// in the discretised slip equation (the slip) is parallel to it; the same when x and y share a
-  /// filter, and when they do not the only one of the two whose fixed point under constant input
-  /// is steady FastSim's at every step length (transient_fastsim.cpp, turnToSlipEquation).
-  enum class Saturation { kAlongGuess, kSlipEquation };
+  /// How the march puts a slipping node's traction on the bound. kAlongGuess (the paper's, and
+  /// steady FastSim's): the adhesion guess scaled down. kResidualAlongTraction: the traction
+  /// whose residual in the discretised slip equation (the slip) lies along it, so that x and y on
+  /// different filters do not turn it; the guess's direction when they share a filter, and under
+  /// constant input steady FastSim's at every step length (transient_fastsim.cpp,
+  /// slipsAlongTheResidual).
+  enum class Saturation { kAlongGuess, kResidualAlongTraction };
   void setSaturation(Saturation s) { saturation_ = s; }
   Saturation saturation() const { return saturation_; }
   void resize(int n);
