@@ -126,7 +126,7 @@ using Pair = Eigen::Array2d;
 // push_y = p0 + pushPerXn x/a. The upstream decay stays scalar, on the march's serial chain.
 struct PackedStep {
   Pair memory, lag, push;
-  Pair inverseDecay, memoryRate;  // 1 + h beta; h beta r (slipsAlongTheResidual)
+  Pair inverseDecay;  // 1 + h beta (slipsAlongTheResidual)
   double decayX, decayY, pushPerXn;
   // beta: (X.beta, Y.beta); lagPerLength is the same for both directions.
   PackedStep(const Pair& beta, double lagPerLength, double r, double h, double driveX, double gy,
@@ -134,7 +134,6 @@ struct PackedStep {
     const Pair hb = h * beta, decay = 1.0 / (1.0 + hb);
     memory = hb * r * decay;
     inverseDecay = 1.0 + hb;
-    memoryRate = hb * r;
     lag = h * lagPerLength * decay;
     push = h * Pair(driveX, gy + 0.5 * h * gphi) * decay;
     decayX = decay(0);
@@ -287,7 +286,7 @@ struct StateUpdate {
 // direction carries the filters' memories even under constant input, where the time term
 // vanishes: the fixed point moved with h beta, i.e. with the step length. A residual along the
 // traction (Coulomb) is tau_i = rhs_i / (1 + h beta_i + lambda), lambda >= 0 putting |tau| on g:
-// a root search per node (Newton took three steps, and doubled the cost of a step in slip). Here
+// a root search per node, several times the march's own work at a slipping node. Here
 // lambda = |v| / g - 1 from the steady part, exact where tau_old is the traction itself on the
 // bound (then tau (1 + lambda) = v): under constant input the march settles on steady FastSim's
 // traction at any step length, and with beta_x = beta_y the direction is the guess's whatever
@@ -296,9 +295,12 @@ inline bool slipsAlongTheResidual(const PackedStep& m, const Pair& old, double g
                                   double* ty) {
   const double t2 = *tx * *tx + *ty * *ty;
   if (!(t2 > g * g) || !(t2 > 1e-300)) return false;  // adhesion, or StripSums::node's tiny path
-  const Pair rhs = Pair(*tx, *ty) * m.inverseDecay, steady = rhs - m.memoryRate * old;
-  const double lambda = std::max(0.0, std::sqrt((steady * steady).sum()) / g - 1.0);
-  const Pair d = rhs / (m.inverseDecay + lambda);
+  // v = rhs - h beta r tau_old = (guess - memory tau_old) / decay. tau_i is along
+  // guess_i / (1 + lambda decay_i), and 1 + lambda decay_i is along g + (|v| - g) decay_i: times
+  // both denominators, no division.
+  const Pair guess(*tx, *ty), steady = (guess - m.memory * old) * m.inverseDecay;
+  const double v = std::sqrt((steady * steady).sum());
+  const Pair d = v > g ? guess * (g + (v - g) * Pair(m.decayY, m.decayX)) : guess;
   const double d2 = (d * d).sum();
   if (!(d2 > 1e-300)) return false;  // a bound of zero, or next to it: StripSums::node's way
   const double s = g / std::sqrt(d2);
