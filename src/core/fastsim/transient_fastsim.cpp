@@ -126,7 +126,8 @@ using Pair = Eigen::Array2d;
 // push_y = p0 + pushPerXn x/a. The upstream decay stays scalar, on the march's serial chain.
 struct PackedStep {
   Pair memory, lag, push;
-  Pair inverseDecay;  // 1 + h beta (slipsAlongTheResidual)
+  Pair inverseDecay;    // 1 + h beta (slipsAlongTheResidual)
+  double historyScale;  // r
   double decayX, decayY, pushPerXn;
   // beta: (X.beta, Y.beta); lagPerLength is the same for both directions.
   PackedStep(const Pair& beta, double lagPerLength, double r, double h, double driveX, double gy,
@@ -134,6 +135,7 @@ struct PackedStep {
     const Pair hb = h * beta, decay = 1.0 / (1.0 + hb);
     memory = hb * r * decay;
     inverseDecay = 1.0 + hb;
+    historyScale = r;
     lag = h * lagPerLength * decay;
     push = h * Pair(driveX, gy + 0.5 * h * gphi) * decay;
     decayX = decay(0);
@@ -291,15 +293,18 @@ struct StateUpdate {
 // bound (then tau (1 + lambda) = v): under constant input the march settles on steady FastSim's
 // traction at any step length, and with beta_x = beta_y the direction is the guess's whatever
 // lambda. The result is put on the bound as StripSums::node does.
-inline bool slipsAlongTheResidual(const PackedStep& m, const Pair& old, double g, double* tx,
-                                  double* ty) {
+inline bool slipsAlongTheResidual(const PackedStep& m, const Pair& history, const Pair& old,
+                                  const Pair& upstreamOld, double g, double* tx, double* ty) {
   const double t2 = *tx * *tx + *ty * *ty;
   if (!(t2 > g * g) || !(t2 > 1e-300)) return false;  // adhesion, or StripSums::node's tiny path
-  // v = rhs - h beta r tau_old = (guess - memory tau_old) / decay. tau_i is along
-  // guess_i / (1 + lambda decay_i), and 1 + lambda decay_i is along g + (|v| - g) decay_i: times
-  // both denominators, no division.
-  const Pair guess(*tx, *ty), steady = (guess - m.memory * old) * m.inverseDecay;
+  // v = rhs - h beta r tau_old = (guess - memory tau_old) / decay, the guess being history + decay
+  // tau_up; tau_up is taken as the upstream node's old traction (r times), equal to it at a fixed
+  // point, so that v, off the march's serial chain through tau_up, adds no latency to it. tau_i is
+  // along guess_i / (1 + lambda decay_i), and 1 + lambda decay_i along g + (|v| - g) decay_i:
+  // times both denominators, no division.
+  const Pair steady = (history - m.memory * old) * m.inverseDecay + m.historyScale * upstreamOld;
   const double v = std::sqrt((steady * steady).sum());
+  const Pair guess(*tx, *ty);
   const Pair d = v > g ? guess * (g + (v - g) * Pair(m.decayY, m.decayX)) : guess;
   const double d2 = (d * d).sum();
   if (!(d2 > 1e-300)) return false;  // a bound of zero, or next to it: StripSums::node's way
@@ -317,6 +322,7 @@ struct StripMarch {
   PackedStep entry, full;
   int first, enter, leave;  // the strip's node 0; its loaded nodes [enter, leave)
   double tx = 0.0, ty = 0.0;
+  Pair oldUpstream = Pair::Zero();  // the last node's old traction (slipsAlongTheResidual)
   StripSums sums = {};
   [[gnu::always_inline]] void node(int k, const PackedStep& m, const Source& source,
                                    const double* xn, const FieldPointers& out,
@@ -332,7 +338,9 @@ struct StripMarch {
     tx = guess(0) + m.decayX * tx;
     ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
     if constexpr (kResidualAlongTraction) {
-      if (slipsAlongTheResidual(m, old, out.bound[k], &tx, &ty)) {
+      const Pair own(guess(0), guess(1) - m.pushPerXn * xn[k]), upstreamOld = oldUpstream;
+      oldUpstream = old;
+      if (slipsAlongTheResidual(m, own, old, upstreamOld, out.bound[k], &tx, &ty)) {
         sums.add(k, xn[k], out.bound[k], true, tx, ty, out);
         update(k, Pair(tx, ty), o);
         return;
