@@ -76,6 +76,36 @@ TEST(NssModel, ConstantInputsSettleOnSteadyFastSim) {
   }
 }
 
+TEST(NssModel, CalibratedSettlesOnSteadyFastSimAtEveryStepLength) {
+  // Calibrated nss runs x and y on different filters under spin (x on chi11, y on chi23): scaling
+  // the adhesion guess onto the bound tilted the slip direction by the filters' b0 / (V dt), so
+  // the settled force moved with the step (large spin: Fy 0.30 -> 0.38 mu Fz over 0.01 -> 10
+  // elements). Its fixed point must be steady FastSim's at any step length.
+  ContactParameters p = params("nss");
+  p.fastsim = "calibrated";
+  p.fz_max = p.fz0;  // fixed mesh exactly on the patch, as the steady model's
+  ContactParameters sp = p;
+  sp.model = "steady";
+  const double muFz = p.mu * p.fz0, element = 2.0 * p.a0 / p.nx;
+  const Creepages cases[] = {{0.0, 0.0, 4.0}, {0.0, 1e-3, 4.0}, {2e-3, -1e-3, 2.0}};
+  for (const Creepages& c : cases) {
+    const StepInput in{0.0, 20.0, c.xi, c.eta, c.phi, p.fz0};
+    const StepOutput ref = makeContactModel(sp)->step(in);
+    ASSERT_GT(std::abs(ref.fy), 0.1 * muFz);
+    for (double steps : {0.1, 1.0, 10.0}) {
+      StepInput run = in;
+      run.dt = steps * element / run.V;
+      auto m = makeContactModel(p);
+      StepOutput o;
+      // 60 a of travel: chi11's slowest pole (about 3 a) decays by e^-20.
+      for (int k = 0; k < static_cast<int>(60.0 * p.a0 / (steps * element)); ++k) o = m->step(run);
+      EXPECT_NEAR(o.fx, ref.fx, 1e-6 * muFz) << c.phi << " at " << steps << " elements";
+      EXPECT_NEAR(o.fy, ref.fy, 1e-6 * muFz) << c.phi << " at " << steps << " elements";
+      EXPECT_NEAR(o.mz, ref.mz, 1e-6 * std::abs(ref.mz)) << c.phi << " at " << steps << " elements";
+    }
+  }
+}
+
 TEST(NssModel, FirstStepStartsFromZeroHistory) {
   NssModel m(params("nss"), kSomeChi);
   StepInput in = scene(0);

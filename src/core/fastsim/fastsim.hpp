@@ -124,12 +124,17 @@ struct StripSums {
       *nodeTx *= s;
       *nodeTy *= s;
     }
-    f.tx[k] = *nodeTx;
-    f.ty[k] = *nodeTy;
+    add(k, xn, g, slips, *nodeTx, *nodeTy, f);
+  }
+  /// Stores node k's final traction (nodeTx, nodeTy), slipping or not, and adds it.
+  void add(int k, double xn, double g, bool slips, double nodeTx, double nodeTy,
+           const FieldPointers& f) {
+    f.tx[k] = nodeTx;
+    f.ty[k] = nodeTy;
     f.slip[k] = slips;
-    tx += *nodeTx;
-    ty += *nodeTy;
-    xnTy += xn * *nodeTy;
+    tx += nodeTx;
+    ty += nodeTy;
+    xnTy += xn * nodeTy;
     loaded += g > 0.0;
     stuck += g > 0.0 && !slips;
   }

@@ -126,12 +126,16 @@ using Pair = Eigen::Array2d;
 // push_y = p0 + pushPerXn x/a. The upstream decay stays scalar, on the march's serial chain.
 struct PackedStep {
   Pair memory, lag, push;
+  Pair inverseDecay;    // 1 + h beta (slipsAlongTheResidual)
+  double historyScale;  // r
   double decayX, decayY, pushPerXn;
   // beta: (X.beta, Y.beta); lagPerLength is the same for both directions.
   PackedStep(const Pair& beta, double lagPerLength, double r, double h, double driveX, double gy,
              double gphi, double a) {
     const Pair hb = h * beta, decay = 1.0 / (1.0 + hb);
     memory = hb * r * decay;
+    inverseDecay = 1.0 + hb;
+    historyScale = r;
     lag = h * lagPerLength * decay;
     push = h * Pair(driveX, gy + 0.5 * h * gphi) * decay;
     decayX = decay(0);
@@ -275,14 +279,50 @@ struct StateUpdate {
   }
 };
 
+// A slipping node under TransientState::Saturation::kResidualAlongTraction; false (nothing done)
+// if the guess (tx, ty) does not slip. Per direction i the adhesion guess solves
+//   (1 + h beta_i) tau_i = rhs_i = v_i + h beta_i r tau_old_i,
+// v_i the steady slip equation's part (upstream traction, drive, filter state). Scaling the guess
+// onto the bound g keeps the direction of rhs_i / (1 + h beta_i): with x and y on different filters
+// (beta_x != beta_y) the residual left, the discrete slip, is not along the traction, and the
+// direction carries the filters' memories even under constant input, where the time term
+// vanishes: the fixed point moved with h beta, i.e. with the step length. A residual along the
+// traction (Coulomb) is tau_i = rhs_i / (1 + h beta_i + lambda), lambda >= 0 putting |tau| on g:
+// a root search per node, several times the march's own work at a slipping node. Here
+// lambda = |v| / g - 1 from the steady part, exact where tau_old is the traction itself on the
+// bound (then tau (1 + lambda) = v): under constant input the march settles on steady FastSim's
+// traction at any step length, and with beta_x = beta_y the direction is the guess's whatever
+// lambda. The result is put on the bound as StripSums::node does.
+inline bool slipsAlongTheResidual(const PackedStep& m, const Pair& history, const Pair& old,
+                                  const Pair& upstreamOld, double g, double* tx, double* ty) {
+  const double t2 = *tx * *tx + *ty * *ty;
+  if (!(t2 > g * g) || !(t2 > 1e-300)) return false;  // adhesion, or StripSums::node's tiny path
+  // v = rhs - h beta r tau_old = (guess - memory tau_old) / decay, the guess being history + decay
+  // tau_up; tau_up is taken as the upstream node's old traction (r times), equal to it at a fixed
+  // point, so that v, off the march's serial chain through tau_up, adds no latency to it. tau_i is
+  // along guess_i / (1 + lambda decay_i), and 1 + lambda decay_i along g + (|v| - g) decay_i:
+  // times both denominators, no division.
+  const Pair steady = (history - m.memory * old) * m.inverseDecay + m.historyScale * upstreamOld;
+  const double v = std::sqrt((steady * steady).sum());
+  const Pair guess(*tx, *ty);
+  const Pair d = v > g ? guess * (g + (v - g) * Pair(m.decayY, m.decayX)) : guess;
+  const double d2 = (d * d).sum();
+  if (!(d2 > 1e-300)) return false;  // a bound of zero, or next to it: StripSums::node's way
+  const double s = g / std::sqrt(d2);
+  *tx = d(0) * s;
+  *ty = d(1) * s;
+  return true;
+}
+
 // One strip of the march: where its history starts, its running traction and sums, and its two
 // steps (from the patch's leading edge to the first loaded node, and between nodes).
-template <bool kSecond, class Source>
+template <bool kSecond, bool kResidualAlongTraction, class Source>
 struct StripMarch {
   const double* history;  // Source::strip
   PackedStep entry, full;
   int first, enter, leave;  // the strip's node 0; its loaded nodes [enter, leave)
   double tx = 0.0, ty = 0.0;
+  Pair oldUpstream = Pair::Zero();  // the last node's old traction (slipsAlongTheResidual)
   StripSums sums = {};
   [[gnu::always_inline]] void node(int k, const PackedStep& m, const Source& source,
                                    const double* xn, const FieldPointers& out,
@@ -297,6 +337,15 @@ struct StripMarch {
     const Pair guess = m.memory * old - m.lag * s - m.push;  // PackedStep's history
     tx = guess(0) + m.decayX * tx;
     ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
+    if constexpr (kResidualAlongTraction) {
+      const Pair own(guess(0), guess(1) - m.pushPerXn * xn[k]), upstreamOld = oldUpstream;
+      oldUpstream = old;
+      if (slipsAlongTheResidual(m, own, old, upstreamOld, out.bound[k], &tx, &ty)) {
+        sums.add(k, xn[k], out.bound[k], true, tx, ty, out);
+        update(k, Pair(tx, ty), o);
+        return;
+      }
+    }
     sums.node(k, xn[k], out.bound[k], &tx, &ty, out);
     update(k, Pair(tx, ty), o);
   }
@@ -329,7 +378,7 @@ void unloadedNodes(const PatchMesh& mesh, const std::vector<StripEntry>& entries
   }
 }
 
-template <bool kSecond, class Source>
+template <bool kSecond, bool kResidualAlongTraction, class Source>
 CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c, double V,
                   double dt, const FilterZ& zx, const FilterZ& zy, double historyScale,
                   Source history, TransientState* st, TractionField* f) {
@@ -344,7 +393,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const FieldPointers out(f);
   const int nx = mesh.nx(), ny = mesh.ny();
   ForceSums sums;
-  using Strip = StripMarch<kSecond, Source>;
+  using Strip = StripMarch<kSecond, kResidualAlongTraction, Source>;
   // The nodes outside the patch do not touch the loaded ones: they go first, in a pass of their
   // own.
   unloadedNodes(mesh, f->entry, TransientStorage::outsideFrom(*st), history, out, update);
@@ -401,6 +450,18 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     finish(j, A);
   }
   return sums.forces();
+}
+
+// The march with the saturation `st` asks for (TransientState::Saturation), chosen once a step:
+// the classic march carries no test of it per node.
+template <bool kSecond, class Source>
+CreepForces marchSaturating(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
+                            double V, double dt, const FilterZ& zx, const FilterZ& zy,
+                            double historyScale, Source history, TransientState* st,
+                            TractionField* f) {
+  if (st->saturation() == TransientState::Saturation::kResidualAlongTraction)
+    return march<kSecond, true>(mesh, L, c, V, dt, zx, zy, historyScale, history, st, f);
+  return march<kSecond, false>(mesh, L, c, V, dt, zx, zy, historyScale, history, st, f);
 }
 
 }  // namespace
@@ -473,13 +534,13 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
                              bool marchSecond) {
   if (marchSecond || zx.secondOrder() || zy.secondOrder()) {
     TransientStorage::eager(mesh.ny(), st);  // the second-order march reads every node as it is
-    return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
+    return marchSaturating<true>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
   }
   // Outside the patch the traction is zero and s <- -poleOld s, i.e. d = -a1 r (TimeTerm).
   const Pair d(-zx.a1 * historyScale, -zy.a1 * historyScale);
   const bool lazy = TransientStorage::lazyBefore(mesh, f->entry, d, st, f);
   const CreepForces forces =
-      march<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
+      marchSaturating<false>(mesh, L, c, V, dt, zx, zy, historyScale, InPlace{}, st, f);
   if (lazy) TransientStorage::lazyAfter(mesh, f->entry, d, st);
   return forces;
 }
@@ -492,8 +553,8 @@ CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, cons
   TransientStorage::writtenInFull(mesh.ny(), st);
   const CarriedHistory carried(map, previous);  // reads `previous` materialized
   if (marchSecond || zx.secondOrder() || zy.secondOrder())
-    return march<true>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
-  return march<false>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
+    return marchSaturating<true>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
+  return marchSaturating<false>(mesh, L, c, V, dt, zx, zy, historyScale, carried, st, f);
 }
 
 AlongStripMap::AlongStripMap(int nx) : offset_(nx, 0), weights_(4, nx) {}

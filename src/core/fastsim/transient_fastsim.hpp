@@ -29,6 +29,15 @@ class TransientState {
   /// like s: in transposed direct form II every state is a combination of past rates g and h),
   /// zero while the filter is first order: the first-order march neither reads nor writes it.
   static constexpr int kRows = 6;
+  /// How the march puts a slipping node's traction on the bound. kAlongGuess (the paper's, and
+  /// steady FastSim's): the adhesion guess scaled down. kResidualAlongTraction: the traction
+  /// whose residual in the discretised slip equation (the slip) lies along it, so that x and y on
+  /// different filters do not turn it; the guess's direction when they share a filter, and under
+  /// constant input steady FastSim's at every step length (transient_fastsim.cpp,
+  /// slipsAlongTheResidual).
+  enum class Saturation { kAlongGuess, kResidualAlongTraction };
+  void setSaturation(Saturation s) { saturation_ = s; }
+  Saturation saturation() const { return saturation_; }
   void resize(int n);
   void clear();
   /// Restores the states held decayed. Const: it changes how the state is stored, not the state.
@@ -76,6 +85,7 @@ class TransientState {
   std::vector<int> ends_, from_;
   bool fromZero_ = false;  // from_ holds zeros for every strip
   int nx_ = 0;
+  Saturation saturation_ = Saturation::kAlongGuess;
 };
 
 /// One step of length dt > 0 at speed V > 0. Marches each strip from the patch's leading edge
