@@ -10,6 +10,7 @@
 
 #include "core/fastsim/fastsim.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
+#include "wheel_rail_contact/contact_parameters.hpp"
 #include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 using namespace wheel_rail_contact;
@@ -20,11 +21,13 @@ struct Case {
   double lambdaOverA, stepOverDx, xiAmp, xiMean, phi;
 };
 
-std::unique_ptr<ContactModel> model(const char* name, const char* mesh) {
+std::unique_ptr<ContactModel> model(const char* name, const char* mesh,
+                                    const std::string& fastsim = "") {
   ContactParameters p;
   p.model = name;
   p.mesh = mesh;
   p.nx = p.ny = 12;
+  p.fastsim = fastsim;
   return makeContactModel(p);
 }
 
@@ -119,15 +122,12 @@ struct Creep {
 const Creep kCreeps[] = {
     {1e-5, -2e-5, 0.05}, {2e-3, 1e-3, 1.0}, {3e-2, -1e-2, -2.0}, {0, 2e-4, 6.0}};
 
-// Steady FastSim in the FastSim variant a transient model uses by default: nss's is calibrated,
-// shen-li's classic.
-StepOutput steadyAt(double V, const Creep& c, double fz, const std::string& of = "shen-li") {
-  ContactParameters p;
-  p.model = "steady";
-  p.mesh = "fixed";
-  p.nx = p.ny = 12;
-  p.fastsim = of == "nss" || of == "auto" ? "calibrated" : "classic";
-  return makeContactModel(p)->step({0.0, V, c.xi, c.eta, c.phi, fz});
+// Steady FastSim in the FastSim variant the transient model `of` uses by default.
+StepOutput steadyAt(double V, const Creep& c, double fz, const char* of = "shen-li") {
+  ContactParameters transient;
+  transient.model = of;
+  return model("steady", "fixed", calibratedFastSim(transient) ? "calibrated" : "classic")
+      ->step({0.0, V, c.xi, c.eta, c.phi, fz});
 }
 
 }  // namespace

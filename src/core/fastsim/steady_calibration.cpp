@@ -170,7 +170,7 @@ Flexibilities FlexibilityCalibration::flexibilities(double a, double b, double G
 CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
                                             const CreepCoefficients& k, double muFz,
                                             const Creepages& c) const {
-  return step(a, b, G, k, muFz, c, c.eta * c.phi < 0.0 ? 1.0 : 0.0);
+  return step(a, b, G, k, muFz, c, opposedBranch(c));
 }
 
 CalibratedStep FlexibilityCalibration::step(double a, double b, double G,

@@ -79,6 +79,9 @@ class FlexibilityCalibration {
   /// forward frame (rolling_direction.hpp) and moves this weight over travel instead.
   CalibratedStep step(double a, double b, double G, const CreepCoefficients& k, double muFz,
                       const Creepages& c, double opposed) const;
+  /// The eta phi < 0 branch's weight that creepages c select by themselves: 1 where eta phi < 0,
+  /// else 0 (where eta phi = 0 both branches give the same correction's ends).
+  static double opposedBranch(const Creepages& c) { return c.eta * c.phi < 0.0 ? 1.0 : 0.0; }
   /// Kalker's flexibilities at patch (a, b), scaled for creepages c at mu fz = muFz. Classic:
   /// exactly kalkerFlexibilities(a, b, G, k).
   Flexibilities flexibilities(double a, double b, double G, const CreepCoefficients& k, double muFz,

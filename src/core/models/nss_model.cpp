@@ -171,7 +171,7 @@ CalibratedStep NssModel::calibrated(const HertzEllipse& h, const StepInput& in) 
   // the bound limits); only the drive w / L changes, as it does with the creepages themselves.
   const Creepages c{in.xi, in.eta, in.phi};
   return calibration_.step(h.a, h.b, p_.G, kalker_, stepMu(in, p_.mu) * in.fz, c,
-                           opposed_ >= 0.0 ? opposed_ : (c.eta * c.phi < 0.0 ? 1.0 : 0.0));
+                           opposed_ >= 0.0 ? opposed_ : FlexibilityCalibration::opposedBranch(c));
 }
 
 void NssModel::followBranch(const StepInput& in, double travel, double a) {
@@ -182,14 +182,12 @@ void NssModel::followBranch(const StepInput& in, double travel, double a) {
   // travel allows). The steady traction of the other branch builds as material crosses the
   // patch, so the branch's weight follows over travel with relaxation length a. Where eta phi = 0
   // the branches meet and the weight is kept.
-  const double ep = in.eta * in.phi;
+  const double target = FlexibilityCalibration::opposedBranch({in.xi, in.eta, in.phi});
   if (opposed_ < 0.0 || travel < 0.0) {
-    opposed_ = ep < 0.0 ? 1.0 : 0.0;
+    opposed_ = target;
     return;
   }
-  if (ep == 0.0) return;
-  const double target = ep < 0.0 ? 1.0 : 0.0;
-  if (opposed_ == target) return;
+  if (in.eta * in.phi == 0.0 || opposed_ == target) return;
   opposed_ = target + (opposed_ - target) * std::exp(-travel / a);
   if (std::abs(opposed_ - target) < 1e-12) opposed_ = target;  // settled: one branch again
 }
