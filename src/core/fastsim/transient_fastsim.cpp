@@ -127,12 +127,14 @@ using Pair = Eigen::Array2d;
 struct PackedStep {
   Pair memory, lag, push;
   Pair inverseDecay;    // 1 + h beta (slipsAlongTheResidual)
+  Pair decaySwapped;    // (decayY, decayX) (slipsAlongTheResidual)
   double historyScale;  // r
   double decayX, decayY, pushPerXn;
   // beta: (X.beta, Y.beta); lagPerLength is the same for both directions.
   PackedStep(const Pair& beta, double lagPerLength, double r, double h, double driveX, double gy,
              double gphi, double a) {
     const Pair hb = h * beta, decay = 1.0 / (1.0 + hb);
+    decaySwapped = Pair(decay(1), decay(0));
     memory = hb * r * decay;
     inverseDecay = 1.0 + hb;
     historyScale = r;
@@ -288,29 +290,33 @@ struct StateUpdate {
 // direction carries the filters' memories even under constant input, where the time term
 // vanishes: the fixed point moved with h beta, i.e. with the step length. A residual along the
 // traction (Coulomb) is tau_i = rhs_i / (1 + h beta_i + lambda), lambda >= 0 putting |tau| on g:
-// a root search per node, several times the march's own work at a slipping node. Here
-// lambda = |v| / g - 1 from the steady part, exact where tau_old is the traction itself on the
-// bound (then tau (1 + lambda) = v): under constant input the march settles on steady FastSim's
-// traction at any step length, and with beta_x = beta_y the direction is the guess's whatever
-// lambda. The result is put on the bound as StripSums::node does.
+// a root search per node, several times the march's own work at a slipping node. Here lambda
+// comes from the steady part: where tau_old is the traction itself on the bound, tau (1 + lambda)
+// = v, so 1 + lambda = v . (r tau_old) / g^2, exact at a fixed point (under constant input the
+// march settles on steady FastSim's traction at any step length), without a square root; lambda
+// is held at 0 (the guess's direction) where that product says the traction turned. With beta_x
+// = beta_y the direction is the guess's whatever lambda. The result is put on the bound as
+// StripSums::node does.
 inline bool slipsAlongTheResidual(const PackedStep& m, const Pair& history, const Pair& old,
                                   const Pair& upstreamOld, double g, double* tx, double* ty) {
   const double t2 = *tx * *tx + *ty * *ty;
   if (!(t2 > g * g) || !(t2 > 1e-300)) return false;  // adhesion, or StripSums::node's tiny path
   // v = rhs - h beta r tau_old = (guess - memory tau_old) / decay, the guess being history + decay
   // tau_up; tau_up is taken as the upstream node's old traction (r times), equal to it at a fixed
-  // point, so that v, off the march's serial chain through tau_up, adds no latency to it. tau_i is
-  // along guess_i / (1 + lambda decay_i), and 1 + lambda decay_i along g + (|v| - g) decay_i:
-  // times both denominators, no division.
+  // point, so that v and lambda, off the march's serial chain through tau_up, add no latency to
+  // it. tau_i is along guess_i / (1 + lambda decay_i), i.e. along guess_i w_i with w_i = g^2 (1 +
+  // lambda decay_j), j the other direction: times both denominators and g^2, no division.
+  const Pair rOld = m.historyScale * old;
   const Pair steady = (history - m.memory * old) * m.inverseDecay + m.historyScale * upstreamOld;
-  const double v = std::sqrt((steady * steady).sum());
-  const Pair guess(*tx, *ty);
-  const Pair d = v > g ? guess * (g + (v - g) * Pair(m.decayY, m.decayX)) : guess;
+  const double g2 = g * g, excess = std::max((steady * rOld).sum() - g2, 0.0);
+  const Pair w = g2 + excess * m.decaySwapped;
+  const Pair guess(*tx, *ty), d = guess * w;
   const double d2 = (d * d).sum();
-  if (!(d2 > 1e-300)) return false;  // a bound of zero, or next to it: StripSums::node's way
-  const double s = g / std::sqrt(d2);
-  *tx = d(0) * s;
-  *ty = d(1) * s;
+  // A bound next to zero, or so large that d2 leaves the doubles: StripSums::node's way.
+  if (!(d2 > 1e-300) || !(d2 < 1e300)) return false;
+  const Pair t = guess * ((g * w) / std::sqrt(d2));
+  *tx = t(0);
+  *ty = t(1);
   return true;
 }
 
