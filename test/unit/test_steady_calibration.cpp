@@ -110,12 +110,50 @@ TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
     EXPECT_NEAR(s.L.L2, rho * m[1] * ((1 - w) * L0.L2 + w * crss), 1e-14 * s.L.L2) << e;
     EXPECT_NEAR(s.L.L3, rho * m[2] * ((1 - w) * L0.L3 + w * crss), 1e-14 * s.L.L3) << e;
     EXPECT_NEAR(s.L.L3x, s.L.L3 * std::exp(e2[2] / (e * e) * c.logRatio(3, e)), 1e-14 * s.L.L3x);
-    EXPECT_NEAR(s.boundShape, c.ratio(4, e) * e2[2] / (e * e) * m[3], 1e-14 * s.boundShape);
+    const double s3 = e2[2] / (e * e);
+    EXPECT_NEAR(s.boundShape, c.towardsFullSlip(c.ratio(4, e) * s3 * m[3], e, s3),
+                1e-14 * s.boundShape);
     EXPECT_NE(m[0], 1.0);  // the correction acts on these directions
     // The separate calls are the same step.
     EXPECT_EQ(c.flexibilities(a, b, G, k, muFz, cr).L1, s.L.L1);
     EXPECT_EQ(c.boundShape(a, b, G, k, muFz, cr), s.boundShape);
   }
+}
+
+TEST(SteadyCalibration, SmallSpinSharesGoTowardsHertzsShapeInFullSlipOnly) {
+  // Below the correction's first spin-share knot s1 the table interpolates from no correction; in
+  // full slip (e >= 5) the shape there is Hertz's moment shape, in partial slip (e <= 2.5), from s1
+  // on and without spin it is the table's own.
+  const FlexibilityCalibration c = SteadyCalibration::shipped().forMesh(20).at(1.0);
+  constexpr double hertz = FlexibilityCalibration::kHertzMomentShape;
+  for (double shape : {0.0, 0.3, 1.8}) {
+    EXPECT_EQ(c.towardsFullSlip(shape, 2.5, 0.02), shape);
+    EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 0.0), shape);
+    EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 0.25), shape);
+    EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 1.0), shape);
+    EXPECT_NEAR(c.towardsFullSlip(shape, 5.0, 0.01), shape + (hertz - shape) * 0.96, 1e-12);
+    // Continuous in e and s3: half way in e, half the blend.
+    EXPECT_NEAR(c.towardsFullSlip(shape, 3.75, 0.01), shape + (hertz - shape) * 0.48, 1e-12);
+  }
+  // Classic (no correction table): nothing to fill in.
+  EXPECT_EQ(SteadyCalibration().at(1.0).towardsFullSlip(0.3, 13.0, 0.02), 0.3);
+}
+
+TEST(SteadyCalibration, HertzMomentShapeGivesHertzsFullSlipSpinMoment) {
+  // Pure spin in full slip on a circle: the traction is mu p around the spin pole at the centre,
+  // so Mz = mu fz a times 8/15 on the parabolic bound and 3 pi / 16 on Hertz's; the flattened
+  // bound with kHertzMomentShape must give Hertz's (within the 40x40 mesh's quadrature).
+  const double a = 5e-3, fz = 1e4, mu = 0.3;
+  const PatchMesh mesh(40, 40, a, a);
+  TractionField f;
+  f.resize(mesh.size());
+  const Flexibilities L = kalkerFlexibilities(a, a, 8.2e10, kalkerCoefficients(1.0, 0.28));
+  auto moment = [&](double shape) {
+    flattenedBound(mesh, a, a, fz, mu, shape, &f);
+    return -steadyFastSim(mesh, L, {0.0, 0.0, 1e3}, &f).mz / (mu * fz * a);  // phi > 0: Mz < 0
+  };
+  EXPECT_NEAR(moment(0.0), 8.0 / 15.0, 1e-3);
+  EXPECT_NEAR(moment(FlexibilityCalibration::kHertzMomentShape), 3.0 * M_PI / 16.0, 1e-3);
 }
 
 TEST(SteadyCalibration, EmptyIsClassicFastSimExactly) {

@@ -125,12 +125,14 @@ TEST_F(CalibratedSteady, CombinedWithSpinWithinTwoPercentOfMuFz) {
     }
 }
 
-TEST_F(CalibratedSteady, SmallSpinShareBetterThanClassic) {
+TEST_F(CalibratedSteady, SmallSpinShareWithinTwoPercentOfMuFz) {
   // h3 (1, -1, 0.2): spin 2 % of e^2, between xi with eta (no correction) and the grid's smallest
-  // spin share (0.25), the weakest direction: measured 0.014-0.027 (classic 0.039-0.144).
+  // spin share (0.25), the weakest direction: issue 19's 0.02 for combined curves; measured
+  // 0.014-0.016 (classic 0.039-0.144; 0.027 at a/b 0.2 before the bound went towards Hertz's in
+  // full slip, FlexibilityCalibration::towardsFullSlip).
   for (double ab : {0.2, 1.0, 5.0}) {
     const double cal = error(ab, "h3", true).force;
-    EXPECT_LT(cal, 0.03) << ab;
+    EXPECT_LT(cal, 0.02) << ab;
     EXPECT_LT(cal, 0.5 * error(ab, "h3", false).force) << ab;
   }
 }

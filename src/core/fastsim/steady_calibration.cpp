@@ -231,9 +231,20 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   if (!eps_[3].empty()) L.L3x = L.L3 * (spin ? stepExp(share[2] * logRatioOf(3), table) : 1.0);
   // The bound's shape: shape_23s(e) times spin's share of e^2 (no friction: parabolic).
   if (spin && !eps_[4].empty())
-    s.boundShape = std::min(kMaxBoundShape,
-                            stepExp(logRatioOf(4) + (corrected ? lm[3] : 0.0), table) * share[2]);
+    s.boundShape = towardsFullSlip(
+        std::min(kMaxBoundShape,
+                 stepExp(logRatioOf(4) + (corrected ? lm[3] : 0.0), table) * share[2]),
+        e, share[2]);
   return s;
+}
+
+double FlexibilityCalibration::towardsFullSlip(double shape, double e, double s3) const {
+  constexpr double kFrom = 2.5, kTo = 5.0, kSpinShare = 0.01;
+  if (corrS3_.empty() || !(e > kFrom) || !(s3 > 0.0) || !(s3 < corrS3_.front())) return shape;
+  const double q = std::min(1.0, (e - kFrom) / (kTo - kFrom));
+  const double w =
+      q * q * (3.0 - 2.0 * q) * (1.0 - s3 / corrS3_.front()) * std::min(1.0, s3 / kSpinShare);
+  return shape + (kHertzMomentShape - shape) * w;
 }
 
 namespace {

@@ -50,6 +50,7 @@
 /// C_ij(nu) carries the first-order effect of nu).
 #pragma once
 
+#include <cmath>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -96,6 +97,18 @@ class FlexibilityCalibration {
   void correction(const double* e2, double e, bool opposed, int first, int last, double* m) const;
   /// The bound's shape is at most this (flattenedBound stays positive below 4).
   static constexpr double kMaxBoundShape = 2.0;
+  /// The shape whose full-slip spin moment is Hertz's: flattenedBound's moment of pure spin in
+  /// full slip, on a circle, is (8/15 + (4/105) s) mu fz a, Hertz's (3 pi / 16) mu fz a.
+  static constexpr double kHertzMomentShape = (3.0 * M_PI / 16.0 - 8.0 / 15.0) * 105.0 / 4.0;
+  /// The bound's shape for combined creepages with a small spin share s3 = e3^2 / e^2, below
+  /// the combined correction's first spin-share knot s1 (where the table interpolates from no
+  /// correction at s3 = 0): the table's `shape` at normalised creepage e blended towards
+  /// kHertzMomentShape as the patch goes into full slip (smoothly over e from 2.5 to 5), by
+  /// (1 - s3 / s1) min(1, s3 / 0.01). In full slip the traction is mu p along the rigid slip,
+  /// which spin turns over the patch: force and moment are the pressure's weighted sums of that
+  /// direction field, right only with Hertz's weights. From s1 on the identified correction
+  /// decides; without a correction (or spin), `shape` is returned.
+  double towardsFullSlip(double shape, double e, double s3) const;
   static constexpr int kCorrections = 4;
   /// Ratio of kind k (0: 11, 1: 22, 2: 23, 3: 23x, 4: 23s) at normalised creepage e, and its
   /// logarithm.
