@@ -122,7 +122,7 @@ struct Ray {
 const Ray kRays[] = {{"11", {1, 0, 0}},        {"22", {0, 1, 0}},     {"23", {0, 0, 1}},
                      {"xe", {1, 1, 0}},        {"xep", {1, 1, 1}},    {"opp", {1, -1, 1}},
                      {"spin", {0.3, -0.3, 1}}, {"h1", {1, 0.5, 0.8}}, {"h2", {0.4, 1, -0.7}},
-                     {"h3", {1, -1, 0.2}}};
+                     {"h3", {1, -1, 0.2}},     {"h4", {0.5, 1, 0.25}}};
 
 // The direction grid of the combined correction: spin's share s3 = e3^2 / e^2, xi's share of the
 // rest t = e1^2 / (e1^2 + e2^2), and the relative sign of eta and phi (xi's sign only mirrors).
