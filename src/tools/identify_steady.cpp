@@ -744,29 +744,32 @@ StudyTerms fitPoint(const Options& o, double g, const Ray& r, double e, const Po
     const Point p = studyFastSim(o, g, r, e, base, u);
     const double dm = mzPeak > 1e-3 ? 0.2 * (p.mz - x.mz) / mzPeak : 0.0;
     return std::sqrt((p.fx - x.fx) * (p.fx - x.fx) + (p.fy - x.fy) * (p.fy - x.fy) + dm * dm) +
-           1e-3 * (std::abs(u.l[0]) + std::abs(u.l[1]) + std::abs(u.l[2]) + std::abs(u.l[3]));
+           1e-3 * (std::abs(u.l[0]) + std::abs(u.l[1]) + std::abs(u.l[2]) + std::abs(u.l[3]) +
+                   std::abs(u.beta));
   };
   double best = cost(t);
   const int dims = beta ? 5 : 4;
   for (double h = 0.2; h > 1e-3; h *= 0.5)
-    for (bool moved = true; moved;) {
-      moved = false;
+    for (int moves = 0, moved = 1; moved && moves < 500; ++moves) {
+      moved = 0;
       for (int d = 0; d < dims; ++d)
         for (double step : {h, -h}) {
           StudyTerms u = t;
           (d < 4 ? u.l[d] : u.beta) += step;
-          // The shape at most about 1 where the table has none; beta below 2.5 (1 - beta / 3 > 0).
-          if (u.l[3] > 0.7 || u.beta > 2.5) continue;
+          // The shape at most about 1 where the table has none; beta in [-2, 2.5] (1 - beta / 3 >
+          // 0).
+          if (u.l[3] > 0.7 || u.beta > 2.5 || u.beta < -2.0) continue;
           const double c = cost(u);
-          if (c < best) best = c, t = u, moved = true;
+          if (c < best) best = c, t = u, moved = 1;
         }
     }
   return t;
 }
 
 // Per a/b: the coupling that fits eta alone (ray 22) point by point (with L2's multiplier, on a
-// grid), then every ray's errors on the table, refitted (l), refitted with beta, and refitted with
-// that coupling.
+// grid), then every ray's errors on the table; refitted (l); refitted with beta; with that
+// coupling on the table as it is (as a coupling tabulated over e would act); refitted with it; and
+// refitted with beta and it.
 void momentStudy(const Options& o, ExactCache* exact, const SteadyCalibration& meshes) {
   const SteadyCalibration table = meshes.forMesh(o.nx);
   std::printf("FastSim %dx%d; force: max |dF| / mu fz, Mz: max |dMz| / peak |Mz|, over --points\n",
@@ -805,21 +808,25 @@ void momentStudy(const Options& o, ExactCache* exact, const SteadyCalibration& m
     std::printf("a/b %g: coupling fitted on ray 22 at each point:", g);
     for (double c : couple) std::printf(" %.2f", c);
     std::printf(" (study march against the core's: %.1e)\n", march);
-    std::printf("%-5s %-5s %15s %15s %15s %15s\n", "a/b", "ray", "table F / Mz", "refit",
-                "refit, beta", "refit, coupled");
+    std::printf("%-5s %-5s %15s %15s %15s %15s %15s %15s\n", "a/b", "ray", "table F / Mz", "refit",
+                "refit, beta", "coupled", "refit, coupled", "beta, coupled");
     for (const Ray& r : kRays) {
       const double peak = peakOf(r);
-      RayError err[4];
+      constexpr int kVariants = 6;
+      RayError err[kVariants];
       for (std::size_t i = 0; i < o.points.size(); ++i) {
         const double e = o.points[i];
         const Point x = exact->at(g, r, e);
         StudyTerms coupled;
         coupled.couple = couple[i];
-        const StudyTerms terms[4] = {StudyTerms(),
-                                     fitPoint(o, g, r, e, x, peak, cal, StudyTerms(), false),
-                                     fitPoint(o, g, r, e, x, peak, cal, StudyTerms(), true),
-                                     fitPoint(o, g, r, e, x, peak, cal, coupled, false)};
-        for (int v = 0; v < 4; ++v) {
+        const StudyTerms terms[kVariants] = {
+            StudyTerms(),
+            fitPoint(o, g, r, e, x, peak, cal, StudyTerms(), false),
+            fitPoint(o, g, r, e, x, peak, cal, StudyTerms(), true),
+            coupled,
+            fitPoint(o, g, r, e, x, peak, cal, coupled, false),
+            fitPoint(o, g, r, e, x, peak, cal, coupled, true)};
+        for (int v = 0; v < kVariants; ++v) {
           const Point p = studyFastSim(o, g, r, e, cal, terms[v]);
           err[v].f = std::max({err[v].f, std::abs(p.fx - x.fx), std::abs(p.fy - x.fy)});
           if (peak > 1e-3) err[v].mz = std::max(err[v].mz, std::abs(p.mz - x.mz) / peak);
