@@ -766,10 +766,32 @@ StudyTerms fitPoint(const Options& o, double g, const Ray& r, double e, const Po
   return t;
 }
 
+// The coupling (and L2's multiplier, on a grid; with `all` one multiplier of L1, L2 and L3) that
+// fits ray 22's exact point x best: the larger of max(|dFx|, |dFy|) and 0.2 |dMz| / peak.
+StudyTerms fitCoupling(const Options& o, double g, double e, const Point& x, double mzPeak,
+                       const FlexibilityCalibration& base, bool all) {
+  double best = 1e300;
+  StudyTerms fit;
+  for (int ic = -150; ic <= 50; ++ic)
+    for (int il = -15; il <= 15; ++il) {
+      StudyTerms t;
+      t.couple = 0.01 * ic;
+      t.l[1] = 0.02 * il;
+      if (all) t.l[0] = t.l[2] = t.l[1];
+      const Point p = studyFastSim(o, g, kRays[1], e, base, t);
+      const double c = std::max(std::max(std::abs(p.fx - x.fx), std::abs(p.fy - x.fy)),
+                                0.2 * std::abs(p.mz - x.mz) / mzPeak);
+      if (c < best) best = c, fit = t;
+    }
+  return fit;
+}
+
 // Per a/b: the coupling that fits eta alone (ray 22) point by point (with L2's multiplier, on a
 // grid), then every ray's errors on the table; refitted (l); refitted with beta; with that
-// coupling on the table as it is (as a coupling tabulated over e would act); refitted with it; and
-// refitted with beta and it.
+// coupling on the table as it is; refitted with it; refitted with beta and it; and "tabulated": the
+// coupling and one multiplier of L1, L2, L3 fitted on 22 at the table's knots (--knots),
+// interpolated linearly in e, the multiplier weighed by eta's share of e^2 (as 22's ratio acts in
+// the table), nothing else refitted: what a table kind would give on the rays off its knots.
 void momentStudy(const Options& o, ExactCache* exact, const SteadyCalibration& meshes) {
   const SteadyCalibration table = meshes.forMesh(o.nx);
   std::printf("FastSim %dx%d; force: max |dF| / mu fz, Mz: max |dMz| / peak |Mz|, over --points\n",
@@ -781,51 +803,74 @@ void momentStudy(const Options& o, ExactCache* exact, const SteadyCalibration& m
       for (double e : o.points) peak = std::max(peak, std::abs(exact->at(g, r, e).mz));
       return peak;
     };
-    // The couplings of ray 22, and how far the study's march is from the core's.
+    // The couplings of ray 22 at the points, and how far the study's march is from the core's.
+    const double peak22 = peakOf(kRays[1]);
     std::vector<double> couple;
     double march = 0.0;
-    const double peak22 = peakOf(kRays[1]);
     for (double e : o.points) {
-      const Point x = exact->at(g, kRays[1], e);
-      double best = 1e300, bestCouple = 0.0;
-      for (int ic = -150; ic <= 50; ++ic)
-        for (int il = -15; il <= 15; ++il) {
-          StudyTerms t;
-          t.couple = 0.01 * ic;
-          t.l[1] = 0.02 * il;
-          const Point p = studyFastSim(o, g, kRays[1], e, cal, t);
-          const double c = std::max(std::max(std::abs(p.fx - x.fx), std::abs(p.fy - x.fy)),
-                                    0.2 * std::abs(p.mz - x.mz) / peak22);
-          if (c < best) best = c, bestCouple = t.couple;
-        }
-      couple.push_back(bestCouple);
+      couple.push_back(fitCoupling(o, g, e, exact->at(g, kRays[1], e), peak22, cal, false).couple);
       for (const Ray& r : kRays) {
         const Point p = studyFastSim(o, g, r, e, cal, StudyTerms()), q = fastsimAt(o, g, r, e, cal);
         march =
             std::max({march, std::abs(p.fx - q.fx), std::abs(p.fy - q.fy), std::abs(p.mz - q.mz)});
       }
     }
+    // The same at the table's knots, with one multiplier of L1, L2, L3 (as 22's ratio acts in the
+    // table): the coupling and the ratio a table kind would hold, interpolated at the points.
+    std::vector<double> knotCouple, knotLog;
+    for (double e : o.knots) {
+      if (e == 0.0) {
+        knotCouple.push_back(0.0);  // linear theory: the first knot's, below
+        knotLog.push_back(0.0);
+        continue;
+      }
+      const StudyTerms t = fitCoupling(o, g, e, exact->at(g, kRays[1], e), peak22, cal, true);
+      knotCouple.push_back(t.couple);
+      knotLog.push_back(t.l[1]);
+    }
+    if (knotCouple.size() > 1) knotCouple[0] = knotCouple[1];
+    auto tabulated = [&](const std::vector<double>& v, double e) {
+      if (!(e < o.knots.back())) return v.back();
+      std::size_t i = 1;
+      while (o.knots[i] <= e) ++i;
+      const double w = (e - o.knots[i - 1]) / (o.knots[i] - o.knots[i - 1]);
+      return v[i - 1] + w * (v[i] - v[i - 1]);
+    };
     std::printf("a/b %g: coupling fitted on ray 22 at each point:", g);
     for (double c : couple) std::printf(" %.2f", c);
     std::printf(" (study march against the core's: %.1e)\n", march);
-    std::printf("%-5s %-5s %15s %15s %15s %15s %15s %15s\n", "a/b", "ray", "table F / Mz", "refit",
-                "refit, beta", "coupled", "refit, coupled", "beta, coupled");
+    std::printf("a/b %g: at the knots, coupling / multiplier:", g);
+    for (std::size_t i = 0; i < o.knots.size(); ++i)
+      std::printf(" %g: %.2f / %.2f", o.knots[i], knotCouple[i], std::exp(knotLog[i]));
+    std::printf("\n");
+    std::printf("%-5s %-5s %15s %15s %15s %15s %15s %15s %15s\n", "a/b", "ray", "table F / Mz",
+                "refit", "refit, beta", "coupled", "refit, coupled", "beta, coupled", "tabulated");
     for (const Ray& r : kRays) {
       const double peak = peakOf(r);
-      constexpr int kVariants = 6;
+      constexpr int kVariants = 7;
       RayError err[kVariants];
       for (std::size_t i = 0; i < o.points.size(); ++i) {
         const double e = o.points[i];
         const Point x = exact->at(g, r, e);
         StudyTerms coupled;
         coupled.couple = couple[i];
+        // As a table would: the knots' coupling at e, and their multiplier by eta's share of e^2
+        // (the table's ln ratio is the kinds' ln ratios weighed by their shares).
+        auto knotTerms = [&](const Ray& ray, double at) {
+          StudyTerms t;
+          const double n2 = ray.e[0] * ray.e[0] + ray.e[1] * ray.e[1] + ray.e[2] * ray.e[2];
+          t.couple = tabulated(knotCouple, at);
+          t.l[0] = t.l[1] = t.l[2] = ray.e[1] * ray.e[1] / n2 * tabulated(knotLog, at);
+          return t;
+        };
         const StudyTerms terms[kVariants] = {
             StudyTerms(),
             fitPoint(o, g, r, e, x, peak, cal, StudyTerms(), false),
             fitPoint(o, g, r, e, x, peak, cal, StudyTerms(), true),
             coupled,
             fitPoint(o, g, r, e, x, peak, cal, coupled, false),
-            fitPoint(o, g, r, e, x, peak, cal, coupled, true)};
+            fitPoint(o, g, r, e, x, peak, cal, coupled, true),
+            knotTerms(r, e)};
         for (int v = 0; v < kVariants; ++v) {
           const Point p = studyFastSim(o, g, r, e, cal, terms[v]);
           err[v].f = std::max({err[v].f, std::abs(p.fx - x.fx), std::abs(p.fy - x.fy)});
