@@ -57,7 +57,7 @@ struct Options {
                                    1.5, 1.65, 1.85, 2,    2.25, 3,   4.5,  7,   10, 15};
   std::vector<double> spinShares = {0.25, 0.375, 0.5, 0.75, 0.9},
                       xiShares = {0, 0.25, 0.5, 0.75, 1};
-  bool solveGrid = false, gridOnly = false;
+  bool solveGrid = false, gridOnly = false, momentStudy = false;
 };
 
 const char* const kUsage =
@@ -69,7 +69,7 @@ const char* const kUsage =
     "                       [--correction-knots 0,0.1,...]\n"
     "                       [--spin-shares 0.25,0.375,0.5,0.75,0.9]\n"
     "                       [--xi-shares 0,0.25,0.5,0.75,1]\n"
-    "                       [--solve-grid [--grid-only]]\n"
+    "                       [--solve-grid [--grid-only]] [--moment-study]\n"
     "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
     "          --table classic: no table)\n"
     "--curves: write exact / classic / calibrated curves at --points for every ray\n"
@@ -78,7 +78,10 @@ const char* const kUsage =
     "          with --curves)\n"
     "--spin-shares, --xi-shares: the combined correction's direction grid (none: no correction)\n"
     "--solve-grid: only solve the exact points the table and curves need (a long job; the cache\n"
-    "          is saved as it goes); --grid-only: the direction grid's points, not the rays'\n";
+    "          is saved as it goes); --grid-only: the direction grid's points, not the rays'\n"
+    "--moment-study: per ray and a/b at --points, FastSim's errors on the table (or --table) and\n"
+    "          refitted point by point with and without two terms the core does not have\n"
+    "          (doc/calibrated_fastsim.md, \"Mz from eta\"); one --nx, no table written\n";
 
 void readOption(tools::Args& a, Options* o) {
   if (a.is("--out"))
@@ -111,6 +114,8 @@ void readOption(tools::Args& a, Options* o) {
     o->solveGrid = true;
   else if (a.is("--grid-only"))
     o->gridOnly = true;
+  else if (a.is("--moment-study"))
+    o->momentStudy = true;
   else
     a.unknown();
 }
@@ -669,6 +674,220 @@ void writeCurves(const Options& o, ExactCache* exact, const SteadyCalibration& m
   }
 }
 
+// The moment study (--moment-study). Steady FastSim on the table's step with its flexibilities L1,
+// L2, L3 (L3x with L3) times exp(l[0..2]) and its bound's shape times exp(l[3]) (where the table
+// has no shape, exp(l[3]) - 1 from the parabola), and with two terms the core's march does not
+// have:
+// - an eta drive varying along each strip, (eta / L2) (1 - beta x / a_j) / (1 - beta / 3) (x
+//   rolling, leading edge at +a_j): in adhesion the same force, its moment times 1 / (1 - beta /
+//   3);
+// - a longitudinal slip from the lateral traction: du_x/dx = L1 dtau_x/dx + (couple / G) (y / b)
+//   tau_y, so the x drive gains couple (y / b) tau_y / (G L1), tau_y the upstream node's traction.
+//   A local stand-in for the longitudinal surface displacement that lateral traction makes through
+//   nu (Cerruti's solution), odd in y: in full slip it turns the traction off the rigid slip's
+//   direction and carries a moment, as exact theory's, which is zero at nu = 0.
+// Its own march, a strip at a time (the core's is untouched); with l = 0, beta = 0 and couple = 0
+// it is the core's steady FastSim (the study prints the difference).
+struct StudyTerms {
+  double l[4] = {0.0, 0.0, 0.0, 0.0};
+  double beta = 0.0, couple = 0.0;
+};
+
+Point studyFastSim(const Options& o, double g, const Ray& r, double e,
+                   const FlexibilityCalibration& base, const StudyTerms& t) {
+  const Setup s(o, g);
+  const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
+  TractionField f;
+  f.resize(mesh.size());
+  const Creepages c = s.creepages(r, e);
+  const CalibratedStep step = base.step(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
+  const double shape =
+      step.boundShape > 0.0 ? step.boundShape * std::exp(t.l[3]) : std::exp(t.l[3]) - 1.0;
+  flattenedBound(mesh, s.a, s.b, s.fz, s.mu,
+                 std::min(FlexibilityCalibration::kMaxBoundShape, std::max(0.0, shape)), &f);
+  const double L1 = step.L.L1 * std::exp(t.l[0]), L2 = step.L.L2 * std::exp(t.l[1]),
+               L3 = step.L.L3 * std::exp(t.l[2]), L3x = step.L.spinX() * std::exp(t.l[2]);
+  const double gy = c.eta / L2 / (1.0 - t.beta / 3.0), gphi = c.phi / L3;
+  double fx = 0.0, fy = 0.0, mz = 0.0;
+  for (int j = 0; j < mesh.ny(); ++j) {
+    const double dx = mesh.stripStep(j), aj = mesh.stripHalfLength(j), y = mesh.stripY(j);
+    const double sx = c.xi / L1 - c.phi * y / L3x, perTy = t.couple * (y / s.b) / (s.G * L1);
+    double tx = 0.0, ty = 0.0;
+    for (int i = 0; i < mesh.nx(); ++i) {
+      const UpstreamStep u(i, dx, aj);
+      tx -= u.h * (sx + perTy * ty);
+      ty -= u.h * (gy * (1.0 - t.beta * u.xMid / aj) + gphi * u.xMid);
+      const double bound = f.bound(mesh.index(i, j)), size = std::hypot(tx, ty);
+      if (size > bound) {
+        tx *= bound / size;
+        ty *= bound / size;
+      }
+      fx += tx * mesh.nodeArea(j);
+      fy += ty * mesh.nodeArea(j);
+      mz += (mesh.nodeX(i, j) * ty - y * tx) * mesh.nodeArea(j);
+    }
+  }
+  return s.normalised(fx, fy, mz);
+}
+
+// Errors of one ray: the largest max(|dFx|, |dFy|) / (mu fz) and |dMz| / peak |Mz| over its points.
+struct RayError {
+  double f = 0.0, mz = 0.0;
+};
+
+// At a point, the study's parameters that fit the exact one best (the combined correction's smooth
+// norm and pull, identifyDirection), by pattern search from t: l[0..3], with `beta` the eta
+// drive's slope as well; the coupling as given.
+StudyTerms fitPoint(const Options& o, double g, const Ray& r, double e, const Point& x,
+                    double mzPeak, const FlexibilityCalibration& base, StudyTerms t, bool beta) {
+  auto cost = [&](const StudyTerms& u) {
+    const Point p = studyFastSim(o, g, r, e, base, u);
+    const double dm = mzPeak > 1e-3 ? 0.2 * (p.mz - x.mz) / mzPeak : 0.0;
+    return std::sqrt((p.fx - x.fx) * (p.fx - x.fx) + (p.fy - x.fy) * (p.fy - x.fy) + dm * dm) +
+           1e-3 * (std::abs(u.l[0]) + std::abs(u.l[1]) + std::abs(u.l[2]) + std::abs(u.l[3]) +
+                   std::abs(u.beta));
+  };
+  double best = cost(t);
+  const int dims = beta ? 5 : 4;
+  for (double h = 0.2; h > 1e-3; h *= 0.5)
+    for (int moves = 0, moved = 1; moved && moves < 500; ++moves) {
+      moved = 0;
+      for (int d = 0; d < dims; ++d)
+        for (double step : {h, -h}) {
+          StudyTerms u = t;
+          (d < 4 ? u.l[d] : u.beta) += step;
+          // The shape at most about 1 where the table has none; beta in [-2, 2.5] (1 - beta / 3 >
+          // 0).
+          if (u.l[3] > 0.7 || u.beta > 2.5 || u.beta < -2.0) continue;
+          const double c = cost(u);
+          if (c < best) best = c, t = u, moved = 1;
+        }
+    }
+  return t;
+}
+
+// The coupling (and L2's multiplier, on a grid; with `all` one multiplier of L1, L2 and L3) that
+// fits ray 22's exact point x best: the larger of max(|dFx|, |dFy|) and 0.2 |dMz| / peak.
+StudyTerms fitCoupling(const Options& o, double g, double e, const Point& x, double mzPeak,
+                       const FlexibilityCalibration& base, bool all) {
+  double best = 1e300;
+  StudyTerms fit;
+  for (int ic = -150; ic <= 50; ++ic)
+    for (int il = -15; il <= 15; ++il) {
+      StudyTerms t;
+      t.couple = 0.01 * ic;
+      t.l[1] = 0.02 * il;
+      if (all) t.l[0] = t.l[2] = t.l[1];
+      const Point p = studyFastSim(o, g, kRays[1], e, base, t);
+      const double c = std::max(std::max(std::abs(p.fx - x.fx), std::abs(p.fy - x.fy)),
+                                0.2 * std::abs(p.mz - x.mz) / mzPeak);
+      if (c < best) best = c, fit = t;
+    }
+  return fit;
+}
+
+// Per a/b: the coupling that fits eta alone (ray 22) point by point (with L2's multiplier, on a
+// grid), then every ray's errors on the table; refitted (l); refitted with beta; with that
+// coupling on the table as it is; refitted with it; refitted with beta and it; and "tabulated": the
+// coupling and one multiplier of L1, L2, L3 fitted on 22 at the table's knots (--knots),
+// interpolated linearly in e, the multiplier weighed by eta's share of e^2 (as 22's ratio acts in
+// the table), nothing else refitted: what a table kind would give on the rays off its knots.
+void momentStudy(const Options& o, ExactCache* exact, const SteadyCalibration& meshes) {
+  const SteadyCalibration table = meshes.forMesh(o.nx);
+  std::printf("FastSim %dx%d; force: max |dF| / mu fz, Mz: max |dMz| / peak |Mz|, over --points\n",
+              o.nx, o.nx);
+  for (double g : o.ratios) {
+    const FlexibilityCalibration cal = table.at(g);
+    auto peakOf = [&](const Ray& r) {
+      double peak = 0.0;
+      for (double e : o.points) peak = std::max(peak, std::abs(exact->at(g, r, e).mz));
+      return peak;
+    };
+    // The couplings of ray 22 at the points, and how far the study's march is from the core's.
+    const double peak22 = peakOf(kRays[1]);
+    std::vector<double> couple;
+    double march = 0.0;
+    for (double e : o.points) {
+      couple.push_back(fitCoupling(o, g, e, exact->at(g, kRays[1], e), peak22, cal, false).couple);
+      for (const Ray& r : kRays) {
+        const Point p = studyFastSim(o, g, r, e, cal, StudyTerms()), q = fastsimAt(o, g, r, e, cal);
+        march =
+            std::max({march, std::abs(p.fx - q.fx), std::abs(p.fy - q.fy), std::abs(p.mz - q.mz)});
+      }
+    }
+    // The same at the table's knots, with one multiplier of L1, L2, L3 (as 22's ratio acts in the
+    // table): the coupling and the ratio a table kind would hold, interpolated at the points.
+    std::vector<double> knotCouple, knotLog;
+    for (double e : o.knots) {
+      if (e == 0.0) {
+        knotCouple.push_back(0.0);  // linear theory: the first knot's, below
+        knotLog.push_back(0.0);
+        continue;
+      }
+      const StudyTerms t = fitCoupling(o, g, e, exact->at(g, kRays[1], e), peak22, cal, true);
+      knotCouple.push_back(t.couple);
+      knotLog.push_back(t.l[1]);
+    }
+    if (knotCouple.size() > 1) knotCouple[0] = knotCouple[1];
+    auto tabulated = [&](const std::vector<double>& v, double e) {
+      if (!(e < o.knots.back())) return v.back();
+      std::size_t i = 1;
+      while (o.knots[i] <= e) ++i;
+      const double w = (e - o.knots[i - 1]) / (o.knots[i] - o.knots[i - 1]);
+      return v[i - 1] + w * (v[i] - v[i - 1]);
+    };
+    std::printf("a/b %g: coupling fitted on ray 22 at each point:", g);
+    for (double c : couple) std::printf(" %.2f", c);
+    std::printf(" (study march against the core's: %.1e)\n", march);
+    std::printf("a/b %g: at the knots, coupling / multiplier:", g);
+    for (std::size_t i = 0; i < o.knots.size(); ++i)
+      std::printf(" %g: %.2f / %.2f", o.knots[i], knotCouple[i], std::exp(knotLog[i]));
+    std::printf("\n");
+    std::printf("%-5s %-5s %15s %15s %15s %15s %15s %15s %15s\n", "a/b", "ray", "table F / Mz",
+                "refit", "refit, beta", "coupled", "refit, coupled", "beta, coupled", "tabulated");
+    for (const Ray& r : kRays) {
+      const double peak = peakOf(r);
+      constexpr int kVariants = 7;
+      RayError err[kVariants];
+      for (std::size_t i = 0; i < o.points.size(); ++i) {
+        const double e = o.points[i];
+        const Point x = exact->at(g, r, e);
+        StudyTerms coupled;
+        coupled.couple = couple[i];
+        // As a table would: the knots' coupling at e, and their multiplier by eta's share of e^2
+        // (the table's ln ratio is the kinds' ln ratios weighed by their shares).
+        auto knotTerms = [&](const Ray& ray, double at) {
+          StudyTerms t;
+          const double n2 = ray.e[0] * ray.e[0] + ray.e[1] * ray.e[1] + ray.e[2] * ray.e[2];
+          t.couple = tabulated(knotCouple, at);
+          t.l[0] = t.l[1] = t.l[2] = ray.e[1] * ray.e[1] / n2 * tabulated(knotLog, at);
+          return t;
+        };
+        const StudyTerms terms[kVariants] = {
+            StudyTerms(),
+            fitPoint(o, g, r, e, x, peak, cal, StudyTerms(), false),
+            fitPoint(o, g, r, e, x, peak, cal, StudyTerms(), true),
+            coupled,
+            fitPoint(o, g, r, e, x, peak, cal, coupled, false),
+            fitPoint(o, g, r, e, x, peak, cal, coupled, true),
+            knotTerms(r, e)};
+        for (int v = 0; v < kVariants; ++v) {
+          const Point p = studyFastSim(o, g, r, e, cal, terms[v]);
+          err[v].f = std::max({err[v].f, std::abs(p.fx - x.fx), std::abs(p.fy - x.fy)});
+          if (peak > 1e-3) err[v].mz = std::max(err[v].mz, std::abs(p.mz - x.mz) / peak);
+        }
+      }
+      std::printf("%-5g %-5s", g, r.name.c_str());
+      for (const RayError& v : err)
+        if (peak > 1e-3)
+          std::printf("  %.4f / %5.3f", v.f, v.mz);
+        else
+          std::printf("  %.4f /     -", v.f);
+      std::printf("\n");
+    }
+  }
+}
+
 // Solves (or finds in the cache) every exact point the combined correction is identified on and
 // evaluated on, saving the cache as it goes (a long job).
 void solveGrid(const Options& o, ExactCache* exact) {
@@ -707,6 +926,16 @@ int run(const Options& o, int argc, char** argv) {
     return 0;
   }
 
+  if (o.momentStudy) {
+    if (o.meshes.size() != 1) throw std::runtime_error("--moment-study: one --nx");
+    Options m = o;
+    m.nx = o.meshes.front();
+    momentStudy(m, &exact,
+                o.table == "classic" ? SteadyCalibration()
+                : o.table.empty()    ? SteadyCalibration::shipped()
+                                     : SteadyCalibration::load(o.table));
+    return 0;
+  }
   if (!o.out.empty()) writeTable(o, &exact, argc, argv);
   const std::string path = !o.out.empty() ? o.out : o.table;  // empty: the shipped table
   const SteadyCalibration table = path == "classic" ? SteadyCalibration()
