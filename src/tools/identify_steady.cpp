@@ -24,6 +24,7 @@
 #include <ctime>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -438,6 +439,29 @@ struct CorrectionFit {
 // Normalised creepage up to which the combined correction is 1.
 constexpr double kLinearEnd = 0.1;
 
+// Pattern search along the coordinates: from x, steps of +-h along each of its `dims` coordinates
+// while they lower `cost`, h halving from 0.2 down to 1e-3, at most `maxSweeps` sweeps per h; a
+// point `allowed` rejects is not costed. x ends at the best point found.
+constexpr int kMaxSearchDims = 5;
+template <class Cost, class Allowed>
+void coordinateSearch(double* x, int dims, const Cost& cost, const Allowed& allowed,
+                      int maxSweeps) {
+  double best = cost(x);
+  for (double h = 0.2; h > 1e-3; h *= 0.5)
+    for (int sweeps = 0, moved = 1; moved && sweeps < maxSweeps; ++sweeps) {
+      moved = 0;
+      for (int d = 0; d < dims; ++d)
+        for (double step : {h, -h}) {
+          double t[kMaxSearchDims];
+          std::copy(x, x + dims, t);
+          t[d] += step;
+          if (!allowed(t)) continue;
+          const double c = cost(t);
+          if (c < best) best = c, std::copy(t, t + dims, x), moved = 1;
+        }
+    }
+}
+
 // The combined correction along one direction of the grid: at each knot the multipliers of L1,
 // L2, L3 minimising spinError (force and moment weighed as for spin alone), by pattern search in
 // their logarithms from the previous knot's (one continuous branch), with a small pull towards 1.
@@ -467,18 +491,8 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
       return std::sqrt(dx * dx + dy * dy + dm * dm) +
              1e-3 * (std::abs(l[0]) + std::abs(l[1]) + std::abs(l[2]) + std::abs(l[3]));
     };
-    double best = cost(lm);
-    for (double h = 0.2; h > 1e-3; h *= 0.5)
-      for (bool moved = true; moved;) {
-        moved = false;
-        for (int d = 0; d < 4; ++d)
-          for (double step : {h, -h}) {
-            double t[4] = {lm[0], lm[1], lm[2], lm[3]};
-            t[d] += step;
-            const double c = cost(t);
-            if (c < best) best = c, std::copy(t, t + 4, lm), moved = true;
-          }
-      }
+    coordinateSearch(
+        lm, 4, cost, [](const double*) { return true; }, std::numeric_limits<int>::max());
     fit.m.push_back({std::exp(lm[0]), std::exp(lm[1]), std::exp(lm[2]), std::exp(lm[3])});
     fit.error.push_back(error(lm));
   }
@@ -740,30 +754,30 @@ struct RayError {
 // drive's slope as well; the coupling as given.
 StudyTerms fitPoint(const Options& o, double g, const Ray& r, double e, const Point& x,
                     double mzPeak, const FlexibilityCalibration& base, StudyTerms t, bool beta) {
-  auto cost = [&](const StudyTerms& u) {
+  // The search's point: l[0..3], then beta when it is searched too.
+  const int dims = beta ? 5 : 4;
+  auto terms = [&](const double* v) {
+    StudyTerms u = t;
+    std::copy(v, v + 4, u.l);
+    if (beta) u.beta = v[4];
+    return u;
+  };
+  auto cost = [&](const double* v) {
+    const StudyTerms u = terms(v);
     const Point p = studyFastSim(o, g, r, e, base, u);
     const double dm = mzPeak > 1e-3 ? 0.2 * (p.mz - x.mz) / mzPeak : 0.0;
     return std::sqrt((p.fx - x.fx) * (p.fx - x.fx) + (p.fy - x.fy) * (p.fy - x.fy) + dm * dm) +
            1e-3 * (std::abs(u.l[0]) + std::abs(u.l[1]) + std::abs(u.l[2]) + std::abs(u.l[3]) +
                    std::abs(u.beta));
   };
-  double best = cost(t);
-  const int dims = beta ? 5 : 4;
-  for (double h = 0.2; h > 1e-3; h *= 0.5)
-    for (int moves = 0, moved = 1; moved && moves < 500; ++moves) {
-      moved = 0;
-      for (int d = 0; d < dims; ++d)
-        for (double step : {h, -h}) {
-          StudyTerms u = t;
-          (d < 4 ? u.l[d] : u.beta) += step;
-          // The shape at most about 1 where the table has none; beta in [-2, 2.5] (1 - beta / 3 >
-          // 0).
-          if (u.l[3] > 0.7 || u.beta > 2.5 || u.beta < -2.0) continue;
-          const double c = cost(u);
-          if (c < best) best = c, t = u, moved = 1;
-        }
-    }
-  return t;
+  // The shape at most about 1 where the table has none; beta in [-2, 2.5] (1 - beta / 3 > 0).
+  auto allowed = [&](const double* v) {
+    const StudyTerms u = terms(v);
+    return !(u.l[3] > 0.7 || u.beta > 2.5 || u.beta < -2.0);
+  };
+  double v[kMaxSearchDims] = {t.l[0], t.l[1], t.l[2], t.l[3], t.beta};
+  coordinateSearch(v, dims, cost, allowed, 500);
+  return terms(v);
 }
 
 // The coupling (and L2's multiplier, on a grid; with `all` one multiplier of L1, L2 and L3) that
