@@ -156,6 +156,29 @@ TEST(SteadyCalibration, HertzMomentShapeGivesHertzsFullSlipSpinMoment) {
   EXPECT_NEAR(moment(FlexibilityCalibration::kHertzMomentShape), 3.0 * M_PI / 16.0, 1e-3);
 }
 
+TEST(SteadyCalibration, CreepagesWhoseSquaresAreSubnormalGiveFiniteFlexibilities) {
+  // xi = 2.4e-159 (found by fuzzing, nss fixed): e1^2 is subnormal, so one reciprocal of the
+  // squares' sum overflowed to infinity and the kinds' shares, then L1, were NaN. As e -> 0 the
+  // step must tend to linear theory: Kalker's flexibilities.
+  const FlexibilityCalibration c = SteadyCalibration::shipped().forMesh(20).at(1.5);
+  const double a = 6e-3, b = 4e-3, G = 8.2e10, muFz = 0.3 * 8e4;
+  const CreepCoefficients k = kalkerCoefficients(1.5, 0.28);
+  const Flexibilities L0 = kalkerFlexibilities(a, b, G, k);
+  for (const Creepages cr : {Creepages{2.3918967980787076e-159, 0.0, 0.0},
+                             Creepages{1e-160, -3e-160, 0.0}, Creepages{0.0, 2e-158, 1e-157}}) {
+    const CalibratedStep s = c.step(a, b, G, k, muFz, cr);
+    EXPECT_NEAR(s.L.L1, L0.L1, 1e-12 * L0.L1);
+    EXPECT_NEAR(s.L.L2, L0.L2, 1e-12 * L0.L2);
+    EXPECT_NEAR(s.L.L3, L0.L3, 1e-12 * L0.L3);
+    EXPECT_TRUE(std::isfinite(s.L.L3x) && std::isfinite(s.boundShape));
+  }
+  ContactParameters p;
+  p.model = "nss";
+  const StepOutput out =
+      makeContactModel(p)->step({1e-3, 20.0, 2.3918967980787076e-159, 0.0, 0.0, 8e4});
+  EXPECT_TRUE(std::isfinite(out.fx) && std::isfinite(out.fy) && std::isfinite(out.mz));
+}
+
 TEST(SteadyCalibration, EmptyIsClassicFastSimExactly) {
   const FlexibilityCalibration c = SteadyCalibration().at(1.0);
   EXPECT_TRUE(c.classic());

@@ -191,8 +191,15 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   };
   // Each kind's share of e^2 (one division for the three).
   // (From the squares' sum, not e * e: the division need not wait for e's square root.)
-  const double perE2 = finite ? 1.0 / (e2[0] + e2[1] + e2[2]) : 0.0;
-  const double share[3] = {e2[0] * perE2, e2[1] * perE2, e2[2] * perE2};
+  const double squares = e2[0] + e2[1] + e2[2];
+  double share[3] = {0.0, 0.0, 0.0};
+  if (finite && squares >= std::numeric_limits<double>::min()) {
+    const double perE2 = 1.0 / squares;
+    for (int i = 0; i < 3; ++i) share[i] = e2[i] * perE2;
+  } else if (finite) {
+    // A subnormal sum (creepages near 1e-155): its reciprocal would overflow to infinity.
+    for (int i = 0; i < 3; ++i) share[i] = e2[i] / squares;
+  }
   // The combined correction's ln multipliers, of L1, L2, L3 and of the bound's shape, in one
   // lookup; each goes into the exp of the ratio it multiplies. None for one kind or xi with eta.
   double lm[kCorrections];
