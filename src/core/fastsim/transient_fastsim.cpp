@@ -126,9 +126,9 @@ using Pair = Eigen::Array2d;
 // push_y = p0 + pushPerXn x/a. The upstream decay stays scalar, on the march's serial chain.
 struct PackedStep {
   Pair memory, lag, push;
-  Pair inverseDecay;    // 1 + h beta (slipsAlongTheResidual)
-  Pair decaySwapped;    // (decayY, decayX) (slipsAlongTheResidual)
-  double historyScale;  // r
+  Pair scaledInverseDecay;  // r (1 + h beta) (slipsAlongTheResidual)
+  Pair decaySwapped;        // (decayY, decayX) (slipsAlongTheResidual)
+  double squaredScale;      // r^2 (slipsAlongTheResidual)
   double decayX, decayY, pushPerXn;
   // beta: (X.beta, Y.beta); lagPerLength is the same for both directions.
   PackedStep(const Pair& beta, double lagPerLength, double r, double h, double driveX, double gy,
@@ -136,8 +136,8 @@ struct PackedStep {
     const Pair hb = h * beta, decay = 1.0 / (1.0 + hb);
     decaySwapped = Pair(decay(1), decay(0));
     memory = hb * r * decay;
-    inverseDecay = 1.0 + hb;
-    historyScale = r;
+    scaledInverseDecay = r * (1.0 + hb);
+    squaredScale = r * r;
     lag = h * lagPerLength * decay;
     push = h * Pair(driveX, gy + 0.5 * h * gphi) * decay;
     decayX = decay(0);
@@ -297,8 +297,9 @@ struct StateUpdate {
 // is held at 0 (the guess's direction) where that product says the traction turned. With beta_x
 // = beta_y the direction is the guess's whatever lambda. The result is put on the bound as
 // StripSums::node does.
-inline bool slipsAlongTheResidual(const PackedStep& m, const Pair& history, const Pair& old,
-                                  const Pair& upstreamOld, double g, double* tx, double* ty) {
+[[gnu::always_inline]] inline bool slipsAlongTheResidual(const PackedStep& m, const Pair& history,
+                                                         const Pair& old, const Pair& upstreamOld,
+                                                         double g, double* tx, double* ty) {
   const double t2 = *tx * *tx + *ty * *ty;
   if (!(t2 > g * g) || !(t2 > 1e-300)) return false;  // adhesion, or StripSums::node's tiny path
   // v = rhs - h beta r tau_old = (guess - memory tau_old) / decay, the guess being history + decay
@@ -306,15 +307,16 @@ inline bool slipsAlongTheResidual(const PackedStep& m, const Pair& history, cons
   // point, so that v and lambda, off the march's serial chain through tau_up, add no latency to
   // it. tau_i is along guess_i / (1 + lambda decay_i), i.e. along guess_i w_i with w_i = g^2 (1 +
   // lambda decay_j), j the other direction: times both denominators and g^2, no division.
-  const Pair rOld = m.historyScale * old;
-  const Pair steady = (history - m.memory * old) * m.inverseDecay + m.historyScale * upstreamOld;
-  const double g2 = g * g, excess = std::max((steady * rOld).sum() - g2, 0.0);
+  // r v . tau_old, with r v = (history - memory tau_old) r / decay + r^2 upstreamOld.
+  const Pair rSteady =
+      (history - m.memory * old) * m.scaledInverseDecay + m.squaredScale * upstreamOld;
+  const double g2 = g * g, excess = std::max((rSteady * old).sum() - g2, 0.0);
   const Pair w = g2 + excess * m.decaySwapped;
-  const Pair guess(*tx, *ty), d = guess * w;
+  const Pair d = Pair(*tx, *ty) * w;
   const double d2 = (d * d).sum();
   // A bound next to zero, or so large that d2 leaves the doubles: StripSums::node's way.
   if (!(d2 > 1e-300) || !(d2 < 1e300)) return false;
-  const Pair t = guess * ((g * w) / std::sqrt(d2));
+  const Pair t = d * (g / std::sqrt(d2));
   *tx = t(0);
   *ty = t(1);
   return true;
