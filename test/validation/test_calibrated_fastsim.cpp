@@ -152,7 +152,7 @@ TEST_F(CalibratedSteady, SpinSharesBetweenTheSmallKnotsWithinTwoPercentOfMuFz) {
   // h5 (1, 0.6, -0.5), spin 15.5 % of e^2 with eta phi < 0 (between the knots 0.1 and 0.175), and
   // h6 (0.8, 0.8, 0.55), 19 % with eta phi > 0 (between 0.175 and 0.25), held out: measured
   // 0.007-0.011 and 0.002-0.005 (0.029-0.042 and 0.013-0.020 with the knots from 0.25 only; classic
-  // 0.05-0.20).
+  // 0.094-0.172 and 0.030-0.106).
   for (double ab : {0.2, 1.0, 5.0})
     for (const char* ray : {"h5", "h6"}) {
       const double cal = error(ab, ray, true).force;
