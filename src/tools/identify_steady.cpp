@@ -5,7 +5,8 @@
 // is read, not recomputed; missing points are solved and the cache rewritten.
 // Curves: along a ray of normalised creepage (e1, e2, e3) (steady_calibration.hpp), kinds 11, 22,
 // 23 one creepage each; combined rays xe (1, 1, 0), xep (1, 1, 1), opp (1, -1, 1), spin
-// (0.3, -0.3, 1) (large spin, opposite signs), h1 (1, 0.5, 0.8) and h2 (0.4, 1, -0.7): the
+// (0.3, -0.3, 1) (large spin, opposite signs), h1 (1, 0.5, 0.8), h2 (0.4, 1, -0.7) and the small
+// spin shares h3 (1, -1, 0.2), h4 (0.5, 1, 0.25), h5 (1, 0.6, -0.5), h6 (0.8, 0.8, 0.55): the
 // combined correction's evaluation rays, none on its direction grid.
 // Identification, per a/b and kind: at each knot epsilon the ratio r minimising FastSim's error
 // against the exact point, max(|dFx|, |dFy|) / (mu fz), scanned near the previous knot's ratio.
