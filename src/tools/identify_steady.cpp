@@ -444,10 +444,9 @@ struct CorrectionFit {
 // Normalised creepage up to which the combined correction is 1.
 constexpr double kLinearEnd = 0.1;
 // Below FlexibilityCalibration::kSmallSpinShare a spin-share knot is fitted from this normalised
-// creepage up to kFullSlipFrom only: there the interpolation from no spin to the first knot from
-// kSmallSpinShare on missed (h4, partial slip); in full slip towardsFullSlip decides, and nearer
-// linear theory the knot's own fit made the paper's combined2 (spin shares down to 0.01 at
-// e <= 0.61) worse.
+// creepage on only (with towardsFullSlip's blend in the fit, as the table applies it there): below
+// it the knot's own fit made the paper's combined2 (spin shares down to 0.01 at e <= 0.61) worse,
+// where the interpolation from no spin to the first knot from kSmallSpinShare on did not miss.
 constexpr double kSmallShareFitFrom = 0.75;
 
 // Pattern search along the coordinates: from x, steps of +-h along each of its `dims` coordinates
@@ -477,10 +476,10 @@ void coordinateSearch(double* x, int dims, const Cost& cost, const Allowed& allo
 // L2, L3 minimising spinError (force and moment weighed as for spin alone), by pattern search in
 // their logarithms from the previous knot's (one continuous branch), with a small pull towards 1.
 // `held` (a spin share s3 below FlexibilityCalibration::kSmallSpinShare): the same xi share and
-// sign's fit at the first spin share sA from it on; knots outside [kSmallShareFitFrom,
-// kFullSlipFrom) take held's multipliers to the power s3 / sA (what linear interpolation in ln
-// multiplier between no spin and sA gives there, so the knot changes nothing there) and the search
-// goes on from them.
+// sign's fit at the first spin share sA from it on; knots below kSmallShareFitFrom take held's
+// multipliers to the power s3 / sA (what linear interpolation in ln multiplier between no spin and
+// sA gives there, so the knot changes nothing there) and the search goes on from them; every knot
+// is costed with towardsFullSlip's blend.
 CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, const Ray& r,
                                 const FlexibilityCalibration& base,
                                 const CorrectionFit* held = nullptr, double heldPower = 0.0) {

@@ -111,10 +111,10 @@ class FlexibilityCalibration {
   /// towardsFullSlip's blend itself, whatever the table (identify_steady fits a knot below
   /// kSmallSpinShare with it).
   static double hertzShapeBlend(double shape, double e, double s3);
-  /// Spin's share below which towardsFullSlip acts: the shipped correction's first spin-share
-  /// knot that is identified over the whole curve. A knot below it (0.1) is identified in partial
-  /// slip only and, from kFullSlipFrom on, holds the correction interpolated between no spin and
-  /// that knot (identify_steady), so that towardsFullSlip acts on the same shape as without it.
+  /// Spin's share below which towardsFullSlip acts, whatever the table's spin-share knots. The
+  /// shipped table's knots below it (0.1, 0.175) are identified with towardsFullSlip in the fit
+  /// and, near linear theory, hold the correction interpolated between no spin and the first knot
+  /// from it on (identify_steady).
   static constexpr double kSmallSpinShare = 0.25;
   /// Normalised creepage from which towardsFullSlip moves the shape.
   static constexpr double kFullSlipFrom = 2.5;
