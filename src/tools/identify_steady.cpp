@@ -5,7 +5,8 @@
 // is read, not recomputed; missing points are solved and the cache rewritten.
 // Curves: along a ray of normalised creepage (e1, e2, e3) (steady_calibration.hpp), kinds 11, 22,
 // 23 one creepage each; combined rays xe (1, 1, 0), xep (1, 1, 1), opp (1, -1, 1), spin
-// (0.3, -0.3, 1) (large spin, opposite signs), h1 (1, 0.5, 0.8) and h2 (0.4, 1, -0.7): the
+// (0.3, -0.3, 1) (large spin, opposite signs), h1 (1, 0.5, 0.8), h2 (0.4, 1, -0.7) and the small
+// spin shares h3 (1, -1, 0.2), h4 (0.5, 1, 0.25), h5 (1, 0.6, -0.5), h6 (0.8, 0.8, 0.55): the
 // combined correction's evaluation rays, none on its direction grid.
 // Identification, per a/b and kind: at each knot epsilon the ratio r minimising FastSim's error
 // against the exact point, max(|dFx|, |dFy|) / (mu fz), scanned near the previous knot's ratio.
@@ -56,7 +57,7 @@ struct Options {
   // The combined correction's knots: denser where creep curves with spin turn (e 1.5 to 2.5).
   std::vector<double> corrKnots = {0,   0.1,  0.2,  0.35, 0.5,  0.6, 0.75, 0.9, 1,  1.25,
                                    1.5, 1.65, 1.85, 2,    2.25, 3,   4.5,  7,   10, 15};
-  std::vector<double> spinShares = {0.25, 0.375, 0.5, 0.75, 0.9},
+  std::vector<double> spinShares = {0.1, 0.175, 0.25, 0.375, 0.5, 0.75, 0.9},
                       xiShares = {0, 0.25, 0.5, 0.75, 1};
   bool solveGrid = false, gridOnly = false, momentStudy = false;
 };
@@ -68,7 +69,7 @@ const char* const kUsage =
     "                       [--grid 20] [--nx 20[,...]] [--nu 0.28] [--ab 0.2,0.5,1,2,5]\n"
     "                       [--knots 0,0.1,...] [--points 0.05,0.15,...]\n"
     "                       [--correction-knots 0,0.1,...]\n"
-    "                       [--spin-shares 0.25,0.375,0.5,0.75,0.9]\n"
+    "                       [--spin-shares 0.1,0.175,0.25,0.375,0.5,0.75,0.9]\n"
     "                       [--xi-shares 0,0.25,0.5,0.75,1]\n"
     "                       [--solve-grid [--grid-only]] [--moment-study]\n"
     "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
@@ -125,10 +126,11 @@ struct Ray {
   std::string name;
   double e[3];
 };
-const Ray kRays[] = {{"11", {1, 0, 0}},        {"22", {0, 1, 0}},     {"23", {0, 0, 1}},
-                     {"xe", {1, 1, 0}},        {"xep", {1, 1, 1}},    {"opp", {1, -1, 1}},
-                     {"spin", {0.3, -0.3, 1}}, {"h1", {1, 0.5, 0.8}}, {"h2", {0.4, 1, -0.7}},
-                     {"h3", {1, -1, 0.2}},     {"h4", {0.5, 1, 0.25}}};
+const Ray kRays[] = {{"11", {1, 0, 0}},        {"22", {0, 1, 0}},      {"23", {0, 0, 1}},
+                     {"xe", {1, 1, 0}},        {"xep", {1, 1, 1}},     {"opp", {1, -1, 1}},
+                     {"spin", {0.3, -0.3, 1}}, {"h1", {1, 0.5, 0.8}},  {"h2", {0.4, 1, -0.7}},
+                     {"h3", {1, -1, 0.2}},     {"h4", {0.5, 1, 0.25}}, {"h5", {1, 0.6, -0.5}},
+                     {"h6", {0.8, 0.8, 0.55}}};
 
 // The direction grid of the combined correction: spin's share s3 = e3^2 / e^2, xi's share of the
 // rest t = e1^2 / (e1^2 + e2^2), and the relative sign of eta and phi (xi's sign only mirrors).
@@ -250,16 +252,19 @@ class ExactCache {
 // combined correction) with L1, L2, L3 (L3x with L3) multiplied by m[0..2], the bound's shape by
 // m[3].
 Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
-                       const FlexibilityCalibration& base, const double* m) {
+                       const FlexibilityCalibration& base, const double* m,
+                       bool hertzShapeBlend = false) {
   const Setup s(o, g);
   const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
   TractionField f;
   f.resize(mesh.size());
   const Creepages c = s.creepages(r, e);
-  flattenedBound(mesh, s.a, s.b, s.fz, s.mu,
-                 std::min(FlexibilityCalibration::kMaxBoundShape,
-                          base.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c) * m[3]),
-                 &f);
+  double shape = std::min(FlexibilityCalibration::kMaxBoundShape,
+                          base.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c) * m[3]);
+  if (hertzShapeBlend)  // as the table with its correction does (towardsFullSlip)
+    shape = FlexibilityCalibration::hertzShapeBlend(
+        shape, e, r.e[2] * r.e[2] / (r.e[0] * r.e[0] + r.e[1] * r.e[1] + r.e[2] * r.e[2]));
+  flattenedBound(mesh, s.a, s.b, s.fz, s.mu, shape, &f);
   Flexibilities L = base.flexibilities(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
   L.L3x = L.spinX() * m[2];
   L.L1 *= m[0];
@@ -438,6 +443,11 @@ struct CorrectionFit {
 
 // Normalised creepage up to which the combined correction is 1.
 constexpr double kLinearEnd = 0.1;
+// Below FlexibilityCalibration::kSmallSpinShare a spin-share knot is fitted from this normalised
+// creepage on only (with towardsFullSlip's blend in the fit, as the table applies it there): below
+// it the knot's own fit made the paper's combined2 (spin shares down to 0.01 at e <= 0.61) worse,
+// where the interpolation from no spin to the first knot from kSmallSpinShare on did not miss.
+constexpr double kSmallShareFitFrom = 0.75;
 
 // Pattern search along the coordinates: from x, steps of +-h along each of its `dims` coordinates
 // while they lower `cost`, h halving from 0.2 down to 1e-3, at most `maxSweeps` sweeps per h; a
@@ -465,13 +475,20 @@ void coordinateSearch(double* x, int dims, const Cost& cost, const Allowed& allo
 // The combined correction along one direction of the grid: at each knot the multipliers of L1,
 // L2, L3 minimising spinError (force and moment weighed as for spin alone), by pattern search in
 // their logarithms from the previous knot's (one continuous branch), with a small pull towards 1.
+// `held` (a spin share s3 below FlexibilityCalibration::kSmallSpinShare): the same xi share and
+// sign's fit at the first spin share sA from it on; knots below kSmallShareFitFrom take held's
+// multipliers to the power s3 / sA (what linear interpolation in ln multiplier between no spin and
+// sA gives there, so the knot changes nothing there) and the search goes on from them; every knot
+// is costed with towardsFullSlip's blend.
 CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, const Ray& r,
-                                const FlexibilityCalibration& base) {
+                                const FlexibilityCalibration& base,
+                                const CorrectionFit* held = nullptr, double heldPower = 0.0) {
   double mzPeak = 0.0;
   for (double e : o.corrKnots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, r, e).mz));
   CorrectionFit fit;
   double lm[4] = {0.0, 0.0, 0.0, 0.0};
-  for (double e : o.corrKnots) {
+  for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
+    const double e = o.corrKnots[i];
     const Point x = exact->at(g, r, e);
     if (e == 0.0) {
       fit.m.push_back({1.0, 1.0, 1.0, 1.0});
@@ -480,13 +497,19 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
     }
     auto error = [&](const double* l) {
       const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
-      return spinError(fastsimCorrected(o, g, r, e, base, m), x, mzPeak);
+      return spinError(fastsimCorrected(o, g, r, e, base, m, held), x, mzPeak);
     };
+    if (held && e < kSmallShareFitFrom) {
+      for (int p = 0; p < 4; ++p) lm[p] = heldPower * std::log(held->m[i][p]);
+      fit.m.push_back({std::exp(lm[0]), std::exp(lm[1]), std::exp(lm[2]), std::exp(lm[3])});
+      fit.error.push_back(error(lm));
+      continue;
+    }
     // The search minimises a smooth norm of the same errors (a coordinate search stalls on the
     // ridges of a maximum).
     auto cost = [&](const double* l) {
       const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
-      const Point p = fastsimCorrected(o, g, r, e, base, m);
+      const Point p = fastsimCorrected(o, g, r, e, base, m, held);
       const double dx = p.fx - x.fx, dy = p.fy - x.fy, dm = 0.2 * (p.mz - x.mz) / mzPeak;
       return std::sqrt(dx * dx + dy * dy + dm * dm) +
              1e-3 * (std::abs(l[0]) + std::abs(l[1]) + std::abs(l[2]) + std::abs(l[3]));
@@ -503,7 +526,7 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
     const double one[4] = {1.0, 1.0, 1.0, 1.0};
     fit.m[i] = {1.0, 1.0, 1.0, 1.0};
     if (o.corrKnots[i] > 0.0)
-      fit.error[i] = spinError(fastsimCorrected(o, g, r, o.corrKnots[i], base, one),
+      fit.error[i] = spinError(fastsimCorrected(o, g, r, o.corrKnots[i], base, one, held),
                                exact->at(g, r, o.corrKnots[i]), mzPeak);
   }
   return fit;
@@ -515,19 +538,34 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
   for (double g : o.ratios) {
     const FlexibilityCalibration cal = base.at(g);
     double worst = 0.0;
+    // By spin share, then xi share and sign. The shares from kSmallSpinShare on first: a share
+    // below it holds, outside its fitted range, the first of them (identifyDirection).
+    std::map<double, std::map<std::pair<double, int>, CorrectionFit>> byShare;
+    const auto first = std::find_if(o.spinShares.begin(), o.spinShares.end(), [](double s3) {
+      return s3 >= FlexibilityCalibration::kSmallSpinShare;
+    });
+    for (bool small : {false, true})
+      for (double s3 : o.spinShares) {
+        if ((s3 < FlexibilityCalibration::kSmallSpinShare) != small) continue;
+        if (small && first == o.spinShares.end())
+          throw std::runtime_error("--spin-shares: a share below 0.25 needs one from 0.25 on");
+        for (double t : o.xiShares)
+          for (int sign : {1, -1}) {
+            if (sign < 0 && t >= 1.0) continue;  // no eta: one direction, written for both signs
+            const CorrectionFit fit =
+                small ? identifyDirection(o, exact, g, gridRay(s3, t, sign), cal,
+                                          &byShare[*first].at({t, sign}), s3 / *first)
+                      : identifyDirection(o, exact, g, gridRay(s3, t, sign), cal);
+            const double w = *std::max_element(fit.error.begin(), fit.error.end());
+            std::printf("a/b %g direction %s: worst knot error %.4f\n", g,
+                        gridRay(s3, t, sign).name.c_str(), w);
+            worst = std::max(worst, w);
+            byShare[s3][{t, sign}] = fit;
+            if (t >= 1.0) byShare[s3][{t, -1}] = fit;
+          }
+      }
     for (double s3 : o.spinShares) {
-      std::map<std::pair<double, int>, CorrectionFit> fits;  // by xi share, sign
-      for (double t : o.xiShares)
-        for (int sign : {1, -1}) {
-          if (sign < 0 && t >= 1.0) continue;  // no eta: one direction, written for both signs
-          const CorrectionFit fit = identifyDirection(o, exact, g, gridRay(s3, t, sign), cal);
-          const double w = *std::max_element(fit.error.begin(), fit.error.end());
-          std::printf("a/b %g direction %s: worst knot error %.4f\n", g,
-                      gridRay(s3, t, sign).name.c_str(), w);
-          worst = std::max(worst, w);
-          fits[{t, sign}] = fit;
-          if (t >= 1.0) fits[{t, -1}] = fit;
-        }
+      std::map<std::pair<double, int>, CorrectionFit> fits = byShare[s3];
       // Without xi (t = 0) L1 does nothing, without eta (t = 1) L2: there the multiplier takes its
       // neighbour's, so that between the grid's directions it is interpolated from one that was
       // fitted.

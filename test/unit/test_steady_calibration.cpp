@@ -121,9 +121,8 @@ TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
 }
 
 TEST(SteadyCalibration, SmallSpinSharesGoTowardsHertzsShapeInFullSlipOnly) {
-  // Below the correction's first spin-share knot s1 the table interpolates from no correction; in
-  // full slip (e >= 5) the shape there is Hertz's moment shape, in partial slip (e <= 2.5), from s1
-  // on and without spin it is the table's own.
+  // Below kSmallSpinShare (0.25), in full slip (e >= 5), the shape is Hertz's moment shape; in
+  // partial slip (e <= 2.5), from kSmallSpinShare on and without spin it is the table's own.
   const FlexibilityCalibration c = SteadyCalibration::shipped().forMesh(20).at(1.0);
   constexpr double hertz = FlexibilityCalibration::kHertzMomentShape;
   for (double shape : {0.0, 0.3, 1.8}) {

@@ -246,11 +246,15 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
 }
 
 double FlexibilityCalibration::towardsFullSlip(double shape, double e, double s3) const {
-  constexpr double kFrom = 2.5, kTo = 5.0, kSpinShare = 0.01;
-  if (corrS3_.empty() || !(e > kFrom) || !(s3 > 0.0) || !(s3 < corrS3_.front())) return shape;
-  const double q = std::min(1.0, (e - kFrom) / (kTo - kFrom));
+  return corrS3_.empty() ? shape : hertzShapeBlend(shape, e, s3);
+}
+
+double FlexibilityCalibration::hertzShapeBlend(double shape, double e, double s3) {
+  constexpr double kTo = 5.0, kSpinShare = 0.01;
+  if (!(e > kFullSlipFrom) || !(s3 > 0.0) || !(s3 < kSmallSpinShare)) return shape;
+  const double q = std::min(1.0, (e - kFullSlipFrom) / (kTo - kFullSlipFrom));
   const double w =
-      q * q * (3.0 - 2.0 * q) * (1.0 - s3 / corrS3_.front()) * std::min(1.0, s3 / kSpinShare);
+      q * q * (3.0 - 2.0 * q) * (1.0 - s3 / kSmallSpinShare) * std::min(1.0, s3 / kSpinShare);
   return shape + (kHertzMomentShape - shape) * w;
 }
 

@@ -101,14 +101,23 @@ class FlexibilityCalibration {
   /// full slip, on a circle, is (8/15 + (4/105) s) mu fz a, Hertz's (3 pi / 16) mu fz a.
   static constexpr double kHertzMomentShape = (3.0 * M_PI / 16.0 - 8.0 / 15.0) * 105.0 / 4.0;
   /// The bound's shape for combined creepages with a small spin share s3 = e3^2 / e^2, below
-  /// the combined correction's first spin-share knot s1 (where the table interpolates from no
-  /// correction at s3 = 0): the table's `shape` at normalised creepage e blended towards
-  /// kHertzMomentShape as the patch goes into full slip (smoothly over e from 2.5 to 5), by
-  /// (1 - s3 / s1) min(1, s3 / 0.01). In full slip the traction is mu p along the rigid slip,
-  /// which spin turns over the patch: force and moment are the pressure's weighted sums of that
-  /// direction field, right only with Hertz's weights. From s1 on the identified correction
-  /// decides; without a correction (or spin), `shape` is returned.
+  /// kSmallSpinShare: the table's `shape` at normalised creepage e blended towards
+  /// kHertzMomentShape as the patch goes into full slip (smoothly over e from kFullSlipFrom to 5),
+  /// by (1 - s3 / kSmallSpinShare) min(1, s3 / 0.01). In full slip the traction is mu p along the
+  /// rigid slip, which spin turns over the patch: force and moment are the pressure's weighted
+  /// sums of that direction field, right only with Hertz's weights. From kSmallSpinShare on the
+  /// identified correction decides; without a correction (or spin), `shape` is returned.
   double towardsFullSlip(double shape, double e, double s3) const;
+  /// towardsFullSlip's blend itself, whatever the table (identify_steady fits a knot below
+  /// kSmallSpinShare with it).
+  static double hertzShapeBlend(double shape, double e, double s3);
+  /// Spin's share below which towardsFullSlip acts, whatever the table's spin-share knots. The
+  /// shipped table's knots below it (0.1, 0.175) are identified with towardsFullSlip in the fit
+  /// and, near linear theory, hold the correction interpolated between no spin and the first knot
+  /// from it on (identify_steady).
+  static constexpr double kSmallSpinShare = 0.25;
+  /// Normalised creepage from which towardsFullSlip moves the shape.
+  static constexpr double kFullSlipFrom = 2.5;
   static constexpr int kCorrections = 4;
   /// Ratio of kind k (0: 11, 1: 22, 2: 23, 3: 23x, 4: 23s) at normalised creepage e, and its
   /// logarithm.
