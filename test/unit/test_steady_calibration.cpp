@@ -373,6 +373,29 @@ TEST(SteadyCalibration, FlattenedBoundKeepsTheTotalAndThePatch) {
   }
 }
 
+TEST(SteadyCalibration, FlattenedBoundOfAClippedPatchStaysPositive) {
+  // A patch longer or wider than the fixed mesh is clipped to it, its bound scaled to carry mu fz
+  // on the part left, above the parabola's peak p0: flattened relative to p0 at the largest shape,
+  // the bound went negative at the strips' ends and to zero in the middle (found by fuzzing: a
+  // patch four times the mesh's length). It must stay positive wherever the parabolic bound is,
+  // and keep the total.
+  const PatchMesh mesh(54, 53, 6e-3, 4e-3);
+  for (const double ka : {4.0, 1.5, 1.0})
+    for (const double kb : {1.0, 2.0}) {
+      const double a = 6e-3 * ka, b = 4e-3 * kb, fz = 8e4, mu = 0.3;
+      TractionField f, g;
+      f.resize(mesh.size());
+      g.resize(mesh.size());
+      parabolicBound(mesh, a, b, fz, mu, &f);
+      flattenedBound(mesh, a, b, fz, mu, FlexibilityCalibration::kMaxBoundShape, &g);
+      for (int n = 0; n < mesh.size(); ++n) {
+        ASSERT_GE(g.bound[n], 0.0) << ka << " " << kb << " " << n;
+        EXPECT_EQ(f.bound[n] > 0.0, g.bound[n] > 0.0) << ka << " " << kb << " " << n;
+      }
+      EXPECT_NEAR(saturatedForce(mesh, g), mu * fz, 1e-12 * mu * fz) << ka << " " << kb;
+    }
+}
+
 TEST(SteadyCalibration, FlattenedBoundsClosedFormSumsAreTheNodeSums) {
   // flattenedBound takes the node sums of the parabolic bound per strip in closed form: it must
   // give the blend whose rescale is computed from the written parabolic bound's own nodes, on
@@ -399,8 +422,18 @@ TEST(SteadyCalibration, FlattenedBoundsClosedFormSumsAreTheNodeSums) {
             sum1 += mesh.halfNorm(j) * w * q;
             sum2 += mesh.halfNorm(j) * w * q * q;
           }
-        const double p0 = 2.0 * mu * fz / (M_PI * a * b), alpha = 1.0 + 0.5 * s,
-                     beta = 0.75 * s / p0, c = sum1 / (alpha * sum1 - beta * sum2);
+        // Flattened relative to the parabola's peak p0, or, for a patch clipped to the mesh,
+        // relative to the bound's own peak where that is higher: its scale, read off the centre
+        // node, bound / shape.
+        const double p0 = 2.0 * mu * fz / (M_PI * a * b), alpha = 1.0 + 0.5 * s;
+        double peak = p0;
+        if (scale > 1.0) {
+          const int i = nx / 2, j = mesh.ny() / 2, n = mesh.index(i, j);
+          const double ka = mesh.a() / a, kb = mesh.b() / b, yn = mesh.yNorm(j) * kb,
+                       xn = mesh.xNorms()[n] * ka;
+          peak = std::max(p0, f.bound[n] / (1.0 - yn * yn - xn * xn));
+        }
+        const double beta = 0.75 * s / peak, c = sum1 / (alpha * sum1 - beta * sum2);
         for (int n = 0; n < mesh.size(); ++n) {
           const double q = f.bound[n], expected = q * (c * alpha - c * beta * q);
           EXPECT_NEAR(g.bound[n], expected, 1e-13 * p0) << nx << " " << scale << " " << n;

@@ -177,8 +177,15 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
   const double scale = (sum > 0.0) ? mu * fz / sum : 0.0, perXn2 = scale * ka * ka;
   const double* const xn = mesh.xNorms().data();
   if constexpr (kFlat) {
-    const Flattening flat(s, inversePeak(a, b, fz, mu), scale * shapeSum,
-                          scale * scale * shapeSquareSum);
+    // Flattened relative to the parabola's peak p0, q (ca - cb q) turns negative where q exceeds
+    // (1 + s/2) / (3 s / 4) p0 (4/3 p0 at the largest shape). The bound of a patch clipped to the
+    // mesh (ka or kb below 1), scaled to carry mu fz on the part left, can exceed that (found by
+    // fuzzing: a patch four times the mesh's length): it is flattened relative to its own peak,
+    // scale (the shape is at most 1), and stays above (1 - s/4) q.
+    const bool clipped = ka < 1.0 || kb < 1.0;
+    const double perPeak = clipped && scale > 0.0 ? std::min(inversePeak(a, b, fz, mu), 1.0 / scale)
+                                                  : inversePeak(a, b, fz, mu);
+    const Flattening flat(s, perPeak, scale * shapeSum, scale * scale * shapeSquareSum);
     // On a strip the flattened parabola q (ca - cb q), q = top - perXn2 x^2, is a polynomial in
     // x^2, lo + x^2 (mid + hi x^2): two operations a node more than the parabola (q's form took
     // three). Outside the patch q < 0 gives a negative value, clipped at zero as q is.
@@ -186,7 +193,8 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
     for (int j = 0; j < ny; ++j) {
       const int k0 = mesh.index(0, j), first = entry[j].first;
       const double yn = mesh.yNorm(j) * kb, top = scale * (1.0 - yn * yn);
-      const double end = flat(std::max(scale * out[k0], 0.0));
+      // Clipped at zero as the other nodes are: a bound is never negative.
+      const double end = std::max(flat(std::max(scale * out[k0], 0.0)), 0.0);
       const double lo = flat(top), mid = perXn2 * (2.0 * flat.cb * top - flat.ca);
       for (int k = k0; k < k0 + nx; ++k) {
         const double x2 = xn[k] * xn[k];
