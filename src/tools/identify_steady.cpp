@@ -497,7 +497,7 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
     }
     auto error = [&](const double* l) {
       const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
-      return spinError(fastsimCorrected(o, g, r, e, base, m, held), x, mzPeak);
+      return spinError(fastsimCorrected(o, g, r, e, base, m, held != nullptr), x, mzPeak);
     };
     if (held && e < kSmallShareFitFrom) {
       for (int p = 0; p < 4; ++p) lm[p] = heldPower * std::log(held->m[i][p]);
@@ -509,7 +509,7 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
     // ridges of a maximum).
     auto cost = [&](const double* l) {
       const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
-      const Point p = fastsimCorrected(o, g, r, e, base, m, held);
+      const Point p = fastsimCorrected(o, g, r, e, base, m, held != nullptr);
       const double dx = p.fx - x.fx, dy = p.fy - x.fy, dm = 0.2 * (p.mz - x.mz) / mzPeak;
       return std::sqrt(dx * dx + dy * dy + dm * dm) +
              1e-3 * (std::abs(l[0]) + std::abs(l[1]) + std::abs(l[2]) + std::abs(l[3]));
@@ -526,8 +526,9 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
     const double one[4] = {1.0, 1.0, 1.0, 1.0};
     fit.m[i] = {1.0, 1.0, 1.0, 1.0};
     if (o.corrKnots[i] > 0.0)
-      fit.error[i] = spinError(fastsimCorrected(o, g, r, o.corrKnots[i], base, one, held),
-                               exact->at(g, r, o.corrKnots[i]), mzPeak);
+      fit.error[i] =
+          spinError(fastsimCorrected(o, g, r, o.corrKnots[i], base, one, held != nullptr),
+                    exact->at(g, r, o.corrKnots[i]), mzPeak);
   }
   return fit;
 }
