@@ -566,7 +566,7 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
           }
       }
     for (double s3 : o.spinShares) {
-      std::map<std::pair<double, int>, CorrectionFit> fits = byShare[s3];
+      std::map<std::pair<double, int>, CorrectionFit>& fits = byShare[s3];
       // Without xi (t = 0) L1 does nothing, without eta (t = 1) L2: there the multiplier takes its
       // neighbour's, so that between the grid's directions it is interpolated from one that was
       // fitted.

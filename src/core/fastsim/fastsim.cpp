@@ -183,8 +183,9 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
     // fuzzing: a patch four times the mesh's length): it is flattened relative to its own peak,
     // scale (the shape is at most 1), and stays above (1 - s/4) q.
     const bool clipped = ka < 1.0 || kb < 1.0;
-    const double perPeak = clipped && scale > 0.0 ? std::min(inversePeak(a, b, fz, mu), 1.0 / scale)
-                                                  : inversePeak(a, b, fz, mu);
+    const double perParabolaPeak = inversePeak(a, b, fz, mu);
+    const double perPeak =
+        clipped && scale > 0.0 ? std::min(perParabolaPeak, 1.0 / scale) : perParabolaPeak;
     const Flattening flat(s, perPeak, scale * shapeSum, scale * scale * shapeSquareSum);
     // On a strip the flattened parabola q (ca - cb q), q = top - perXn2 x^2, is a polynomial in
     // x^2, lo + x^2 (mid + hi x^2): two operations a node more than the parabola (q's form took
