@@ -258,3 +258,76 @@ TEST(TransientFastSim, OutsideStatesHeldDecayedEqualTheFullUpdate) {
   EXPECT_LT((lazy.sy() - full.sy()).abs().maxCoeff(), 1e-9 * scale);
   EXPECT_LT((lazy.tx() - full.tx()).abs().maxCoeff(), 1e-9 * (full.tx().abs().maxCoeff() + 1.0));
 }
+
+TEST(TransientFastSim, FourStripLanesMarchBitForBitAsTwoStrips) {
+  // The residual-along-traction march takes four strips at a time in AVX's lanes (a lane taking
+  // the next strip when its own ends, repeating another once none is left) and stops for the
+  // nodes its guards send one strip at a time. Each strip must come out exactly as from the
+  // two-strip march: tractions, slip flags, filter states and forces equal bit for bit, on a fixed
+  // mesh larger than a patch whose load varies (strips of different lengths, edges moving), on
+  // carried steps (the adaptive mesh's path), first- and second-order filters, x and y on
+  // different filters, with spin, with a history scale, through zero creepage (the tiny path) and
+  // a bound next to zero (the lanes' stop).
+  if (!fourStripLanesAvailable()) GTEST_SKIP() << "this CPU has no AVX: only the two-strip march";
+  const double a0 = 6e-3, b0 = 4e-3, fz0 = 8e4, V = 20.0, dt = 5e-5;
+  const Flexibilities L = kalkerFlexibilities(a0, b0, 8.2e10, kalkerCoefficients(a0 / b0, 0.28));
+  for (const bool second : {false, true})
+    for (const int n : {5, 11, 23}) {
+      const PatchMesh mesh(n, n + 2, std::cbrt(1.5) * a0, std::cbrt(1.5) * b0);
+      const FilterZ zx =
+          second ? discretise(SecondOrderChi{0.744200, 1.776235, 0.511910, 0.107313, 0.021463}, a0,
+                              V, dt)
+                 : discretise(ChiParameters{0.4, 1.1, 0.6}, a0, V, dt);
+      const FilterZ zy = discretise(ChiParameters{0.5, 1.0, 0.7}, a0, V, dt);
+      TransientState lanes, pairs, previous;
+      for (TransientState* s : {&lanes, &pairs}) {
+        s->resize(mesh.size());
+        s->setSaturation(TransientState::Saturation::kResidualAlongTraction);
+      }
+      pairs.setFourStripLanes(false);
+      TractionField fl, fp;
+      fl.resize(mesh.size());
+      fp.resize(mesh.size());
+      AlongStripMap map(mesh.nx());
+      int slipping = 0, stuck = 0;
+      for (int k = 0; k < 120; ++k) {
+        const double fz = fz0 * (1.0 + 0.45 * std::sin(2.0 * M_PI * k / 37.0));
+        const double s = std::cbrt(fz / fz0);
+        for (TractionField* f : {&fl, &fp}) {
+          parabolicBound(mesh, s * a0, s * b0, fz, 0.3, f);
+          // A bound next to zero: under zero creepage from rest (k = 1) the lanes stop there.
+          if (k == 1 || k == 61) f->bound(mesh.index(n / 2, n / 2)) = 1e-160;
+        }
+        const double w = k % 40 < 4 ? 0.0 : 1.0;  // zero creepage now and then
+        const Creepages c{w * 1.5e-3 * std::cos(k / 9.0), w * 8e-4 * std::sin(k / 5.0),
+                          w * 0.4 * std::sin(k / 7.0)};
+        const double r = k % 25 == 0 ? 0.97 : 1.0;
+        CreepForces x, y;
+        if (k % 3 == 2) {  // carried, the patch stretched along the strips
+          map.set(k % 2 == 0 ? 0.95 : 1.04);
+          previous = lanes;
+          x = transientFastSim(mesh, L, c, V, dt, zx, zy, r, map, previous, &lanes, &fl);
+          previous = pairs;
+          y = transientFastSim(mesh, L, c, V, dt, zx, zy, r, map, previous, &pairs, &fp);
+        } else {
+          x = transientFastSim(mesh, L, c, V, dt, zx, zy, r, &lanes, &fl);
+          y = transientFastSim(mesh, L, c, V, dt, zx, zy, r, &pairs, &fp);
+        }
+        ASSERT_EQ(x.fx, y.fx) << second << n << k;
+        ASSERT_EQ(x.fy, y.fy) << second << n << k;
+        ASSERT_EQ(x.mz, y.mz) << second << n << k;
+        ASSERT_EQ(x.adhesionFraction, y.adhesionFraction) << second << n << k;
+        ASSERT_TRUE((fl.tx == fp.tx).all() && (fl.ty == fp.ty).all()) << second << n << k;
+        ASSERT_TRUE((fl.slip == fp.slip).all()) << second << n << k;
+        ASSERT_TRUE((lanes.tx() == pairs.tx()).all() && (lanes.ty() == pairs.ty()).all() &&
+                    (lanes.sx() == pairs.sx()).all() && (lanes.sy() == pairs.sy()).all() &&
+                    (lanes.s2x() == pairs.s2x()).all() && (lanes.s2y() == pairs.s2y()).all())
+            << second << n << k;
+        for (int i = 0; i < mesh.size(); ++i)
+          if (fl.bound(i) > 0.0) (fl.slip(i) ? slipping : stuck) += 1;
+      }
+      // Both regimes were marched.
+      EXPECT_GT(slipping, 100) << second << n;
+      EXPECT_GT(stuck, 100) << second << n;
+    }
+}

@@ -1,7 +1,10 @@
 #include "core/fastsim/transient_fastsim.hpp"
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace wheel_rail_contact {
 
@@ -23,6 +26,7 @@ void acrossEdge(int nx, int e0, int e1, Visit&& visit) {
 void TransientState::resize(int n) {
   history_.setZero(kRows, n);
   ends_.reserve(n);  // a strip count is at most n: the march's books never allocate
+  stripSums_.reserve(n);
   from_.reserve(n);
   decaying_ = false;
   decay_.setOnes();
@@ -62,6 +66,11 @@ struct TransientStorage {
   static auto column(TransientState* s, int k) { return s->history_.col(k); }
   static auto materializedColumn(const TransientState& s, int k) {
     return s.materializedRows().col(k);
+  }
+  // Room for every strip's sums (ny at most the node count: no allocation).
+  static StripSums* stripSums(int strips, TransientState* s) {
+    s->stripSums_.resize(strips);
+    return s->stripSums_.data();
   }
   // Per strip, where the outside pass of the march starts (0: every outside node).
   static const int* outsideFrom(const TransientState& s) { return s.from_.data(); }
@@ -359,6 +368,257 @@ struct StripMarch {
   }
 };
 
+// Four strips of the residual-along-traction march at once, one in each lane of AVX registers:
+// StripMarch::step's arithmetic, operation for operation (no fused multiply-add), so each strip's
+// result is that of one strip at a time, bit for bit. The lanes are strips, not the (x, y) pair of
+// one node: one instruction then does four strips' work at a node, the slip return and the
+// running traction's chain included. A lane whose strip ends takes the next strip (strips of a
+// fixed mesh differ in length). A node where a lane meets a tiny traction or a slip return out of
+// range (slipsAlongTheResidual's guards) stops the lanes; the caller takes it one strip at a time.
+// Compiled for AVX, called only where the CPU has it (fourStripLanesAvailable); elsewhere the march
+// goes two strips at a time.
+namespace quad {
+
+#define WRC_AVX_INLINE [[gnu::target("avx"), gnu::always_inline]] inline
+using V = __m256d;
+WRC_AVX_INLINE V load(const double* p) {
+  return _mm256_load_pd(p);
+}
+WRC_AVX_INLINE void store(double* p, V v) {
+  _mm256_store_pd(p, v);
+}
+WRC_AVX_INLINE V at(const double* v, const int* k) {
+  return _mm256_set_pd(v[k[3]], v[k[2]], v[k[1]], v[k[0]]);
+}
+WRC_AVX_INLINE V add(V a, V b) {
+  return _mm256_add_pd(a, b);
+}
+WRC_AVX_INLINE V sub(V a, V b) {
+  return _mm256_sub_pd(a, b);
+}
+WRC_AVX_INLINE V mul(V a, V b) {
+  return _mm256_mul_pd(a, b);
+}
+WRC_AVX_INLINE V greater(V a, V b) {
+  return _mm256_cmp_pd(a, b, _CMP_GT_OQ);
+}  // a > b
+// mask ? yes : no per lane, mask all ones or all zeros (a comparison's). Not blendv: GCC turns
+// blendv on a comparison's mask into four scalar branches.
+WRC_AVX_INLINE V select(V mask, V yes, V no) {
+  return _mm256_or_pd(_mm256_and_pd(mask, yes), _mm256_andnot_pd(mask, no));
+}
+// The x and the y lanes of four (x, y) pairs.
+WRC_AVX_INLINE void split(const History* h, Pair History::*m, V* x, V* y) {
+  auto pair = [&](int q) { return _mm_load_pd((h[q].*m).data()); };
+  const V ac = _mm256_insertf128_pd(_mm256_castpd128_pd256(pair(0)), pair(2), 1);
+  const V bd = _mm256_insertf128_pd(_mm256_castpd128_pd256(pair(1)), pair(3), 1);
+  *x = _mm256_unpacklo_pd(ac, bd);
+  *y = _mm256_unpackhi_pd(ac, bd);
+}
+// The four (x, y) pairs into p[q] + offset.
+WRC_AVX_INLINE void join(V x, V y, double* const* p, int offset) {
+  const V ac = _mm256_unpacklo_pd(x, y), bd = _mm256_unpackhi_pd(x, y);
+  _mm_store_pd(p[0] + offset, _mm256_castpd256_pd128(ac));
+  _mm_store_pd(p[1] + offset, _mm256_castpd256_pd128(bd));
+  _mm_store_pd(p[2] + offset, _mm256_extractf128_pd(ac, 1));
+  _mm_store_pd(p[3] + offset, _mm256_extractf128_pd(bd, 1));
+}
+// v's lanes into v0[k[q]].
+WRC_AVX_INLINE void scatter(V v, double* v0, const int* k) {
+  const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1);
+  _mm_storel_pd(v0 + k[0], lo);
+  _mm_storeh_pd(v0 + k[1], lo);
+  _mm_storel_pd(v0 + k[2], hi);
+  _mm_storeh_pd(v0 + k[3], hi);
+}
+
+// The lanes' strips: per lane q its strip's constants (PackedStep for its full step) and running
+// state (StripMarch's tx, ty, oldUpstream, sums), as rows of four, and its next node.
+template <class Strip>
+struct Lanes {
+  enum Constant {
+    kMemX,
+    kMemY,
+    kLagX,
+    kLagY,
+    kPushX,
+    kPushY,
+    kDecayX,
+    kDecayY,
+    kPushPerXn,
+    kInverseX,
+    kInverseY,
+    kScale2,
+    kConstants
+  };
+  enum Running { kTx, kTy, kUpX, kUpY, kSumX, kSumY, kSumXnY, kLoaded, kStuck, kRunning };
+  alignas(32) double c[kConstants][4];
+  alignas(32) double v[kRunning][4];
+  Strip* strip[4];
+  int next[4];
+  // Strip s's constants and state into lane q, from its node k.
+  void take(int q, Strip* s, int k) {
+    const PackedStep& m = s->full;
+    const double cq[kConstants] = {m.memory(0),
+                                   m.memory(1),
+                                   m.lag(0),
+                                   m.lag(1),
+                                   m.push(0),
+                                   m.push(1),
+                                   m.decayX,
+                                   m.decayY,
+                                   m.pushPerXn,
+                                   m.scaledInverseDecay(0),
+                                   m.scaledInverseDecay(1),
+                                   m.squaredScale};
+    for (int r = 0; r < kConstants; ++r) c[r][q] = cq[r];
+    const double vq[kRunning] = {s->tx,      s->ty,      s->oldUpstream(0), s->oldUpstream(1),
+                                 s->sums.tx, s->sums.ty, s->sums.xnTy,      0.0,
+                                 0.0};
+    for (int r = 0; r < kRunning; ++r) v[r][q] = vq[r];
+    strip[q] = s;
+    next[q] = k;
+  }
+  // Lane q repeats lane p: the same strip, node and state.
+  void repeat(int p, int q) {
+    for (auto& row : c) row[q] = row[p];
+    for (auto& row : v) row[q] = row[p];
+    strip[q] = strip[p];
+    next[q] = next[p];
+  }
+  // Lane q's state back into its strip.
+  void give(int q) {
+    Strip& s = *strip[q];
+    s.tx = v[kTx][q];
+    s.ty = v[kTy][q];
+    s.oldUpstream = Pair(v[kUpX][q], v[kUpY][q]);
+    s.sums.tx = v[kSumX][q];
+    s.sums.ty = v[kSumY][q];
+    s.sums.xnTy = v[kSumXnY][q];
+    s.sums.loaded += static_cast<int>(v[kLoaded][q]);
+    s.sums.stuck += static_cast<int>(v[kStuck][q]);
+    v[kLoaded][q] = v[kStuck][q] = 0.0;
+  }
+};
+
+// Nodes next[q] + i of the lanes' strips, i < n; read(i, h) gives their histories h[0..3]. Returns
+// the number of nodes marched: n, or where the guards stopped the lanes; next advances by it.
+template <bool kSecond, class Strip, class Read>
+[[gnu::target("avx"), gnu::noinline]] int march(Lanes<Strip>* lanes, int n, Read read,
+                                                const double* xn, const FieldPointers& field,
+                                                const StateUpdate<kSecond>& update) {
+  using L = Lanes<Strip>;
+  const FieldPointers out = field;
+  double* const written = update.written;
+  const auto& c = lanes->c;
+  const V memX = load(c[L::kMemX]), memY = load(c[L::kMemY]), lagX = load(c[L::kLagX]),
+          lagY = load(c[L::kLagY]), pushX = load(c[L::kPushX]), pushY = load(c[L::kPushY]),
+          decayX = load(c[L::kDecayX]), decayY = load(c[L::kDecayY]),
+          pushPerXn = load(c[L::kPushPerXn]), inverseX = load(c[L::kInverseX]),
+          inverseY = load(c[L::kInverseY]), scale2 = load(c[L::kScale2]);
+  const V rateX = _mm256_set1_pd(update.rate(0)), rateY = _mm256_set1_pd(update.rate(1)),
+          rateOldX = _mm256_set1_pd(update.rateOld(0)),
+          rateOldY = _mm256_set1_pd(update.rateOld(1)),
+          poleOldX = _mm256_set1_pd(update.poleOld(0)),
+          poleOldY = _mm256_set1_pd(update.poleOld(1));
+  // SecondStateUpdate's constants (unused by the first-order march).
+  struct {
+    V r, rateX, rateY, rateOldX, rateOldY, poleOldX, poleOldY;
+  } second;
+  if constexpr (kSecond) {
+    const auto& q = update.second;
+    second = {_mm256_set1_pd(q.r),           _mm256_set1_pd(q.rate2(0)),
+              _mm256_set1_pd(q.rate2(1)),    _mm256_set1_pd(q.rate2Old(0)),
+              _mm256_set1_pd(q.rate2Old(1)), _mm256_set1_pd(q.pole2Old(0)),
+              _mm256_set1_pd(q.pole2Old(1))};
+  }
+  auto& v = lanes->v;
+  V tx = load(v[L::kTx]), ty = load(v[L::kTy]), upX = load(v[L::kUpX]), upY = load(v[L::kUpY]),
+    sumX = load(v[L::kSumX]), sumY = load(v[L::kSumY]), sumXnY = load(v[L::kSumXnY]),
+    loaded = load(v[L::kLoaded]), stuck = load(v[L::kStuck]);
+  const V one = _mm256_set1_pd(1.0);
+  const int next[4] = {lanes->next[0], lanes->next[1], lanes->next[2], lanes->next[3]};
+  int i = 0;
+  for (; i < n; ++i) {
+    const int node[4] = {next[0] + i, next[1] + i, next[2] + i, next[3] + i};
+    History h[4];
+    read(i, h);
+    V oldX, oldY, sX, sY;
+    split(h, &History::t, &oldX, &oldY);
+    split(h, &History::s, &sX, &sY);
+    const V guessX = sub(sub(mul(memX, oldX), mul(lagX, sX)), pushX);
+    const V guessY = sub(sub(mul(memY, oldY), mul(lagY, sY)), pushY);
+    const V x = at(xn, node), ownY = sub(guessY, mul(pushPerXn, x));
+    const V nx = add(guessX, mul(decayX, tx)), ny = add(ownY, mul(decayY, ty));
+    const V g = at(out.bound, node), g2 = mul(g, g);
+    const V t2 = add(mul(nx, nx), mul(ny, ny));
+    const V slips = greater(t2, g2);
+    // slipsAlongTheResidual in every lane.
+    const V rX = add(mul(sub(guessX, mul(memX, oldX)), inverseX), mul(scale2, upX));
+    const V rY = add(mul(sub(ownY, mul(memY, oldY)), inverseY), mul(scale2, upY));
+    const V excess = _mm256_max_pd(_mm256_setzero_pd(), sub(add(mul(rX, oldX), mul(rY, oldY)), g2));
+    const V dX = mul(nx, add(g2, mul(excess, decayY)));
+    const V dY = mul(ny, add(g2, mul(excess, decayX)));
+    const V d2 = add(mul(dX, dX), mul(dY, dY));
+    const V inRange = _mm256_and_pd(greater(d2, _mm256_set1_pd(1e-300)),
+                                    _mm256_cmp_pd(d2, _mm256_set1_pd(1e300), _CMP_LT_OQ));
+    // StripSums::node's tiny path (t2 not above 1e-300, or NaN) measures |t| by hypot: where the
+    // bound is far above that (g2 > 1e-290) it keeps the traction, as the lanes do; elsewhere the
+    // lanes stop.
+    const V tiny = _mm256_cmp_pd(t2, _mm256_set1_pd(1e-300), _CMP_NGT_UQ);
+    const V keeps = _mm256_and_pd(_mm256_cmp_pd(t2, _mm256_set1_pd(1e-300), _CMP_LE_OQ),
+                                  greater(g2, _mm256_set1_pd(1e-290)));
+    const V stop = _mm256_or_pd(_mm256_andnot_pd(keeps, tiny), _mm256_andnot_pd(inRange, slips));
+    if (_mm256_movemask_pd(stop) != 0) break;
+    const V scale = _mm256_div_pd(g, _mm256_sqrt_pd(d2));
+    tx = select(slips, mul(dX, scale), nx);
+    ty = select(slips, mul(dY, scale), ny);
+    upX = oldX;
+    upY = oldY;
+    // StripSums::add.
+    scatter(tx, out.tx, node);
+    scatter(ty, out.ty, node);
+    const int slipping = _mm256_movemask_pd(slips);
+    for (int q = 0; q < 4; ++q) out.slip[node[q]] = (slipping >> q) & 1;
+    sumX = add(sumX, tx);
+    sumY = add(sumY, ty);
+    sumXnY = add(sumXnY, mul(x, ty));
+    const V pressed = greater(g, _mm256_setzero_pd());
+    loaded = add(loaded, _mm256_and_pd(pressed, one));
+    stuck = add(stuck, _mm256_and_pd(_mm256_andnot_pd(slips, pressed), one));
+    // StateUpdate.
+    V nextX = sub(sub(mul(rateX, tx), mul(rateOldX, oldX)), mul(poleOldX, sX));
+    V nextY = sub(sub(mul(rateY, ty), mul(rateOldY, oldY)), mul(poleOldY, sY));
+    double* const p[4] = {written + kPerNode * node[0], written + kPerNode * node[1],
+                          written + kPerNode * node[2], written + kPerNode * node[3]};
+    if constexpr (kSecond) {
+      V s2X, s2Y;
+      split(h, &History::s2, &s2X, &s2Y);
+      nextX = add(nextX, mul(second.r, s2X));
+      nextY = add(nextY, mul(second.r, s2Y));
+      join(sub(sub(mul(second.rateX, tx), mul(second.rateOldX, oldX)), mul(second.poleOldX, sX)),
+           sub(sub(mul(second.rateY, ty), mul(second.rateOldY, oldY)), mul(second.poleOldY, sY)), p,
+           kSecondState);
+    }
+    join(nextX, nextY, p, kState);
+    join(tx, ty, p, kTraction);
+  }
+  store(v[L::kTx], tx);
+  store(v[L::kTy], ty);
+  store(v[L::kUpX], upX);
+  store(v[L::kUpY], upY);
+  store(v[L::kSumX], sumX);
+  store(v[L::kSumY], sumY);
+  store(v[L::kSumXnY], sumXnY);
+  store(v[L::kLoaded], loaded);
+  store(v[L::kStuck], stuck);
+  for (int q = 0; q < 4; ++q) lanes->next[q] += i;
+  return i;
+}
+#undef WRC_AVX_INLINE
+
+}  // namespace quad
+
 // Every strip's nodes outside the patch (a fixed mesh larger than it), in one pass before the
 // march: the bound is zero there, so whatever the march would bring saturates at zero; only the
 // filter state moves. The constants and pointers are copied into locals first: read through
@@ -422,6 +682,97 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     sums.addStrip(mesh, j, s.sums, f->entry[j], out.tx, out.ty);
   };
   int j = 0;
+  if constexpr (kResidualAlongTraction) {
+    if (st->fourStripLanes() && fourStripLanesAvailable() && ny >= 4) {
+      // Four strips at a time in AVX's lanes (quad::march), each lane taking the next strip when
+      // its own ends, and, once no strip is left for it, repeating a lane that still marches (the
+      // same values to the same nodes; its sums unused). Strips end out of order: their sums are
+      // added in strip order at the end.
+      StripSums* const stripSums = TransientStorage::stripSums(ny, st);
+      quad::Lanes<Strip> lanes;
+      Strip S[4] = {strip(0), strip(0), strip(0), strip(0)};
+      int next = 0;
+      int stripOf[4];  // lane q's own strip; -1: the lane repeats another
+      // Lane q takes the next strip with nodes left after its entry node; false if none is left.
+      auto refill = [&](int q) {
+        for (; next < ny; ++next) {
+          S[q] = strip(next);
+          int k = S[q].enter;
+          // The first loaded node steps from the patch's leading edge, where the traction is zero.
+          if (k < S[q].leave) S[q].node(k++, S[q].entry, history, xn, out, update);
+          if (k < S[q].leave) {
+            lanes.take(q, &S[q], k);
+            stripOf[q] = next++;
+            return true;
+          }
+          stripSums[next] = S[q].sums;
+        }
+        stripOf[q] = -1;
+        return false;
+      };
+      int live = 0;
+      for (int q = 0; q < 4; ++q) live += refill(q);
+      while (live > 0) {
+        int n = std::numeric_limits<int>::max(), own = 0;
+        for (int q = 0; q < 4; ++q) {
+          if (stripOf[q] < 0) continue;
+          n = std::min(n, S[q].leave - lanes.next[q]);
+          own = q;
+        }
+        for (int q = 0; q < 4; ++q)
+          if (stripOf[q] < 0) lanes.repeat(own, q);
+        const int at0 = lanes.next[0] - lanes.strip[0]->first;
+        bool aligned = Source::kMapped;  // the four march the same nodes of their strips
+        for (int q = 1; q < 4; ++q)
+          aligned = aligned && lanes.next[q] - lanes.strip[q]->first == at0;
+        const Strip* const of[4] = {lanes.strip[0], lanes.strip[1], lanes.strip[2], lanes.strip[3]};
+        int done = 0;
+        while (done < n) {
+          if (aligned) {
+            done += quad::march<kSecond>(
+                &lanes, n - done,
+                [&](int i, History* h) __attribute__((always_inline)) {
+                  history.template atBoth<kSecond>(of[0]->history, of[1]->history, at0 + done + i,
+                                                   &h[0], &h[1]);
+                  history.template atBoth<kSecond>(of[2]->history, of[3]->history, at0 + done + i,
+                                                   &h[2], &h[3]);
+                },
+                xn, out, update);
+          } else {
+            int from[4];
+            for (int q = 0; q < 4; ++q) from[q] = lanes.next[q] - of[q]->first;
+            done += quad::march<kSecond>(
+                &lanes, n - done,
+                [&](int i, History* h) __attribute__((always_inline)) {
+                  for (int q = 0; q < 4; ++q)
+                    h[q] = history.template at<kSecond>(of[q]->history, from[q] + i);
+                },
+                xn, out, update);
+          }
+          if (done == n) break;
+          // The node the guards stopped at, one strip at a time.
+          for (int q = 0; q < 4; ++q) {
+            if (stripOf[q] < 0) continue;
+            lanes.give(q);
+            S[q].node(lanes.next[q], S[q].full, history, xn, out, update);
+            lanes.take(q, &S[q], lanes.next[q] + 1);
+          }
+          for (int q = 0; q < 4; ++q)
+            if (stripOf[q] < 0) lanes.repeat(own, q);
+          ++done;
+        }
+        for (int q = 0; q < 4; ++q) {
+          if (stripOf[q] < 0 || lanes.next[q] < S[q].leave) continue;
+          lanes.give(q);
+          stripSums[stripOf[q]] = S[q].sums;
+          live -= !refill(q);
+        }
+      }
+      for (int jj = 0; jj < ny; ++jj)
+        sums.addStrip(mesh, jj, stripSums[jj], f->entry[jj], out.tx, out.ty);
+      return sums.forces();
+    }
+  }
   // Two strips at a time: their marches are independent serial chains, so each fills the other's
   // latency. Each strip's nodes still go in order: the result is that of one strip at a time.
   for (; j + 1 < ny; j += 2) {
@@ -534,6 +885,11 @@ void TransientStorage::lazyAfter(const PatchMesh& mesh, const std::vector<StripE
   st->nx_ = nx;
   st->decay_ = D;
   st->decaying_ = true;
+}
+
+bool fourStripLanesAvailable() {
+  static const bool avx = __builtin_cpu_supports("avx");  // asked once
+  return avx;
 }
 
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,

@@ -38,6 +38,11 @@ class TransientState {
   enum class Saturation { kAlongGuess, kResidualAlongTraction };
   void setSaturation(Saturation s) { saturation_ = s; }
   Saturation saturation() const { return saturation_; }
+  /// Under kResidualAlongTraction the march takes four strips at a time in the lanes of AVX
+  /// registers where the CPU has them (fourStripLanesAvailable), two at a time otherwise; the
+  /// results are the same bit for bit. Off: always two at a time (tests, comparisons).
+  void setFourStripLanes(bool on) { fourStripLanes_ = on; }
+  bool fourStripLanes() const { return fourStripLanes_; }
   void resize(int n);
   void clear();
   /// Restores the states held decayed. Const: it changes how the state is stored, not the state.
@@ -83,10 +88,15 @@ class TransientState {
   mutable bool decaying_ = false;
   mutable Eigen::Array2d decay_{1.0, 1.0};
   std::vector<int> ends_, from_;
-  bool fromZero_ = false;  // from_ holds zeros for every strip
+  std::vector<StripSums> stripSums_;  // the four-strip march's sums, added in strip order
+  bool fromZero_ = false;             // from_ holds zeros for every strip
   int nx_ = 0;
   Saturation saturation_ = Saturation::kAlongGuess;
+  bool fourStripLanes_ = true;
 };
+
+/// Whether this CPU runs the four-strip march (TransientState::setFourStripLanes): it has AVX.
+bool fourStripLanesAvailable();
 
 /// One step of length dt > 0 at speed V > 0. Marches each strip from the patch's leading edge
 /// solving the discretised slip equation with s = 0 for the adhesion guess, saturates at
