@@ -335,6 +335,7 @@ struct StateUpdate {
 // steps (from the patch's leading edge to the first loaded node, and between nodes).
 template <bool kSecond, bool kResidualAlongTraction, class Source>
 struct StripMarch {
+  static constexpr bool kMapped = Source::kMapped;
   const double* history;  // Source::strip
   PackedStep entry, full;
   int first, enter, leave;  // the strip's node 0; its loaded nodes [enter, leave)
@@ -407,13 +408,20 @@ WRC_AVX_INLINE V greater(V a, V b) {
 WRC_AVX_INLINE V select(V mask, V yes, V no) {
   return _mm256_or_pd(_mm256_and_pd(mask, yes), _mm256_andnot_pd(mask, no));
 }
-// The x and the y lanes of four (x, y) pairs.
-WRC_AVX_INLINE void split(const History* h, Pair History::*m, V* x, V* y) {
-  auto pair = [&](int q) { return _mm_load_pd((h[q].*m).data()); };
-  const V ac = _mm256_insertf128_pd(_mm256_castpd128_pd256(pair(0)), pair(2), 1);
-  const V bd = _mm256_insertf128_pd(_mm256_castpd128_pd256(pair(1)), pair(3), 1);
+// The x and the y lanes of the four (x, y) pairs at p[q] + offset.
+WRC_AVX_INLINE void split(const double* const* p, int offset, V* x, V* y) {
+  const V ac = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(p[0] + offset)),
+                                    _mm_load_pd(p[2] + offset), 1);
+  const V bd = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(p[1] + offset)),
+                                    _mm_load_pd(p[3] + offset), 1);
   *x = _mm256_unpacklo_pd(ac, bd);
   *y = _mm256_unpackhi_pd(ac, bd);
+}
+// The same from four Histories' member m.
+WRC_AVX_INLINE void split(const History* h, Pair History::*m, V* x, V* y) {
+  const double* const p[4] = {(h[0].*m).data(), (h[1].*m).data(), (h[2].*m).data(),
+                              (h[3].*m).data()};
+  split(p, 0, x, y);
 }
 // The four (x, y) pairs into p[q] + offset.
 WRC_AVX_INLINE void join(V x, V y, double* const* p, int offset) {
@@ -541,11 +549,19 @@ template <bool kSecond, class Strip, class Read>
   int i = 0;
   for (; i < n; ++i) {
     const int node[4] = {next[0] + i, next[1] + i, next[2] + i, next[3] + i};
+    // Node k's history is written at written + kPerNode k; in place it is read there too.
+    double* const p[4] = {written + kPerNode * node[0], written + kPerNode * node[1],
+                          written + kPerNode * node[2], written + kPerNode * node[3]};
     History h[4];
-    read(i, h);
     V oldX, oldY, sX, sY;
-    split(h, &History::t, &oldX, &oldY);
-    split(h, &History::s, &sX, &sY);
+    if constexpr (Strip::kMapped) {
+      read(i, h);
+      split(h, &History::t, &oldX, &oldY);
+      split(h, &History::s, &sX, &sY);
+    } else {
+      split(p, kTraction, &oldX, &oldY);
+      split(p, kState, &sX, &sY);
+    }
     const V guessX = sub(sub(mul(memX, oldX), mul(lagX, sX)), pushX);
     const V guessY = sub(sub(mul(memY, oldY), mul(lagY, sY)), pushY);
     const V x = at(xn, node), ownY = sub(guessY, mul(pushPerXn, x));
@@ -589,11 +605,12 @@ template <bool kSecond, class Strip, class Read>
     // StateUpdate.
     V nextX = sub(sub(mul(rateX, tx), mul(rateOldX, oldX)), mul(poleOldX, sX));
     V nextY = sub(sub(mul(rateY, ty), mul(rateOldY, oldY)), mul(poleOldY, sY));
-    double* const p[4] = {written + kPerNode * node[0], written + kPerNode * node[1],
-                          written + kPerNode * node[2], written + kPerNode * node[3]};
     if constexpr (kSecond) {
       V s2X, s2Y;
-      split(h, &History::s2, &s2X, &s2Y);
+      if constexpr (Strip::kMapped)
+        split(h, &History::s2, &s2X, &s2Y);
+      else
+        split(p, kSecondState, &s2X, &s2Y);
       nextX = add(nextX, mul(second.r, s2X));
       nextY = add(nextY, mul(second.r, s2Y));
       join(sub(sub(mul(second.rateX, tx), mul(second.rateOldX, oldX)), mul(second.poleOldX, sX)),
