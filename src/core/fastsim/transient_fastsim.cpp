@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace wheel_rail_contact {
@@ -423,6 +425,55 @@ WRC_AVX_INLINE void split(const History* h, Pair History::*m, V* x, V* y) {
                               (h[3].*m).data()};
   split(p, 0, x, y);
 }
+// The lanes' history at node i of the march: traction, filter state and (second order) second
+// state, x and y apart. p[q]: where lane q's node is written.
+// In place: read where it is written.
+struct InPlaceReader {
+  template <bool kSecond>
+  WRC_AVX_INLINE void read(int, const double* const* p, V* h) const {
+    split(p, kTraction, &h[0], &h[1]);
+    split(p, kState, &h[2], &h[3]);
+    if constexpr (kSecond) split(p, kSecondState, &h[4], &h[5]);
+  }
+};
+// Carried (CarriedHistory) where the four lanes march the same node `at` + i of their strips: the
+// map's offset and weights are the lanes' own, w0 v0 + w1 v1 as CarriedHistory::carried.
+struct CarriedReader {
+  const std::ptrdiff_t* offsets;
+  const double* weights;
+  const double* strip[4];  // the old strips' node 0
+  int at;
+  template <bool kSecond>
+  WRC_AVX_INLINE void read(int i, const double* const*, V* h) const {
+    const std::ptrdiff_t o = offsets[at + i];
+    const V w0 = _mm256_set1_pd(weights[4 * (at + i)]),
+            w1 = _mm256_set1_pd(weights[4 * (at + i) + 2]);
+    const double* const p0[4] = {strip[0] + o, strip[1] + o, strip[2] + o, strip[3] + o};
+    const double* const p1[4] = {p0[0] + kPerNode, p0[1] + kPerNode, p0[2] + kPerNode,
+                                 p0[3] + kPerNode};
+    for (int m = 0; m < (kSecond ? 3 : 2); ++m) {
+      V x0, y0, x1, y1;
+      split(p0, 2 * m, &x0, &y0);
+      split(p1, 2 * m, &x1, &y1);
+      h[2 * m] = add(mul(w0, x0), mul(w1, x1));
+      h[2 * m + 1] = add(mul(w0, y0), mul(w1, y1));
+    }
+  }
+};
+// Any other: read(i, h) gives the four lanes' Histories.
+template <class Read>
+struct HistoryReader {
+  Read read_;
+  template <bool kSecond>
+  WRC_AVX_INLINE void read(int i, const double* const*, V* h) const {
+    History n[4];
+    read_(i, n);
+    split(n, &History::t, &h[0], &h[1]);
+    split(n, &History::s, &h[2], &h[3]);
+    if constexpr (kSecond) split(n, &History::s2, &h[4], &h[5]);
+  }
+};
+
 // The four (x, y) pairs into p[q] + offset.
 WRC_AVX_INLINE void join(V x, V y, double* const* p, int offset) {
   const V ac = _mm256_unpacklo_pd(x, y), bd = _mm256_unpackhi_pd(x, y);
@@ -439,6 +490,11 @@ WRC_AVX_INLINE void scatter(V v, double* v0, const int* k) {
   _mm_storel_pd(v0 + k[2], hi);
   _mm_storeh_pd(v0 + k[3], hi);
 }
+
+// Byte q of kSlipBytes[m] is bit q of m: four slip flags from one comparison's mask.
+constexpr std::uint32_t kSlipBytes[16] = {
+    0x00000000, 0x00000001, 0x00000100, 0x00000101, 0x00010000, 0x00010001, 0x00010100, 0x00010101,
+    0x01000000, 0x01000001, 0x01000100, 0x01000101, 0x01010000, 0x01010001, 0x01010100, 0x01010101};
 
 // The lanes' strips: per lane q its strip's constants (PackedStep for its full step) and running
 // state (StripMarch's tx, ty, oldUpstream, sums), as rows of four, and its next node.
@@ -511,8 +567,8 @@ struct Lanes {
 
 // Nodes next[q] + i of the lanes' strips, i < n; read(i, h) gives their histories h[0..3]. Returns
 // the number of nodes marched: n, or where the guards stopped the lanes; next advances by it.
-template <bool kSecond, class Strip, class Read>
-[[gnu::target("avx"), gnu::noinline]] int march(Lanes<Strip>* lanes, int n, Read read,
+template <bool kSecond, class Strip, class Reader>
+[[gnu::target("avx"), gnu::noinline]] int march(Lanes<Strip>* lanes, int n, const Reader& reader,
                                                 const double* xn, const FieldPointers& field,
                                                 const StateUpdate<kSecond>& update) {
   using L = Lanes<Strip>;
@@ -552,16 +608,9 @@ template <bool kSecond, class Strip, class Read>
     // Node k's history is written at written + kPerNode k; in place it is read there too.
     double* const p[4] = {written + kPerNode * node[0], written + kPerNode * node[1],
                           written + kPerNode * node[2], written + kPerNode * node[3]};
-    History h[4];
-    V oldX, oldY, sX, sY;
-    if constexpr (Strip::kMapped) {
-      read(i, h);
-      split(h, &History::t, &oldX, &oldY);
-      split(h, &History::s, &sX, &sY);
-    } else {
-      split(p, kTraction, &oldX, &oldY);
-      split(p, kState, &sX, &sY);
-    }
+    V h[6];  // oldX, oldY, sX, sY, s2X, s2Y
+    reader.template read<kSecond>(i, p, h);
+    const V oldX = h[0], oldY = h[1], sX = h[2], sY = h[3];
     const V guessX = sub(sub(mul(memX, oldX), mul(lagX, sX)), pushX);
     const V guessY = sub(sub(mul(memY, oldY), mul(lagY, sY)), pushY);
     const V x = at(xn, node), ownY = sub(guessY, mul(pushPerXn, x));
@@ -594,8 +643,11 @@ template <bool kSecond, class Strip, class Read>
     // StripSums::add.
     scatter(tx, out.tx, node);
     scatter(ty, out.ty, node);
-    const int slipping = _mm256_movemask_pd(slips);
-    for (int q = 0; q < 4; ++q) out.slip[node[q]] = (slipping >> q) & 1;
+    const std::uint32_t flags = kSlipBytes[_mm256_movemask_pd(slips)];
+    for (int q = 0; q < 4; ++q) {
+      const auto flag = static_cast<std::uint8_t>(flags >> (8 * q));
+      std::memcpy(out.slip + node[q], &flag, 1);  // a bool's byte, 0 or 1
+    }
     sumX = add(sumX, tx);
     sumY = add(sumY, ty);
     sumXnY = add(sumXnY, mul(x, ty));
@@ -606,11 +658,7 @@ template <bool kSecond, class Strip, class Read>
     V nextX = sub(sub(mul(rateX, tx), mul(rateOldX, oldX)), mul(poleOldX, sX));
     V nextY = sub(sub(mul(rateY, ty), mul(rateOldY, oldY)), mul(poleOldY, sY));
     if constexpr (kSecond) {
-      V s2X, s2Y;
-      if constexpr (Strip::kMapped)
-        split(h, &History::s2, &s2X, &s2Y);
-      else
-        split(p, kSecondState, &s2X, &s2Y);
+      const V s2X = h[4], s2Y = h[5];
       nextX = add(nextX, mul(second.r, s2X));
       nextY = add(nextY, mul(second.r, s2Y));
       join(sub(sub(mul(second.rateX, tx), mul(second.rateOldX, oldX)), mul(second.poleOldX, sX)),
@@ -745,26 +793,26 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
         const Strip* const of[4] = {lanes.strip[0], lanes.strip[1], lanes.strip[2], lanes.strip[3]};
         int done = 0;
         while (done < n) {
-          if (aligned) {
-            done += quad::march<kSecond>(
-                &lanes, n - done,
-                [&](int i, History* h) __attribute__((always_inline)) {
-                  history.template atBoth<kSecond>(of[0]->history, of[1]->history, at0 + done + i,
-                                                   &h[0], &h[1]);
-                  history.template atBoth<kSecond>(of[2]->history, of[3]->history, at0 + done + i,
-                                                   &h[2], &h[3]);
-                },
-                xn, out, update);
+          if constexpr (Source::kMapped) {
+            if (aligned) {
+              const quad::CarriedReader reader{
+                  history.offsets,
+                  history.weights,
+                  {of[0]->history, of[1]->history, of[2]->history, of[3]->history},
+                  at0 + done};
+              done += quad::march<kSecond>(&lanes, n - done, reader, xn, out, update);
+            } else {
+              int from[4];
+              for (int q = 0; q < 4; ++q) from[q] = lanes.next[q] - of[q]->first;
+              auto read = [&](int i, History* h) __attribute__((always_inline)) {
+                for (int q = 0; q < 4; ++q)
+                  h[q] = history.template at<kSecond>(of[q]->history, from[q] + i);
+              };
+              done += quad::march<kSecond>(
+                  &lanes, n - done, quad::HistoryReader<decltype(read)>{read}, xn, out, update);
+            }
           } else {
-            int from[4];
-            for (int q = 0; q < 4; ++q) from[q] = lanes.next[q] - of[q]->first;
-            done += quad::march<kSecond>(
-                &lanes, n - done,
-                [&](int i, History* h) __attribute__((always_inline)) {
-                  for (int q = 0; q < 4; ++q)
-                    h[q] = history.template at<kSecond>(of[q]->history, from[q] + i);
-                },
-                xn, out, update);
+            done += quad::march<kSecond>(&lanes, n - done, quad::InPlaceReader{}, xn, out, update);
           }
           if (done == n) break;
           // The node the guards stopped at, one strip at a time.
