@@ -284,7 +284,8 @@ TEST(TransientFastSim, FourStripLanesMarchBitForBitAsTwoStrips) {
         s->resize(mesh.size());
         s->setSaturation(TransientState::Saturation::kResidualAlongTraction);
       }
-      pairs.setFourStripLanes(false);
+      lanes.setFourStripLanes(TransientState::FourStripLanes::kOn);
+      pairs.setFourStripLanes(TransientState::FourStripLanes::kOff);
       TractionField fl, fp;
       fl.resize(mesh.size());
       fp.resize(mesh.size());
@@ -330,4 +331,15 @@ TEST(TransientFastSim, FourStripLanesMarchBitForBitAsTwoStrips) {
       EXPECT_GT(slipping, 100) << second << n;
       EXPECT_GT(stuck, 100) << second << n;
     }
+}
+
+TEST(TransientFastSim, FourStripLanesByDefaultFromSixteenNodesAStrip) {
+  TransientState s;
+  const bool avx = fourStripLanesAvailable();
+  EXPECT_FALSE(s.marchesFourStrips(TransientState::kFourStripLanesFromNodes - 1));
+  EXPECT_EQ(s.marchesFourStrips(TransientState::kFourStripLanesFromNodes), avx);
+  s.setFourStripLanes(TransientState::FourStripLanes::kOn);
+  EXPECT_EQ(s.marchesFourStrips(5), avx);
+  s.setFourStripLanes(TransientState::FourStripLanes::kOff);
+  EXPECT_FALSE(s.marchesFourStrips(40));
 }

@@ -1,6 +1,10 @@
 #include "core/fastsim/transient_fastsim.hpp"
 
+// The four-strip march needs x86's AVX (chosen at run time); elsewhere only the two-strip march.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define WRC_FOUR_STRIP_LANES 1
 #include <immintrin.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -371,6 +375,7 @@ struct StripMarch {
   }
 };
 
+#ifdef WRC_FOUR_STRIP_LANES
 // Four strips of the residual-along-traction march at once, one in each lane of AVX registers:
 // StripMarch::step's arithmetic, operation for operation (no fused multiply-add), so each strip's
 // result is that of one strip at a time, bit for bit. The lanes are strips, not the (x, y) pair of
@@ -618,32 +623,43 @@ template <bool kSecond, class Strip, class Reader>
     const V g = at(out.bound, node), g2 = mul(g, g);
     const V t2 = add(mul(nx, nx), mul(ny, ny));
     const V slips = greater(t2, g2);
-    // slipsAlongTheResidual in every lane.
-    const V rX = add(mul(sub(guessX, mul(memX, oldX)), inverseX), mul(scale2, upX));
-    const V rY = add(mul(sub(ownY, mul(memY, oldY)), inverseY), mul(scale2, upY));
-    const V excess = _mm256_max_pd(_mm256_setzero_pd(), sub(add(mul(rX, oldX), mul(rY, oldY)), g2));
-    const V dX = mul(nx, add(g2, mul(excess, decayY)));
-    const V dY = mul(ny, add(g2, mul(excess, decayX)));
-    const V d2 = add(mul(dX, dX), mul(dY, dY));
-    const V inRange = _mm256_and_pd(greater(d2, _mm256_set1_pd(1e-300)),
-                                    _mm256_cmp_pd(d2, _mm256_set1_pd(1e300), _CMP_LT_OQ));
+    const int slipping = _mm256_movemask_pd(slips);
     // StripSums::node's tiny path (t2 not above 1e-300, or NaN) measures |t| by hypot: where the
     // bound is far above that (g2 > 1e-290) it keeps the traction, as the lanes do; elsewhere the
     // lanes stop.
     const V tiny = _mm256_cmp_pd(t2, _mm256_set1_pd(1e-300), _CMP_NGT_UQ);
     const V keeps = _mm256_and_pd(_mm256_cmp_pd(t2, _mm256_set1_pd(1e-300), _CMP_LE_OQ),
                                   greater(g2, _mm256_set1_pd(1e-290)));
-    const V stop = _mm256_or_pd(_mm256_andnot_pd(keeps, tiny), _mm256_andnot_pd(inRange, slips));
-    if (_mm256_movemask_pd(stop) != 0) break;
-    const V scale = _mm256_div_pd(g, _mm256_sqrt_pd(d2));
-    tx = select(slips, mul(dX, scale), nx);
-    ty = select(slips, mul(dY, scale), ny);
+    V stop = _mm256_andnot_pd(keeps, tiny);
+    if (slipping == 0) {
+      // All four in adhesion: the traction is the guess. A branch, not a select: the slip
+      // return's square root and division would otherwise sit on the running traction's chain.
+      if (_mm256_movemask_pd(stop) != 0) break;
+      tx = nx;
+      ty = ny;
+    } else {
+      // slipsAlongTheResidual in every lane, taken where the lane slips.
+      const V rX = add(mul(sub(guessX, mul(memX, oldX)), inverseX), mul(scale2, upX));
+      const V rY = add(mul(sub(ownY, mul(memY, oldY)), inverseY), mul(scale2, upY));
+      const V excess =
+          _mm256_max_pd(_mm256_setzero_pd(), sub(add(mul(rX, oldX), mul(rY, oldY)), g2));
+      const V dX = mul(nx, add(g2, mul(excess, decayY)));
+      const V dY = mul(ny, add(g2, mul(excess, decayX)));
+      const V d2 = add(mul(dX, dX), mul(dY, dY));
+      const V inRange = _mm256_and_pd(greater(d2, _mm256_set1_pd(1e-300)),
+                                      _mm256_cmp_pd(d2, _mm256_set1_pd(1e300), _CMP_LT_OQ));
+      stop = _mm256_or_pd(stop, _mm256_andnot_pd(inRange, slips));
+      if (_mm256_movemask_pd(stop) != 0) break;
+      const V scale = _mm256_div_pd(g, _mm256_sqrt_pd(d2));
+      tx = select(slips, mul(dX, scale), nx);
+      ty = select(slips, mul(dY, scale), ny);
+    }
     upX = oldX;
     upY = oldY;
     // StripSums::add.
     scatter(tx, out.tx, node);
     scatter(ty, out.ty, node);
-    const std::uint32_t flags = kSlipBytes[_mm256_movemask_pd(slips)];
+    const std::uint32_t flags = kSlipBytes[slipping];
     for (int q = 0; q < 4; ++q) {
       const auto flag = static_cast<std::uint8_t>(flags >> (8 * q));
       std::memcpy(out.slip + node[q], &flag, 1);  // a bool's byte, 0 or 1
@@ -683,6 +699,7 @@ template <bool kSecond, class Strip, class Reader>
 #undef WRC_AVX_INLINE
 
 }  // namespace quad
+#endif  // WRC_FOUR_STRIP_LANES
 
 // Every strip's nodes outside the patch (a fixed mesh larger than it), in one pass before the
 // march: the bound is zero there, so whatever the march would bring saturates at zero; only the
@@ -747,8 +764,9 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     sums.addStrip(mesh, j, s.sums, f->entry[j], out.tx, out.ty);
   };
   int j = 0;
+#ifdef WRC_FOUR_STRIP_LANES
   if constexpr (kResidualAlongTraction) {
-    if (st->fourStripLanes() && fourStripLanesAvailable() && ny >= 4) {
+    if (st->marchesFourStrips(nx) && ny >= 4) {
       // Four strips at a time in AVX's lanes (quad::march), each lane taking the next strip when
       // its own ends, and, once no strip is left for it, repeating a lane that still marches (the
       // same values to the same nodes; its sums unused). Strips end out of order: their sums are
@@ -838,6 +856,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       return sums.forces();
     }
   }
+#endif
   // Two strips at a time: their marches are independent serial chains, so each fills the other's
   // latency. Each strip's nodes still go in order: the result is that of one strip at a time.
   for (; j + 1 < ny; j += 2) {
@@ -952,9 +971,25 @@ void TransientStorage::lazyAfter(const PatchMesh& mesh, const std::vector<StripE
   st->decaying_ = true;
 }
 
+bool TransientState::marchesFourStrips(int nx) const {
+  switch (fourStripLanes_) {
+    case FourStripLanes::kOff:
+      return false;
+    case FourStripLanes::kOn:
+      return fourStripLanesAvailable();
+    case FourStripLanes::kAuto:
+      break;
+  }
+  return nx >= kFourStripLanesFromNodes && fourStripLanesAvailable();
+}
+
 bool fourStripLanesAvailable() {
+#ifdef WRC_FOUR_STRIP_LANES
   static const bool avx = __builtin_cpu_supports("avx");  // asked once
   return avx;
+#else
+  return false;
+#endif
 }
 
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,

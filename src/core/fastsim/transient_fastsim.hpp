@@ -38,11 +38,15 @@ class TransientState {
   enum class Saturation { kAlongGuess, kResidualAlongTraction };
   void setSaturation(Saturation s) { saturation_ = s; }
   Saturation saturation() const { return saturation_; }
-  /// Under kResidualAlongTraction the march takes four strips at a time in the lanes of AVX
-  /// registers where the CPU has them (fourStripLanesAvailable), two at a time otherwise; the
-  /// results are the same bit for bit. Off: always two at a time (tests, comparisons).
-  void setFourStripLanes(bool on) { fourStripLanes_ = on; }
-  bool fourStripLanes() const { return fourStripLanes_; }
+  /// Under kResidualAlongTraction the march can take four strips at a time in the lanes of AVX
+  /// registers (where the CPU has them: fourStripLanesAvailable) instead of two; the results are
+  /// the same bit for bit. kAuto: on meshes of at least kFourStripLanesFromNodes nodes a strip,
+  /// where the lanes' per-strip bookkeeping pays; kOff, kOn: never, always (tests, comparisons).
+  enum class FourStripLanes { kAuto, kOff, kOn };
+  static constexpr int kFourStripLanesFromNodes = 16;
+  void setFourStripLanes(FourStripLanes use) { fourStripLanes_ = use; }
+  /// Whether a march on strips of nx nodes takes four strips at a time.
+  bool marchesFourStrips(int nx) const;
   void resize(int n);
   void clear();
   /// Restores the states held decayed. Const: it changes how the state is stored, not the state.
@@ -92,7 +96,7 @@ class TransientState {
   bool fromZero_ = false;             // from_ holds zeros for every strip
   int nx_ = 0;
   Saturation saturation_ = Saturation::kAlongGuess;
-  bool fourStripLanes_ = true;
+  FourStripLanes fourStripLanes_ = FourStripLanes::kAuto;
 };
 
 /// Whether this CPU runs the four-strip march (TransientState::setFourStripLanes): it has AVX.
