@@ -19,7 +19,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 RAYS = [("11", "xi only"), ("22", "eta only"), ("23", "phi only"), ("xe", "xi = eta"),
         ("xep", "xi = eta = phi"), ("opp", "xi, -eta, phi"), ("spin", "0.3 xi, -0.3 eta, phi"),
         ("h1", "xi, 0.5 eta, 0.8 phi"), ("h2", "0.4 xi, eta, -0.7 phi"), ("h3", "xi, -eta, 0.2 phi"), ("h4", "0.5 xi, eta, 0.25 phi"),
-        ("h5", "xi, 0.6 eta, -0.5 phi"), ("h6", "0.8 xi, 0.8 eta, 0.55 phi")]
+        ("h5", "xi, 0.6 eta, -0.5 phi"), ("h6", "0.8 xi, 0.8 eta, 0.55 phi"),
+        ("h7", "0.6 xi, eta, -0.33 phi"), ("h8", "xi, 0.4 eta, 0.3 phi")]
 VARIANTS = [("exact", "k-", "exact"), ("classic", "C0--", "classic"),
             ("calibrated", "C3-", "calibrated")]
 
