@@ -7,8 +7,9 @@
 // 23 one creepage each; combined rays xe (1, 1, 0), xep (1, 1, 1), opp (1, -1, 1), spin
 // (0.3, -0.3, 1) (large spin, opposite signs), h1 (1, 0.5, 0.8), h2 (0.4, 1, -0.7) and the small
 // spin shares h3 (1, -1, 0.2), h4 (0.5, 1, 0.25), h5 (1, 0.6, -0.5), h6 (0.8, 0.8, 0.55), h7 (0.6,
-// 1, -0.33) and h8 (1, 0.4, 0.3) (7.4 and 7.2 % of e^2, between h4 and the first knot 0.1): the
-// combined correction's evaluation rays, none on its direction grid.
+// 1, -0.33) and h8 (1, 0.4, 0.3) (7.4 and 7.2 % of e^2, between h4 and the first knot 0.1), and
+// r1-r12, spread between the grid's directions: the combined correction's evaluation rays, none
+// on its direction grid.
 // Identification, per a/b and kind: at each knot epsilon the ratio r minimising FastSim's error
 // against the exact point, max(|dFx|, |dFy|) / (mu fz), scanned near the previous knot's ratio.
 // Spin: on a flattened bound (shape 23s per a/b), the pair (ratio of L3, ratio of L3x, kind 23x)
@@ -129,11 +130,36 @@ struct Ray {
   std::string name;
   double e[3];
 };
-const Ray kRays[] = {{"11", {1, 0, 0}},        {"22", {0, 1, 0}},       {"23", {0, 0, 1}},
-                     {"xe", {1, 1, 0}},        {"xep", {1, 1, 1}},      {"opp", {1, -1, 1}},
-                     {"spin", {0.3, -0.3, 1}}, {"h1", {1, 0.5, 0.8}},   {"h2", {0.4, 1, -0.7}},
-                     {"h3", {1, -1, 0.2}},     {"h4", {0.5, 1, 0.25}},  {"h5", {1, 0.6, -0.5}},
-                     {"h6", {0.8, 0.8, 0.55}}, {"h7", {0.6, 1, -0.33}}, {"h8", {1, 0.4, 0.3}}};
+const Ray kRays[] = {{"11", {1, 0, 0}},
+                     {"22", {0, 1, 0}},
+                     {"23", {0, 0, 1}},
+                     {"xe", {1, 1, 0}},
+                     {"xep", {1, 1, 1}},
+                     {"opp", {1, -1, 1}},
+                     {"spin", {0.3, -0.3, 1}},
+                     {"h1", {1, 0.5, 0.8}},
+                     {"h2", {0.4, 1, -0.7}},
+                     {"h3", {1, -1, 0.2}},
+                     {"h4", {0.5, 1, 0.25}},
+                     {"h5", {1, 0.6, -0.5}},
+                     {"h6", {0.8, 0.8, 0.55}},
+                     {"h7", {0.6, 1, -0.33}},
+                     {"h8", {1, 0.4, 0.3}},
+                     // r1-r12: twelve directions (s3, t, sign of eta phi) spread between the
+                     // grid's, held out (doc/calibrated_fastsim.md, "Directions spread between
+                     // the grid's").
+                     {"r1", {0.7629, 0.6229, 0.1732}},
+                     {"r2", {0.6066, 0.7430, -0.2828}},
+                     {"r3", {0.8798, 0.2933, 0.3742}},
+                     {"r4", {0.2811, 0.8432, -0.4583}},
+                     {"r5", {0.6541, 0.5121, 0.5568}},
+                     {"r6", {0.4552, 0.5940, -0.6633}},
+                     {"r7", {0.5548, 0.2687, -0.7874}},
+                     {"r8", {0.1643, 0.3912, 0.9055}},
+                     {"r9", {0.1581, 0.1581, -0.9747}},
+                     {"r10", {0.9424, 0.2586, -0.2121}},
+                     {"r11", {0.7736, 0.5307, 0.3464}},
+                     {"r12", {0.3098, 0.4733, 0.8246}}};
 
 // The direction grid of the combined correction: spin's share s3 = e3^2 / e^2, xi's share of the
 // rest t = e1^2 / (e1^2 + e2^2), and the relative sign of eta and phi (xi's sign only mirrors).
