@@ -8,7 +8,7 @@
 // (0.3, -0.3, 1) (large spin, opposite signs), h1 (1, 0.5, 0.8), h2 (0.4, 1, -0.7) and the small
 // spin shares h3 (1, -1, 0.2), h4 (0.5, 1, 0.25), h5 (1, 0.6, -0.5), h6 (0.8, 0.8, 0.55), h7 (0.6,
 // 1, -0.33) and h8 (1, 0.4, 0.3) (7.4 and 7.2 % of e^2, between h4 and the first knot 0.1), and
-// r1-r12, spread between the grid's directions: the combined correction's evaluation rays, none
+// r1-r16, spread between the grid's directions: the combined correction's evaluation rays, none
 // on its direction grid.
 // Identification, per a/b and kind: at each knot epsilon the ratio r minimising FastSim's error
 // against the exact point, max(|dFx|, |dFy|) / (mu fz), scanned near the previous knot's ratio.
@@ -146,8 +146,8 @@ const Ray kRays[] = {{"11", {1, 0, 0}},
                      {"h7", {0.6, 1, -0.33}},
                      {"h8", {1, 0.4, 0.3}},
                      // r1-r12: twelve directions (s3, t, sign of eta phi) spread between the
-                     // grid's, held out (doc/calibrated_fastsim.md, "Directions spread between
-                     // the grid's").
+                     // grid's, held out; r13-r16 probe spin shares 0.55-0.71, mostly eta phi < 0
+                     // (doc/calibrated_fastsim.md, "Directions spread between the grid's").
                      {"r1", {0.7629, 0.6229, 0.1732}},
                      {"r2", {0.6066, 0.7430, -0.2828}},
                      {"r3", {0.8798, 0.2933, 0.3742}},
@@ -159,7 +159,11 @@ const Ray kRays[] = {{"11", {1, 0, 0}},
                      {"r9", {0.1581, 0.1581, -0.9747}},
                      {"r10", {0.9424, 0.2586, -0.2121}},
                      {"r11", {0.7736, 0.5307, 0.3464}},
-                     {"r12", {0.3098, 0.4733, 0.8246}}};
+                     {"r12", {0.3098, 0.4733, 0.8246}},
+                     {"r13", {0.3000, 0.6000, -0.7416}},
+                     {"r14", {0.4806, 0.4347, -0.7616}},
+                     {"r15", {0.3735, 0.4129, 0.8307}},
+                     {"r16", {0.5109, 0.1703, -0.8426}}};
 
 // The direction grid of the combined correction: spin's share s3 = e3^2 / e^2, xi's share of the
 // rest t = e1^2 / (e1^2 + e2^2), and the relative sign of eta and phi (xi's sign only mirrors).
