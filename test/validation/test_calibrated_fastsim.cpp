@@ -76,14 +76,12 @@ class CalibratedSteady : public testing::Test {
     EXPECT_GE(it->second.size(), 12u) << ab << " " << ray;
     return fastsimError(ab, it->second, calibrated ? table_.at(ab) : SteadyCalibration().at(ab));
   }
-  // A held-out ray's calibrated force error below `tolerance` and under half of classic's;
-  // returns the calibrated errors.
-  CurveError expectWithinAndUnderHalfOfClassic(double ab, const std::string& ray,
-                                               double tolerance) const {
-    const CurveError cal = error(ab, ray.c_str(), true);
-    EXPECT_LT(cal.force, tolerance) << ab << " " << ray;
-    EXPECT_LT(cal.force, 0.5 * error(ab, ray.c_str(), false).force) << ab << " " << ray;
-    return cal;
+  // A held-out ray's calibrated force error below `tolerance` and under half of classic's.
+  void expectWithinAndUnderHalfOfClassic(double ab, const std::string& ray,
+                                         double tolerance) const {
+    const double cal = error(ab, ray.c_str(), true).force;
+    EXPECT_LT(cal, tolerance) << ab << " " << ray;
+    EXPECT_LT(cal, 0.5 * error(ab, ray.c_str(), false).force) << ab << " " << ray;
   }
   static std::map<std::pair<double, std::string>, std::vector<CurvePoint>> curves_;
   static SteadyCalibration table_;
@@ -167,18 +165,23 @@ TEST_F(CalibratedSteady, SpinSharesBelowTheFirstKnotWithinTwoPercentOfMuFz) {
     for (const char* ray : {"h7", "h8"}) expectWithinAndUnderHalfOfClassic(ab, ray, 0.02);
 }
 
-TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinSixPercentAndHalfOfClassic) {
-  // r1-r16: held-out directions spread between the grid's (spin shares 0.03-0.95, xi shares
-  // 0.1-0.93, both signs of eta phi). Issue 19's 0.02 is not met on all of them: measured
-  // 0.002-0.055 mu fz, above 0.02 on eight, every one with eta phi < 0 (r4, r6, r7, r9, r13, r14,
-  // r16 at a/b 1-5, r10 at a/b 0.2-0.5), at most 0.41 of classic's error (classic 0.011-0.214); Mz
-  // at most 12.4 % of the peak (r10, whose moment is mostly eta's). A guard on what the
-  // interpolation between the grid's directions gives (doc/calibrated_fastsim.md, "Directions
-  // spread between the grid's").
+TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) {
+  // r1-r40: held-out directions between the grid's (spin shares 0.03-0.97, xi shares 0-1, both
+  // signs of eta phi): r1-r16 placed by hand, r17-r28 and r29-r40 drawn at random (r29-r40 after
+  // the grid and its smoothing were chosen). Issue 19's 0.02 on every one but r10 (spin 4.5 %
+  // of e^2, below the first spin share, in full slip at a/b 0.2-0.5), measured on 20x20
+  // 0.002-0.0195 (before the denser, smoothed grid up to 0.064; classic 0.011-0.214) and r10
+  // 0.033; under half of classic's wherever classic misses the target; Mz at most 12.8 % of the
+  // peak (r10, whose moment is mostly eta's). doc/calibrated_fastsim.md, "Directions spread
+  // between the grid's".
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
-    for (int r = 1; r <= 16; ++r) {
+    for (int r = 1; r <= 40; ++r) {
       const std::string ray = "r" + std::to_string(r);
-      EXPECT_LT(expectWithinAndUnderHalfOfClassic(ab, ray, 0.06).moment, 0.15) << ab << " " << ray;
+      const CurveError cal = error(ab, ray.c_str(), true);
+      const double classic = error(ab, ray.c_str(), false).force;
+      EXPECT_LT(cal.force, r == 10 ? 0.035 : 0.02) << ab << " " << ray;
+      if (classic > 0.02) EXPECT_LT(cal.force, 0.5 * classic) << ab << " " << ray;
+      EXPECT_LT(cal.moment, 0.14) << ab << " " << ray;
     }
 }
 
