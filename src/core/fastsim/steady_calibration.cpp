@@ -309,15 +309,25 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
   std::size_t nColumns = 0;
   // Combined correction rows per (mesh, a/b row, multiplier, opposed, spin share, xi share):
   // knots, ratios.
-  std::map<std::tuple<std::size_t, std::size_t, int, int, double, double>,
-           std::pair<std::vector<double>, std::vector<double>>>
-      corr;
+  using CorrKey = std::tuple<std::size_t, std::size_t, int, int, double, double>;
+  std::map<CorrKey, std::pair<std::vector<double>, std::vector<double>>> corr;
+  // A direction's knots come row after row: the last one's entry is kept (the shipped table is
+  // some 330 000 such rows, parsed at start-up).
+  CorrKey lastKey;
+  std::pair<std::vector<double>, std::vector<double>>* last = nullptr;
+  std::vector<std::string> f;  // the line's fields, their buffers reused from line to line
   while (std::getline(in, line)) {
     ++n;
     if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
+    // Split at the commas; a line ending in a comma has no empty last field.
+    std::size_t nf = 0;
+    for (std::size_t start = 0; start < line.size();) {
+      const std::size_t comma = std::min(line.find(',', start), line.size());
+      if (nf == f.size()) f.emplace_back();
+      f[nf++].assign(line, start, comma - start);
+      start = comma + 1;
+    }
+    f.resize(nf);
     if (!header) {
       if (f.size() < 4 || f[0] != "a_over_b" || f[1] != "kind" || f[2] != "epsilon" ||
           f[3] != "ratio")
@@ -386,8 +396,9 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
       if (!(s3 > 0.0 && s3 < 1.0)) fail(path, n, "spin_share must be in (0, 1)");
       if (!(xs >= 0.0 && xs <= 1.0)) fail(path, n, "xi_share must be in [0, 1]");
       if (sg != 1.0 && sg != -1.0) fail(path, n, "sign must be 1 or -1");
-      auto& knots =
-          corr[{t.meshes_.size() - 1, rows.size() - 1, kind - 5, sg < 0.0 ? 1 : 0, s3, xs}];
+      const CorrKey key{t.meshes_.size() - 1, rows.size() - 1, kind - 5, sg < 0.0 ? 1 : 0, s3, xs};
+      if (last == nullptr || key != lastKey) last = &corr[key], lastKey = key;
+      auto& knots = *last;
       if (knots.first.empty() ? (e != 0.0 || r != 1.0) : !(e > knots.first.back()))
         fail(path, n, "the knots of a kind start at epsilon 0, ratio 1 and increase");
       knots.first.push_back(e);
