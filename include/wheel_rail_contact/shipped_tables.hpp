@@ -4,13 +4,15 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace wheel_rail_contact {
 
-/// The text of the shipped table `name` (its file name without .csv, e.g. "chi_table").
-/// Throws std::invalid_argument naming the shipped tables for an unknown name.
-const std::string& shippedTable(const std::string& name);
+/// The text of the shipped table `name` (its file name without .csv, e.g. "chi_table"), in the
+/// library's read-only data (not copied). Throws std::invalid_argument naming the shipped tables
+/// for an unknown name.
+std::string_view shippedTable(const std::string& name);
 /// The names of the shipped tables, sorted.
 std::vector<std::string> shippedTableNames();
 

@@ -7,10 +7,10 @@ namespace wheel_rail_contact {
 
 namespace detail {
 // Generated at build time from config/*.csv (cmake/shipped_tables.cmake).
-const std::map<std::string, std::string>& shippedTableTexts();
+const std::map<std::string, std::string_view>& shippedTableTexts();
 }  // namespace detail
 
-const std::string& shippedTable(const std::string& name) {
+std::string_view shippedTable(const std::string& name) {
   const auto& tables = detail::shippedTableTexts();
   const auto it = tables.find(name);
   if (it == tables.end()) {

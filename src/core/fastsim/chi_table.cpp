@@ -27,7 +27,7 @@ int kindIndex(const std::string& s) {
 }  // namespace
 
 ChiTable ChiTable::shipped() {
-  std::istringstream in(shippedTable("chi_table"));
+  std::istringstream in{std::string(shippedTable("chi_table"))};
   return parse(in, "(shipped) chi_table.csv");
 }
 
