@@ -177,7 +177,7 @@ const Ray kRays[] = {{"11", {1, 0, 0}},
                      {"r16", {0.5109, 0.1703, -0.8426}},
                      // r17-r28: twelve directions drawn at random (s3 uniform in 0.03-0.97, t in
                      // 0-1, signs alternating; Python's random, seed 19) before the grid was made
-                     // denser on the eta phi < 0 branch: the held-out set that judges it.
+                     // denser: the held-out set that judges it.
                      {"r17", {0.5116, 0.2678, 0.8164}},
                      {"r18", {0.4959, 0.4846, -0.7206}},
                      {"r19", {0.7734, 0.0437, 0.6324}},
@@ -699,11 +699,13 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
               if ((sign < 0 && t >= 1.0) || small != (pass == 1)) continue;
               // The neighbours along each share (no eta: both signs' next xi share); a multiplier
               // that acts on nothing (L1 without xi, L2 without eta) is left out of their mean.
-              std::vector<std::pair<std::size_t, std::size_t>> at;
-              std::vector<int> signs;
+              struct Neighbour {
+                std::size_t a, b;
+                int sign;
+              };
+              std::vector<Neighbour> around;
               auto add = [&](std::size_t a2, std::size_t b2, int sg) {
-                at.push_back({a2, b2});
-                signs.push_back(sg);
+                around.push_back({a2, b2, sg});
               };
               if (a > 0) add(a - 1, b, sign);
               if (a + 1 < nS) add(a + 1, b, sign);
@@ -715,11 +717,10 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
                 for (int q = 0; q < 4; ++q) {
                   double sum = 0.0;
                   int n = 0;
-                  for (std::size_t k = 0; k < at.size(); ++k) {
-                    const double tk = o.xiShares[at[k].second];
+                  for (const Neighbour& nb : around) {
+                    const double tk = o.xiShares[nb.b];
                     if ((q == 0 && tk <= 0.0) || (q == 1 && tk >= 1.0)) continue;
-                    sum +=
-                        std::log(before.at(o.spinShares[at[k].first]).at({tk, signs[k]}).m[i][q]);
+                    sum += std::log(before.at(o.spinShares[nb.a]).at({tk, nb.sign}).m[i][q]);
                     ++n;
                   }
                   target[i][q] = n > 0 ? sum / n : 0.0;
