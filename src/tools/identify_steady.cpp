@@ -739,7 +739,6 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
       // Without xi (t = 0) L1 does nothing, without eta (t = 1) L2: there the multiplier takes its
       // neighbour's, so that between the grid's directions it is interpolated from one that was
       // fitted.
-      const std::size_t nT = o.xiShares.size();
       for (int sign : {1, -1})
         for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
           if (nT > 1 && o.xiShares.front() == 0.0)
