@@ -180,7 +180,9 @@ TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) 
       const CurveError cal = error(ab, ray.c_str(), true);
       const double classic = error(ab, ray.c_str(), false).force;
       EXPECT_LT(cal.force, r == 10 ? 0.035 : 0.02) << ab << " " << ray;
-      if (classic > 0.02) EXPECT_LT(cal.force, 0.5 * classic) << ab << " " << ray;
+      if (classic > 0.02) {
+        EXPECT_LT(cal.force, 0.5 * classic) << ab << " " << ray;
+      }
       EXPECT_LT(cal.moment, 0.14) << ab << " " << ray;
     }
 }
