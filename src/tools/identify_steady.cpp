@@ -547,6 +547,20 @@ void coordinateSearch(double* x, int dims, const Cost& cost, const Allowed& allo
     }
 }
 
+// The combined correction's search cost at a knot: a smooth norm of the errors spinError takes the
+// larger of (a coordinate search stalls on the ridges of a maximum), with a small pull of the ln
+// multipliers `l` towards 1.
+double knotCost(const Point& p, const Point& x, double mzPeak, const double* l) {
+  const double dx = p.fx - x.fx, dy = p.fy - x.fy, dm = 0.2 * (p.mz - x.mz) / mzPeak;
+  return std::sqrt(dx * dx + dy * dy + dm * dm) +
+         1e-3 * (std::abs(l[0]) + std::abs(l[1]) + std::abs(l[2]) + std::abs(l[3]));
+}
+
+// A held small share's ln multipliers at knot i: the held fit's to the power heldPower.
+void heldKnot(const CorrectionFit& held, double heldPower, std::size_t i, double* lm) {
+  for (int p = 0; p < 4; ++p) lm[p] = heldPower * std::log(held.m[i][p]);
+}
+
 // The combined correction along one direction of the grid: at each knot the multipliers of L1,
 // L2, L3 minimising spinError (force and moment weighed as for spin alone), by pattern search in
 // their logarithms from the previous knot's (one continuous branch), with a small pull towards 1.
@@ -575,19 +589,14 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
       return spinError(fastsimCorrected(o, g, r, e, base, m, held != nullptr), x, mzPeak);
     };
     if (held && e < kSmallShareFitFrom) {
-      for (int p = 0; p < 4; ++p) lm[p] = heldPower * std::log(held->m[i][p]);
+      heldKnot(*held, heldPower, i, lm);
       fit.m.push_back({std::exp(lm[0]), std::exp(lm[1]), std::exp(lm[2]), std::exp(lm[3])});
       fit.error.push_back(error(lm));
       continue;
     }
-    // The search minimises a smooth norm of the same errors (a coordinate search stalls on the
-    // ridges of a maximum).
     auto cost = [&](const double* l) {
       const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
-      const Point p = fastsimCorrected(o, g, r, e, base, m, held != nullptr);
-      const double dx = p.fx - x.fx, dy = p.fy - x.fy, dm = 0.2 * (p.mz - x.mz) / mzPeak;
-      return std::sqrt(dx * dx + dy * dy + dm * dm) +
-             1e-3 * (std::abs(l[0]) + std::abs(l[1]) + std::abs(l[2]) + std::abs(l[3]));
+      return knotCost(fastsimCorrected(o, g, r, e, base, m, held != nullptr), x, mzPeak, l);
     };
     coordinateSearch(
         lm, 4, cost, [](const double*) { return true; }, std::numeric_limits<int>::max());
@@ -609,7 +618,7 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
 }
 
 // A smoothing sweep's refit of one direction (identifyCorrection): at each knot past the linear
-// range and from `refitFrom` on, the multipliers minimising identifyDirection's smooth norm plus
+// range and from `refitFrom` on, the multipliers minimising knotCost plus
 // `weight` times their ln distance from `target` (the neighbouring directions' mean), by pattern
 // search from the target, so that of the near-equal optima the one nearest the neighbours is
 // taken. A held small share (`held`, `heldPower` as in identifyDirection) takes its knots below
@@ -626,16 +635,14 @@ void refitTowards(const Options& o, ExactCache* exact, double g, const Ray& r,
     const Point x = exact->at(g, r, e);
     double lm[4];
     if (held && e < kSmallShareFitFrom) {
-      for (int p = 0; p < 4; ++p) lm[p] = heldPower * std::log(held->m[i][p]);
+      heldKnot(*held, heldPower, i, lm);
     } else {
       auto cost = [&](const double* l) {
         const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
-        const Point p = fastsimCorrected(o, g, r, e, base, m, held != nullptr);
-        const double dx = p.fx - x.fx, dy = p.fy - x.fy, dm = 0.2 * (p.mz - x.mz) / mzPeak;
-        double c = std::sqrt(dx * dx + dy * dy + dm * dm);
-        for (int q = 0; q < 4; ++q)
-          c += 1e-3 * std::abs(l[q]) + weight * std::abs(l[q] - target[i][q]);
-        return c;
+        double apart = 0.0;
+        for (int q = 0; q < 4; ++q) apart += std::abs(l[q] - target[i][q]);
+        return knotCost(fastsimCorrected(o, g, r, e, base, m, held != nullptr), x, mzPeak, l) +
+               weight * apart;
       };
       std::copy(target[i].begin(), target[i].end(), lm);
       coordinateSearch(
