@@ -169,11 +169,11 @@ TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) 
   // r1-r40: held-out directions between the grid's (spin shares 0.03-0.97, xi shares 0-1, both
   // signs of eta phi): r1-r16 placed by hand, r17-r28 and r29-r40 drawn at random (r29-r40 after
   // the grid and its smoothing were chosen). Issue 19's 0.02 on every one but r10 (spin 4.5 %
-  // of e^2, below the first spin share, in full slip at a/b 0.2-0.5), measured on 20x20
+  // of e^2, below the first spin share, in full slip at a/b 0.2), measured on 20x20
   // 0.002-0.0195 (before the denser, smoothed grid up to 0.064; classic 0.011-0.214) and r10
-  // 0.033; under half of classic's wherever classic misses the target; Mz at most 12.8 % of the
-  // peak (r10, whose moment is mostly eta's). doc/calibrated_fastsim.md, "Directions spread
-  // between the grid's".
+  // 0.033; under half of classic's wherever classic misses the target; Mz at most 12.4 % of the
+  // peak (r10, whose moment is mostly eta's). doc/calibrated_fastsim.md, "A denser grid, fitted
+  // smooth".
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
     for (int r = 1; r <= 40; ++r) {
       const std::string ray = "r" + std::to_string(r);
