@@ -16,7 +16,8 @@
 // minimising the larger of that and 0.2 |dMz| / peak |Mz| (the 0.01 mu fz and 5 % of the
 // peak weighed alike).
 // Combined creepages with spin: on a grid of directions (gridRay) and at each knot, multipliers
-// of L1, L2, L3 and of the bound's shape on top of the single kinds' table (kinds c1, c2, c3, cs).
+// of L1, L2, L3, of the bound's shape and of L3x on top of the single kinds' table (kinds c1, c2,
+// c3, cs, c3x).
 // Per FastSim mesh (--nx 5,10,20,30,40): FastSim's own discretisation error differs per mesh, the
 // exact curves do not, so one cache serves every mesh; each mesh's rows carry its fastsim_nx.
 // Options: identify_steady --help.
@@ -321,9 +322,21 @@ class ExactCache {
   double solverAB_ = 0.0;
 };
 
+// The combined correction's multipliers at a knot, in FlexibilityCalibration::correction's order:
+// of L1, L2, L3, of the bound's shape, and of L3x besides L3's; the table's kinds for them.
+constexpr int kMultipliers = FlexibilityCalibration::kCorrections;
+using Multipliers = std::array<double, kMultipliers>;
+constexpr Multipliers kNoCorrection = {1.0, 1.0, 1.0, 1.0, 1.0};
+const char* const kCorrectionKinds[kMultipliers] = {"c1", "c2", "c3", "cs", "c3x"};
+Multipliers expOf(const double* l) {
+  Multipliers m;
+  for (int p = 0; p < kMultipliers; ++p) m[p] = std::exp(l[p]);
+  return m;
+}
+
 // Steady FastSim at a/b = g along ray r at e on the table's flexibilities (`base`, without a
 // combined correction) with L1, L2, L3 (L3x with L3) multiplied by m[0..2], the bound's shape by
-// m[3].
+// m[3] and L3x by m[4] besides (FlexibilityCalibration::correction's order).
 Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
                        const FlexibilityCalibration& base, const double* m,
                        bool hertzShapeBlend = false) {
@@ -339,7 +352,7 @@ Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
         shape, e, r.e[2] * r.e[2] / (r.e[0] * r.e[0] + r.e[1] * r.e[1] + r.e[2] * r.e[2]));
   flattenedBound(mesh, s.a, s.b, s.fz, s.mu, shape, &f);
   Flexibilities L = base.flexibilities(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
-  L.L3x = L.spinX() * m[2];
+  L.L3x = L.spinX() * m[2] * m[4];
   L.L1 *= m[0];
   L.L2 *= m[1];
   L.L3 *= m[2];
@@ -351,8 +364,7 @@ Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
 // them.
 Point fastsimAt(const Options& o, double g, const Ray& r, double e,
                 const FlexibilityCalibration& cal) {
-  const double one[4] = {1.0, 1.0, 1.0, 1.0};
-  return fastsimCorrected(o, g, r, e, cal, one);
+  return fastsimCorrected(o, g, r, e, cal, kNoCorrection.data());
 }
 
 // FastSim along pure kind `kind` with L_kind scaled by ratio (spin: its longitudinal drive's
@@ -510,7 +522,7 @@ KindFit identifySpin(const Options& o, ExactCache* exact, double g) {
 }
 
 struct CorrectionFit {
-  std::vector<std::array<double, 4>> m;
+  std::vector<Multipliers> m;
   std::vector<double> error;
 };
 
@@ -552,67 +564,68 @@ void coordinateSearch(double* x, int dims, const Cost& cost, const Allowed& allo
 // multipliers `l` towards 1.
 double knotCost(const Point& p, const Point& x, double mzPeak, const double* l) {
   const double dx = p.fx - x.fx, dy = p.fy - x.fy, dm = 0.2 * (p.mz - x.mz) / mzPeak;
-  return std::sqrt(dx * dx + dy * dy + dm * dm) +
-         1e-3 * (std::abs(l[0]) + std::abs(l[1]) + std::abs(l[2]) + std::abs(l[3]));
+  double pull = 0.0;
+  for (int q = 0; q < kMultipliers; ++q) pull += std::abs(l[q]);
+  return std::sqrt(dx * dx + dy * dy + dm * dm) + 1e-3 * pull;
 }
 
 // A held small share's ln multipliers at knot i: the held fit's to the power heldPower.
 void heldKnot(const CorrectionFit& held, double heldPower, std::size_t i, double* lm) {
-  for (int p = 0; p < 4; ++p) lm[p] = heldPower * std::log(held.m[i][p]);
+  for (int p = 0; p < kMultipliers; ++p) lm[p] = heldPower * std::log(held.m[i][p]);
 }
 
-// The combined correction along one direction of the grid: at each knot the multipliers of L1,
-// L2, L3 minimising spinError (force and moment weighed as for spin alone), by pattern search in
-// their logarithms from the previous knot's (one continuous branch), with a small pull towards 1.
-// `held` (a spin share s3 below FlexibilityCalibration::kSmallSpinShare): the same xi share and
-// sign's fit at the first spin share sA from it on; knots below kSmallShareFitFrom take held's
-// multipliers to the power s3 / sA (what linear interpolation in ln multiplier between no spin and
-// sA gives there, so the knot changes nothing there) and the search goes on from them; every knot
-// is costed with towardsFullSlip's blend.
+// The combined correction along one direction of the grid: at each knot the multipliers
+// (Multipliers) minimising spinError (force and moment weighed as for spin alone), by pattern
+// search in their logarithms from the previous knot's (one continuous branch), with a small pull
+// towards 1. `held` (a spin share s3 below FlexibilityCalibration::kSmallSpinShare): the same xi
+// share and sign's fit at the first spin share sA from it on; knots below kSmallShareFitFrom take
+// held's multipliers to the power s3 / sA (what linear interpolation in ln multiplier between no
+// spin and sA gives there, so the knot changes nothing there) and the search goes on from them;
+// every knot is costed with towardsFullSlip's blend.
 CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, const Ray& r,
                                 const FlexibilityCalibration& base,
                                 const CorrectionFit* held = nullptr, double heldPower = 0.0) {
   double mzPeak = 0.0;
   for (double e : o.corrKnots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, r, e).mz));
   CorrectionFit fit;
-  double lm[4] = {0.0, 0.0, 0.0, 0.0};
+  double lm[kMultipliers] = {};
   for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
     const double e = o.corrKnots[i];
     const Point x = exact->at(g, r, e);
     if (e == 0.0) {
-      fit.m.push_back({1.0, 1.0, 1.0, 1.0});
+      fit.m.push_back(kNoCorrection);
       fit.error.push_back(0.0);
       continue;
     }
     auto error = [&](const double* l) {
-      const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
-      return spinError(fastsimCorrected(o, g, r, e, base, m, held != nullptr), x, mzPeak);
+      return spinError(fastsimCorrected(o, g, r, e, base, expOf(l).data(), held != nullptr), x,
+                       mzPeak);
     };
     if (held && e < kSmallShareFitFrom) {
       heldKnot(*held, heldPower, i, lm);
-      fit.m.push_back({std::exp(lm[0]), std::exp(lm[1]), std::exp(lm[2]), std::exp(lm[3])});
+      fit.m.push_back(expOf(lm));
       fit.error.push_back(error(lm));
       continue;
     }
     auto cost = [&](const double* l) {
-      const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
-      return knotCost(fastsimCorrected(o, g, r, e, base, m, held != nullptr), x, mzPeak, l);
+      return knotCost(fastsimCorrected(o, g, r, e, base, expOf(l).data(), held != nullptr), x,
+                      mzPeak, l);
     };
     coordinateSearch(
-        lm, 4, cost, [](const double*) { return true; }, std::numeric_limits<int>::max());
-    fit.m.push_back({std::exp(lm[0]), std::exp(lm[1]), std::exp(lm[2]), std::exp(lm[3])});
+        lm, kMultipliers, cost, [](const double*) { return true; },
+        std::numeric_limits<int>::max());
+    fit.m.push_back(expOf(lm));
     fit.error.push_back(error(lm));
   }
   // The linear range (force within 10 % of mu fz) stays Kalker's FastSim's, after the fit has run
   // through it on one branch: nss's time term (chi) is identified on that linear response, and a
   // correction there moved the linear combined scene (combined1) away from the exact one.
   for (std::size_t i = 0; i < o.corrKnots.size() && o.corrKnots[i] <= kLinearEnd; ++i) {
-    const double one[4] = {1.0, 1.0, 1.0, 1.0};
-    fit.m[i] = {1.0, 1.0, 1.0, 1.0};
+    fit.m[i] = kNoCorrection;
     if (o.corrKnots[i] > 0.0)
-      fit.error[i] =
-          spinError(fastsimCorrected(o, g, r, o.corrKnots[i], base, one, held != nullptr),
-                    exact->at(g, r, o.corrKnots[i]), mzPeak);
+      fit.error[i] = spinError(
+          fastsimCorrected(o, g, r, o.corrKnots[i], base, kNoCorrection.data(), held != nullptr),
+          exact->at(g, r, o.corrKnots[i]), mzPeak);
   }
   return fit;
 }
@@ -625,7 +638,7 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
 // kSmallShareFitFrom from the held fit as it is now.
 void refitTowards(const Options& o, ExactCache* exact, double g, const Ray& r,
                   const FlexibilityCalibration& base, const CorrectionFit* held, double heldPower,
-                  const std::vector<std::array<double, 4>>& target, double weight, double refitFrom,
+                  const std::vector<Multipliers>& target, double weight, double refitFrom,
                   CorrectionFit* fit) {
   double mzPeak = 0.0;
   for (double e : o.corrKnots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, r, e).mz));
@@ -633,28 +646,30 @@ void refitTowards(const Options& o, ExactCache* exact, double g, const Ray& r,
     const double e = o.corrKnots[i];
     if (e <= kLinearEnd || (!held && e < refitFrom)) continue;
     const Point x = exact->at(g, r, e);
-    double lm[4];
+    double lm[kMultipliers];
     if (held && e < kSmallShareFitFrom) {
       heldKnot(*held, heldPower, i, lm);
     } else {
       auto cost = [&](const double* l) {
-        const double m[4] = {std::exp(l[0]), std::exp(l[1]), std::exp(l[2]), std::exp(l[3])};
         double apart = 0.0;
-        for (int q = 0; q < 4; ++q) apart += std::abs(l[q] - target[i][q]);
-        return knotCost(fastsimCorrected(o, g, r, e, base, m, held != nullptr), x, mzPeak, l) +
+        for (int q = 0; q < kMultipliers; ++q) apart += std::abs(l[q] - target[i][q]);
+        return knotCost(fastsimCorrected(o, g, r, e, base, expOf(l).data(), held != nullptr), x,
+                        mzPeak, l) +
                weight * apart;
       };
       std::copy(target[i].begin(), target[i].end(), lm);
       coordinateSearch(
-          lm, 4, cost, [](const double*) { return true; }, std::numeric_limits<int>::max());
+          lm, kMultipliers, cost, [](const double*) { return true; },
+          std::numeric_limits<int>::max());
     }
-    fit->m[i] = {std::exp(lm[0]), std::exp(lm[1]), std::exp(lm[2]), std::exp(lm[3])};
-    const double m[4] = {fit->m[i][0], fit->m[i][1], fit->m[i][2], fit->m[i][3]};
-    fit->error[i] = spinError(fastsimCorrected(o, g, r, e, base, m, held != nullptr), x, mzPeak);
+    fit->m[i] = expOf(lm);
+    fit->error[i] =
+        spinError(fastsimCorrected(o, g, r, e, base, fit->m[i].data(), held != nullptr), x, mzPeak);
   }
 }
 
-// The combined correction's rows (kinds c1, c2, c3) on the table `base` (single kinds only).
+// The combined correction's rows (kinds c1, c2, c3, cs, c3x) on the table `base` (single kinds
+// only).
 void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibration& base,
                         std::map<double, std::string>* rows, std::ostringstream* notes) {
   for (double g : o.ratios) {
@@ -687,7 +702,7 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
           }
       }
     // Smoothing sweeps (Jacobi: each direction against its neighbours' fits of the sweep before).
-    // Four multipliers against three forces leave near-equal optima, and directions fitted alone
+    // Five multipliers against three forces leave near-equal optima, and directions fitted alone
     // took different ones; the core interpolates between directions, and between two such fits the
     // forces missed (doc/calibrated_fastsim.md, "A denser grid, fitted smooth").
     const std::size_t nS = o.spinShares.size(), nT = o.xiShares.size();
@@ -719,9 +734,9 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
               if (b > 0) add(a, b - 1, sign);
               if (b + 1 < nT) add(a, b + 1, sign);
               if (t >= 1.0 && b > 0) add(a, b - 1, -1);
-              std::vector<std::array<double, 4>> target(o.corrKnots.size());
+              std::vector<Multipliers> target(o.corrKnots.size());
               for (std::size_t i = 0; i < target.size(); ++i)
-                for (int q = 0; q < 4; ++q) {
+                for (int q = 0; q < kMultipliers; ++q) {
                   double sum = 0.0;
                   int n = 0;
                   for (const Neighbour& nb : around) {
@@ -754,16 +769,12 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
             fits[{1.0, sign}].m[i][1] = fits[{o.xiShares[nT - 2], sign}].m[i][1];
         }
       for (const auto& [key, fit] : fits)
-        for (int p = 0; p < 4; ++p)
+        for (int p = 0; p < kMultipliers; ++p)
           for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
             char line[200];
             std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d,%g,%g,%d\n", g,
-                          p < 3 ? (p == 0   ? "c1"
-                                   : p == 1 ? "c2"
-                                            : "c3")
-                                : "cs",
-                          o.corrKnots[i], fit.m[i][p], fit.error[i], o.nx, s3, key.first,
-                          key.second);
+                          kCorrectionKinds[p], o.corrKnots[i], fit.m[i][p], fit.error[i], o.nx, s3,
+                          key.first, key.second);
             (*rows)[g] += line;
           }
     }
@@ -843,7 +854,8 @@ void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
       << "; exact curves cached in " << o.exact << ") per FastSim mesh (fastsim_nx; a model "
       << "takes the mesh nearest its nx in 1/nx); other nu: the same ratios.\n"
       << "# fit_error: max(|dFx|, |dFy|) / (mu fz) at the knot (spin, kinds 23 and 23x fitted "
-         "together, and the combined correction c1, c2, c3: the larger of that and 0.2 |dMz| / "
+         "together, and the combined correction c1, c2, c3, cs, c3x: the larger of that and 0.2 "
+         "|dMz| / "
          "peak |Mz|)\n"
       << notes.str()
       << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx,spin_share,xi_share,sign\n"

@@ -295,16 +295,18 @@ TEST(SteadyCalibration, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOn
         body += "1," + k + ",1," + r + ",0,0.5," + t + "," + sign + "\n";
       }
   const FlexibilityCalibration c = SteadyCalibration::load(writeTable(body)).at(1.0);
-  double m[4];
+  double m[FlexibilityCalibration::kCorrections];
   auto m1 = [&](double e1, double e2, double e3, bool opposed) {
     const double sq[3] = {e1 * e1, e2 * e2, e3 * e3};
-    c.correction(sq, std::sqrt(sq[0] + sq[1] + sq[2]), opposed, 0, 4, m);
+    c.correction(sq, std::sqrt(sq[0] + sq[1] + sq[2]), opposed, 0,
+                 FlexibilityCalibration::kCorrections, m);
     return m[0];
   };
   const double h = std::sqrt(0.5);
   EXPECT_NEAR(m1(0.0, h, h, false), 2.0, 1e-12);  // on the grid: t = 0, s3 = 0.5, e = 1
   EXPECT_NEAR(m[1], 1.0, 1e-12);
   EXPECT_NEAR(m[3], 3.0, 1e-12);
+  EXPECT_NEAR(m[4], 1.0, 1e-12);                                         // no c3x in the table: 1
   EXPECT_NEAR(m1(h, 0.0, h, false), 8.0, 1e-12);                         // t = 1
   EXPECT_NEAR(m1(0.5, 0.5, h, false), 4.0, 1e-12);                       // t = 1/2: ln halfway
   EXPECT_NEAR(m1(0.0, h, h, true), 1.0, 1e-12);                          // the other sign's table
@@ -330,6 +332,45 @@ TEST(SteadyCalibration, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOn
             std::string::npos);
   EXPECT_NE(message(single + "1,c1,0.5,1,0,0.5,0,1\n").find(":12: the knots"), std::string::npos);
   EXPECT_NE(message(body.substr(0, body.rfind("1,cs,0,1"))).find("misses a direction"),
+            std::string::npos);
+}
+
+TEST(SteadyCalibration, FifthCorrectionScalesTheLongitudinalSpinDriveAlone) {
+  // The grid of the test above with every multiplier 1, and c3x 4 at e = 1 in every direction.
+  std::string plain =
+      "a_over_b,kind,epsilon,ratio,fit_error,spin_share,xi_share,sign\n1,11,0,1\n1,11,1,1\n"
+      "1,22,0,1\n1,22,1,1\n1,23,0,1\n1,23,1,1\n1,23x,0,1\n1,23x,1,1\n1,23s,0,1\n1,23s,1,1\n";
+  std::string c3x;
+  for (const char* kind : {"c1", "c2", "c3", "cs", "c3x"})
+    for (const char* t : {"0", "1"})
+      for (const char* sign : {"1", "-1"}) {
+        const std::string k = kind, row = "1," + k + ",";
+        const std::string dir = std::string(",0,0.5,") + t + "," + sign + "\n";
+        (k == "c3x" ? c3x : plain) +=
+            row + "0,1" + dir + row + "1," + (k == "c3x" ? "4" : "1") + dir;
+      }
+  const FlexibilityCalibration without = SteadyCalibration::load(writeTable(plain)).at(1.0);
+  const FlexibilityCalibration with = SteadyCalibration::load(writeTable(plain + c3x)).at(1.0);
+  const double a = 5e-3, b = 5e-3, G = 8.2e10, muFz = 3e3, unit = muFz / (G * a * b);
+  const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
+  const double h = std::sqrt(0.5);
+  const Creepages c{0.0, h * unit / k.c22, h * unit / (k.c23 * std::sqrt(a * b))};  // e = 1
+  const CalibratedStep s0 = without.step(a, b, G, k, muFz, c), s1 = with.step(a, b, G, k, muFz, c);
+  EXPECT_EQ(s1.L.L1, s0.L.L1);
+  EXPECT_EQ(s1.L.L2, s0.L.L2);
+  EXPECT_EQ(s1.L.L3, s0.L.L3);
+  EXPECT_EQ(s1.boundShape, s0.boundShape);
+  EXPECT_NEAR(s1.L.spinX(), 4.0 * s0.L.spinX(), 1e-12 * s0.L.spinX());
+  // Half way to the knot, ln halfway: 2. Without spin there is no correction: L3x is L3.
+  const Creepages half{0.0, 0.5 * c.eta, 0.5 * c.phi};
+  EXPECT_NEAR(with.step(a, b, G, k, muFz, half).L.spinX(),
+              2.0 * without.step(a, b, G, k, muFz, half).L.spinX(),
+              1e-12 * without.step(a, b, G, k, muFz, half).L.spinX());
+  const Creepages noSpin{0.0, c.eta, 0.0};
+  EXPECT_EQ(with.step(a, b, G, k, muFz, noSpin).L.spinX(),
+            with.step(a, b, G, k, muFz, noSpin).L.L3);
+  // c3x in some directions only is refused.
+  EXPECT_NE(message(plain + c3x.substr(0, c3x.rfind("1,c3x,0,1"))).find("misses a direction"),
             std::string::npos);
 }
 

@@ -137,7 +137,7 @@ inline void FlexibilityCalibration::lookUpCorrection(double s3, double t, double
     k = nE - 1;  // held beyond the last knot
   }
   // The cell's four corners (spin-share rows i - 1 and i, xi shares j - 1 and j), each at e's
-  // cell [k - 1, k]: the four multipliers of a grid point lie side by side; the eta phi < 0
+  // cell [k - 1, k]: the five multipliers of a grid point lie side by side; the eta phi < 0
   // branch's block follows the eta phi > 0 one.
   constexpr std::size_t P = kCorrections;
   const std::size_t alongT = nE * P, alongS = nT * alongT, branch = (nS + 2) * alongS;
@@ -236,8 +236,14 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   L.L2 = r2 * ((1.0 - w) * L.L2 + w * crss);
   L.L3 = r3 * ((1.0 - w) * L.L3 + w * crss);
   // Without spin (e3 = 0) both spin terms are exactly their classic values: no exp.
+  // The correction's fifth multiplier (c3x) acts on L3x alone, in the same exp.
   const bool spin = finite && e2[2] > 0.0;
-  if (!eps_[3].empty()) L.L3x = L.L3 * (spin ? stepExp(share[2] * logRatioOf(3), table) : 1.0);
+  if (spin && (!eps_[3].empty() || corrected))
+    L.L3x = L.L3 *
+            stepExp((eps_[3].empty() ? 0.0 : share[2] * logRatioOf(3)) + (corrected ? lm[4] : 0.0),
+                    table);
+  else if (!eps_[3].empty())
+    L.L3x = L.L3;
   // The bound's shape: shape_23s(e) times spin's share of e^2 (no friction: parabolic).
   if (spin && !eps_[4].empty())
     s.boundShape = towardsFullSlip(
@@ -386,9 +392,10 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
                      : f[1] == "c2"  ? 6
                      : f[1] == "c3"  ? 7
                      : f[1] == "cs"  ? 8
+                     : f[1] == "c3x" ? 9
                                      : -1;
     if (kind < 0)
-      fail(path, n, "kind must be 11, 22, 23, 23x, 23s, c1, c2, c3 or cs, got '" + f[1] + "'");
+      fail(path, n, "kind must be 11, 22, 23, 23x, 23s, c1, c2, c3, cs or c3x, got '" + f[1] + "'");
     if (!(ab > 0.0)) fail(path, n, "a_over_b must be > 0");
     if (!(r > 0.0)) fail(path, n, "ratio must be > 0");
     const double logAB = std::log(ab);
@@ -435,8 +442,11 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
           fail(path, n, "every a/b must hold every kind, with the same epsilon knots" + mesh);
     // The combined correction: a full grid (every multiplier, sign, spin share and xi share) with
     // the same knots in every a/b, or none.
+    // c3x (the multiplier of L3x alone) is optional: in every direction or in none (then 1).
+    bool withC3x = false;
     for (const auto& [key, knots] : corr) {
       if (std::get<0>(key) != m) continue;
+      withC3x = withC3x || std::get<2>(key) == 4;
       Row& row = rows[std::get<1>(key)];
       auto add = [](std::vector<double>* v, double x) {
         if (std::find(v->begin(), v->end(), x) == v->end())
@@ -464,10 +474,11 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
           for (std::size_t i = 0; i < nS; ++i)
             for (std::size_t j = 0; j < nT; ++j) {
               const auto it = corr.find({m, r, p, o, row.corrS3[i], row.corrT[j]});
+              if (it == corr.end() && p == 4 && !withC3x) continue;
               if (it == corr.end())
                 fail(path, n,
-                     "the combined correction misses a direction (every c1, c2, c3, sign, "
-                     "spin share and xi share)" +
+                     "the combined correction misses a direction (every c1, c2, c3, cs, sign, "
+                     "spin share and xi share; c3x in every one or none)" +
                          mesh);
               std::copy(it->second.second.begin(), it->second.second.end(),
                         row.corr.begin() + (((p * 2 + o) * nS + i) * nT + j) * nE);

@@ -34,12 +34,17 @@
 /// relative sign of eta and phi ((xi, eta, phi) and (-xi, eta, phi) are mirror images: only
 /// sign(eta phi) matters). ln multiplier interpolated bilinearly in (s3, t), linearly in e. The
 /// fourth (kind cs) multiplies the bound's shape: in full slip the flexibilities hardly act, and
-/// the bound's shape decides how the saturated traction splits into force and moment.
+/// the bound's shape decides how the saturated traction splits into force and moment. The fifth
+/// (kind c3x, optional: 1 where the table has none) multiplies L3x besides L3's: where xi drives
+/// most of the patch and spin some 40 %, on a long patch, spin's longitudinal drive and its lateral
+/// one split the moment differently from pure spin, and four multipliers could not fit force and
+/// moment together (doc/calibrated_fastsim.md).
 ///
 /// Table (CSV, '#' comment lines: command, Poisson ratio, grids, fit errors):
 ///   a_over_b,kind,epsilon,ratio[,...]   optional columns, named in the header, in any order:
 ///   fit_error, fastsim_nx, spin_share, xi_share, sign (an empty or missing field: not given)
-///   kind in {11, 22, 23, 23x, 23s, c1, c2, c3, cs}; c-kinds carry their direction (sign +1 or -1)
+///   kind in {11, 22, 23, 23x, 23s, c1, c2, c3, cs, c3x}; c-kinds carry their direction (sign +1 or
+///   -1)
 /// fastsim_nx: the FastSim mesh's nodes per strip the row was identified on (FastSim's own
 /// discretisation error differs per mesh, the exact curves do not); each mesh's rows in one block.
 /// A table without the column is one mesh that serves every nx.
@@ -92,8 +97,8 @@ class FlexibilityCalibration {
   double boundShape(double a, double b, double G, const CreepCoefficients& k, double muFz,
                     const Creepages& c) const;
   /// The combined correction's multipliers m[first..last) (0-2: of L1, L2, L3; 3: of the bound's
-  /// shape) for creepages with squares e2 (e1^2, e2^2, e3^2), e = their root sum, and
-  /// eta phi < 0 (`opposed`); 1 where the table has none.
+  /// shape; 4: of L3x besides L3's) for creepages with squares e2 (e1^2, e2^2, e3^2), e = their
+  /// root sum, and eta phi < 0 (`opposed`); 1 where the table has none.
   void correction(const double* e2, double e, bool opposed, int first, int last, double* m) const;
   /// The bound's shape is at most this (flattenedBound stays positive below 4).
   static constexpr double kMaxBoundShape = 2.0;
@@ -118,7 +123,7 @@ class FlexibilityCalibration {
   static constexpr double kSmallSpinShare = 0.25;
   /// Normalised creepage from which towardsFullSlip moves the shape.
   static constexpr double kFullSlipFrom = 2.5;
-  static constexpr int kCorrections = 4;
+  static constexpr int kCorrections = 5;
   /// Ratio of kind k (0: 11, 1: 22, 2: 23, 3: 23x, 4: 23s) at normalised creepage e, and its
   /// logarithm.
   double ratio(int kind, double e) const;
@@ -157,7 +162,7 @@ class FlexibilityCalibration {
     return c.i == r.size() ? r.back() : r[c.i - 1] + c.t * (r[c.i] - r[c.i - 1]);
   }
   // Combined correction: spin shares (interior knots), xi shares (0 to 1), e knots, and the
-  // multipliers' logarithms, the four of a grid point side by side, at index
+  // multipliers' logarithms, the five of a grid point side by side, at index
   // ((((opposed * (nS + 2) + i) * nT + j) * nE + k) * kCorrections + p): spin-share rows i = 0 and
   // nS + 1 are the implicit ends s3 = 0 and 1 (ln multiplier 0), row i the knot corrS3_[i - 1].
   // The reciprocal widths of the spin-share cells (nS + 1, the ends included), the xi-share cells
