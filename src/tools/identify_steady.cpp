@@ -536,6 +536,22 @@ constexpr double kLinearEnd = 0.1;
 // where the interpolation from no spin to the first knot from kSmallSpinShare on did not miss.
 constexpr double kSmallShareFitFrom = 0.75;
 
+// The fifth multiplier (of L3x alone, kind c3x) is 1 below this normalised creepage and pulled
+// towards 1 harder than the others above it. Fitted freely, it moved the first spin share's fit in
+// partial slip, which the small shares hold there (h5's Mz 4.9 -> 6.0 % of the peak), and wandered
+// in full slip along a ridge of near-equal optima; where it is needed (xi-dominant directions with
+// some 40 % spin on long patches, r19 and r32) it acts from partial slip's end on.
+constexpr double kSpinDriveFitFrom = 0.75;
+constexpr double kSpinDrivePull = 1e-2;
+
+// The multipliers a knot at e searches: the first four, and L3x's from kSpinDriveFitFrom on (its ln
+// multiplier, lm[4], is set to 0 below it).
+int searchedMultipliers(double e, double* lm) {
+  if (e >= kSpinDriveFitFrom) return kMultipliers;
+  lm[4] = 0.0;
+  return kMultipliers - 1;
+}
+
 // Pattern search along the coordinates: from x, steps of +-h along each of its `dims` coordinates
 // while they lower `cost`, h halving from 0.2 down to 1e-3, at most `maxSweeps` sweeps per h; a
 // point `allowed` rejects is not costed. x ends at the best point found.
@@ -561,12 +577,12 @@ void coordinateSearch(double* x, int dims, const Cost& cost, const Allowed& allo
 
 // The combined correction's search cost at a knot: a smooth norm of the errors spinError takes the
 // larger of (a coordinate search stalls on the ridges of a maximum), with a small pull of the ln
-// multipliers `l` towards 1.
+// multipliers `l` towards 1 (kSpinDrivePull on L3x's).
 double knotCost(const Point& p, const Point& x, double mzPeak, const double* l) {
   const double dx = p.fx - x.fx, dy = p.fy - x.fy, dm = 0.2 * (p.mz - x.mz) / mzPeak;
   double pull = 0.0;
-  for (int q = 0; q < kMultipliers; ++q) pull += std::abs(l[q]);
-  return std::sqrt(dx * dx + dy * dy + dm * dm) + 1e-3 * pull;
+  for (int q = 0; q < 4; ++q) pull += std::abs(l[q]);
+  return std::sqrt(dx * dx + dy * dy + dm * dm) + 1e-3 * pull + kSpinDrivePull * std::abs(l[4]);
 }
 
 // A held small share's ln multipliers at knot i: the held fit's to the power heldPower.
@@ -611,9 +627,9 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
       return knotCost(fastsimCorrected(o, g, r, e, base, expOf(l).data(), held != nullptr), x,
                       mzPeak, l);
     };
+    const int dims = searchedMultipliers(e, lm);
     coordinateSearch(
-        lm, kMultipliers, cost, [](const double*) { return true; },
-        std::numeric_limits<int>::max());
+        lm, dims, cost, [](const double*) { return true; }, std::numeric_limits<int>::max());
     fit.m.push_back(expOf(lm));
     fit.error.push_back(error(lm));
   }
@@ -658,9 +674,9 @@ void refitTowards(const Options& o, ExactCache* exact, double g, const Ray& r,
                weight * apart;
       };
       std::copy(target[i].begin(), target[i].end(), lm);
+      const int dims = searchedMultipliers(e, lm);
       coordinateSearch(
-          lm, kMultipliers, cost, [](const double*) { return true; },
-          std::numeric_limits<int>::max());
+          lm, dims, cost, [](const double*) { return true; }, std::numeric_limits<int>::max());
     }
     fit->m[i] = expOf(lm);
     fit->error[i] =

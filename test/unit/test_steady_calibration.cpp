@@ -89,7 +89,8 @@ TEST(SteadyCalibration, ScalesEachFlexibilityByItsKindsRatioAtTheNormalisedCreep
 TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
   // The shipped table's kinds share their knots: step() locates e once for all of them and folds
   // the combined correction into the ratios' exp. It must give what the rule gives kind by kind:
-  // each kind's own ratio(), the correction's multipliers, the blend towards L_crss.
+  // each kind's own ratio(), the correction's multipliers (L3x's besides L3's), the blend towards
+  // L_crss.
   const FlexibilityCalibration c = SteadyCalibration::shipped().forMesh(20).at(0.7);
   const double a = 5e-3, b = a / 0.7, G = 8.2e10, muFz = 2.4e4;
   const CreepCoefficients k = kalkerCoefficients(0.7, 0.28);
@@ -109,7 +110,8 @@ TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
     EXPECT_NEAR(s.L.L1, rho * m[0] * ((1 - w) * L0.L1 + w * crss), 1e-14 * s.L.L1) << e;
     EXPECT_NEAR(s.L.L2, rho * m[1] * ((1 - w) * L0.L2 + w * crss), 1e-14 * s.L.L2) << e;
     EXPECT_NEAR(s.L.L3, rho * m[2] * ((1 - w) * L0.L3 + w * crss), 1e-14 * s.L.L3) << e;
-    EXPECT_NEAR(s.L.L3x, s.L.L3 * std::exp(e2[2] / (e * e) * c.logRatio(3, e)), 1e-14 * s.L.L3x);
+    EXPECT_NEAR(s.L.L3x, s.L.L3 * std::exp(e2[2] / (e * e) * c.logRatio(3, e)) * m[4],
+                1e-14 * s.L.L3x);
     const double s3 = e2[2] / (e * e);
     EXPECT_NEAR(s.boundShape, c.towardsFullSlip(c.ratio(4, e) * s3 * m[3], e, s3),
                 1e-14 * s.boundShape);
