@@ -170,10 +170,11 @@ TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) 
   // signs of eta phi): r1-r16 placed by hand, r17-r28 and r29-r40 drawn at random (r29-r40 after
   // the grid and its smoothing were chosen). Issue 19's 0.02 on every one but r10 (spin 4.5 %
   // of e^2, below the first spin share, in full slip at a/b 0.2), measured on 20x20
-  // 0.002-0.0195 (before the denser, smoothed grid up to 0.064; classic 0.011-0.214) and r10
-  // 0.033; under half of classic's wherever classic misses the target; Mz at most 12.4 % of the
-  // peak (r10, whose moment is mostly eta's). doc/calibrated_fastsim.md, "A denser grid, fitted
-  // smooth".
+  // 0.002-0.019 (before the denser, smoothed grid up to 0.064; classic 0.011-0.214) and r10
+  // 0.029; under half of classic's wherever classic misses the target. Mz within issue 19's 5 %
+  // of the peak, measured 0.3-4.5 % (r19 at a/b 5; 8.3 % before L3x's own multiplier), but where
+  // the moment is mostly eta's (r1, r2, r10: up to 12.4 %). doc/calibrated_fastsim.md, "A denser
+  // grid, fitted smooth" and "L3x's own multiplier".
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
     for (int r = 1; r <= 40; ++r) {
       const std::string ray = "r" + std::to_string(r);
@@ -183,7 +184,7 @@ TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) 
       if (classic > 0.02) {
         EXPECT_LT(cal.force, 0.5 * classic) << ab << " " << ray;
       }
-      EXPECT_LT(cal.moment, 0.14) << ab << " " << ray;
+      EXPECT_LT(cal.moment, r == 1 || r == 2 || r == 10 ? 0.14 : 0.05) << ab << " " << ray;
     }
 }
 
