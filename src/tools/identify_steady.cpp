@@ -538,9 +538,10 @@ constexpr double kSmallShareFitFrom = 0.75;
 
 // The fifth multiplier (of L3x alone, kind c3x) is 1 below this normalised creepage and pulled
 // towards 1 harder than the others above it. Fitted freely, it moved the first spin share's fit in
-// partial slip, which the small shares hold there (h5's Mz 4.9 -> 6.0 % of the peak), and wandered
-// in full slip along a ridge of near-equal optima; where it is needed (xi-dominant directions with
-// some 40 % spin on long patches, r19 and r32) it acts from partial slip's end on.
+// partial slip, which the small shares hold there (their moment then missed), and wandered in full
+// slip along a ridge of near-equal optima; where it is needed (xi-dominant directions with some
+// 40 % spin on long patches) it acts from partial slip's end on (doc/calibrated_fastsim.md, "L3x's
+// own multiplier").
 constexpr double kSpinDriveFitFrom = 0.75;
 constexpr double kSpinDrivePull = 1e-2;
 

@@ -37,8 +37,8 @@
 /// the bound's shape decides how the saturated traction splits into force and moment. The fifth
 /// (kind c3x, optional: 1 where the table has none) multiplies L3x besides L3's: where xi drives
 /// most of the patch and spin some 40 %, on a long patch, spin's longitudinal drive and its lateral
-/// one split the moment differently from pure spin, and four multipliers could not fit force and
-/// moment together (doc/calibrated_fastsim.md).
+/// one share the moment otherwise than under pure spin, and four multipliers could not fit force
+/// and moment together (doc/calibrated_fastsim.md, "L3x's own multiplier").
 ///
 /// Table (CSV, '#' comment lines: command, Poisson ratio, grids, fit errors):
 ///   a_over_b,kind,epsilon,ratio[,...]   optional columns, named in the header, in any order:
