@@ -71,6 +71,7 @@ struct Options {
   // mu fz per unit ln multiplier; 0: each direction fitted alone.
   double smoothing = 0.01;
   bool solveGrid = false, gridOnly = false, momentStudy = false;
+  bool coupling = true;  // eta's lateral coupling (kind 22c) identified and used
 };
 
 const char* const kUsage =
@@ -83,7 +84,8 @@ const char* const kUsage =
     "                       [--spin-shares 0.06,0.1,0.175,0.25,0.375,0.5,0.625,0.75,0.825,\n"
     "                                      0.9,0.95]\n"
     "                       [--xi-shares 0,0.125,0.25,0.375,0.5,0.75,0.875,1]\n"
-    "                       [--smoothing 0.01] [--solve-grid [--grid-only]] [--moment-study]\n"
+    "                       [--smoothing 0.01] [--no-coupling] [--solve-grid [--grid-only]]\n"
+    "                       [--moment-study]\n"
     "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
     "          --table classic: no table)\n"
     "--curves: write exact / classic / calibrated curves at --points for every ray\n"
@@ -93,6 +95,7 @@ const char* const kUsage =
     "--spin-shares, --xi-shares: the combined correction's direction grid (none: no correction)\n"
     "--smoothing: the pull of each direction's multipliers towards its neighbours' (mu fz per\n"
     "          unit ln multiplier; 0: each direction fitted alone)\n"
+    "--no-coupling: no lateral coupling (kind 22c): eta's ratio fitted to the force alone\n"
     "--solve-grid: only solve the exact points the table and curves need (a long job; the cache\n"
     "          is saved as it goes); --grid-only: the direction grid's points, not the rays'\n"
     "--moment-study: per ray and a/b at --points, FastSim's errors on the table (or --table) and\n"
@@ -134,6 +137,8 @@ void readOption(tools::Args& a, Options* o) {
     o->gridOnly = true;
   else if (a.is("--moment-study"))
     o->momentStudy = true;
+  else if (a.is("--no-coupling"))
+    o->coupling = false;
   else
     a.unknown();
 }
@@ -368,9 +373,9 @@ Point fastsimAt(const Options& o, double g, const Ray& r, double e,
 }
 
 // FastSim along pure kind `kind` with L_kind scaled by ratio (spin: its longitudinal drive's
-// flexibility L3x by ratioX besides).
+// flexibility L3x by ratioX besides), with the lateral coupling `couple` (kind 22c).
 Point fastsimScaled(const Options& o, double g, int kind, double e, double ratio,
-                    double ratioX = 1.0, double shape = 0.0) {
+                    double ratioX = 1.0, double shape = 0.0, double couple = 0.0) {
   const Setup s(o, g);
   const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
   TractionField f;
@@ -380,6 +385,7 @@ Point fastsimScaled(const Options& o, double g, int kind, double e, double ratio
   Flexibilities L = kalkerFlexibilities(s.a, s.b, s.G, s.k);
   (kind == 0 ? L.L1 : kind == 1 ? L.L2 : L.L3) *= ratio;
   if (kind == 2) L.L3x = L.L3 * ratioX;
+  L.lateralCoupling = FlexibilityCalibration::lateralCoupling(couple, s.a, s.b, s.k);
   const CreepForces x = steadyFastSim(mesh, L, c, &f);
   return s.normalised(x.fx, x.fy, x.mz);
 }
@@ -396,19 +402,91 @@ double spinError(const Point& p, const Point& x, double mzPeak) {
                   0.2 * std::abs(p.mz - x.mz) / mzPeak);
 }
 
+// The pull of the lateral coupling towards the previous knot's, in mu fz per unit of c: the fit
+// along eta's curve has near-equal optima of c and L2's ratio where the curve saturates.
+constexpr double kCouplingPull = 2e-3;
+
 struct KindFit {
   std::vector<double> ratio, ratioX, error;
-  double shape = 0.0;  // spin: the bound's shape
+  std::vector<double> couple;  // eta: the lateral coupling (22c), per knot
+  double shape = 0.0;          // spin: the bound's shape
 };
+
+// Eta alone with the lateral coupling (kind 22c): at each knot the pair (ln ratio of L2, coupling
+// c) that fits Fy and Mz together (spinError), by a grid near the previous knot's pair (one
+// continuous branch) and pattern refinement, with a small pull of the ratio towards 1 and of c
+// towards the previous knot's: of near-equal optima the one that continues the curve. Knot 0 takes
+// the first fitted knot's coupling (linear theory's moment: the coupling's only work there).
+KindFit identifyLateral(const Options& o, ExactCache* exact, double g) {
+  double mzPeak = 0.0;
+  for (double e : o.knots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, kRays[1], e).mz));
+  KindFit fit;
+  double lr = 0.0, couple = 0.0;
+  bool first = true;
+  for (double e : o.knots) {
+    if (e == 0.0) {
+      fit.ratio.push_back(1.0);
+      fit.couple.push_back(0.0);  // set below
+      fit.error.push_back(0.0);
+      continue;
+    }
+    const Point x = exact->at(g, kRays[1], e);
+    const double previous = couple;
+    auto cost = [&](double l, double c) {
+      return spinError(fastsimScaled(o, g, 1, e, std::exp(l), 1.0, 0.0, c), x, mzPeak) +
+             1e-3 * std::abs(l) + (first ? 0.0 : kCouplingPull * std::abs(c - previous));
+    };
+    double best = lr, bestC = couple, bestCost = cost(lr, couple);
+    auto scan = [&](double lo, double hi, double loC, double hiC) {
+      const int n = 40;
+      for (int i = 0; i <= n; ++i)
+        for (int k = 0; k <= n; ++k) {
+          const double l = lo + (hi - lo) * i / n, c = loC + (hiC - loC) * k / n;
+          const double v = cost(l, c);
+          if (v < bestCost) bestCost = v, best = l, bestC = c;
+        }
+    };
+    if (first)
+      scan(-0.6, 0.6, -2.0, 1.0);
+    else
+      scan(lr - 0.4, lr + 0.4, couple - 0.4, couple + 0.4);
+    for (double h = 0.02; h > 1e-5; h *= 0.5)
+      for (bool moved = true; moved;) {
+        moved = false;
+        for (const auto& [dl, dc] : {std::pair<double, double>{h, 0},
+                                     {-h, 0},
+                                     {0, h},
+                                     {0, -h},
+                                     {h, h},
+                                     {-h, -h},
+                                     {h, -h},
+                                     {-h, h}}) {
+          const double v = cost(best + dl, bestC + dc);
+          if (v < bestCost) bestCost = v, best += dl, bestC += dc, moved = true;
+        }
+      }
+    lr = best;
+    couple = bestC;
+    first = false;
+    fit.ratio.push_back(std::exp(lr));
+    fit.couple.push_back(couple);
+    fit.error.push_back(
+        spinError(fastsimScaled(o, g, 1, e, std::exp(lr), 1.0, 0.0, couple), x, mzPeak));
+  }
+  if (fit.couple.size() > 1) fit.couple[0] = fit.couple[1];
+  fit.ratioX.assign(fit.ratio.size(), 1.0);
+  return fit;
+}
 
 // Spin's pair (ratio of L3, ratio of L3x) at knot e: a grid over both logarithms near the previous
 // knot's pair (one continuous branch), then pattern refinement on halving steps.
 // A small pull towards 1 as for the single ratio.
 std::pair<double, double> identifySpinPair(const Options& o, double g, double e, const Point& x,
                                            double mzPeak, double previous, double previousX,
-                                           double shape) {
+                                           double shape, double couple) {
   auto cost = [&](double lr, double lrx) {
-    return spinError(fastsimScaled(o, g, 2, e, std::exp(lr), std::exp(lrx), shape), x, mzPeak) +
+    return spinError(fastsimScaled(o, g, 2, e, std::exp(lr), std::exp(lrx), shape, couple), x,
+                     mzPeak) +
            1e-3 * (std::abs(lr) + std::abs(lrx));
   };
   // The longitudinal spin drive moves further from knot to knot across the curve's peak (and at
@@ -446,14 +524,17 @@ std::pair<double, double> identifySpinPair(const Options& o, double g, double e,
   return {std::exp(best), std::exp(bestX)};
 }
 
-KindFit identifyKind(const Options& o, ExactCache* exact, double g, int kind, double shape = 0.0) {
+// Kind `kind` alone (spin: on the lateral coupling `couple` per knot, empty: none).
+KindFit identifyKind(const Options& o, ExactCache* exact, double g, int kind, double shape = 0.0,
+                     const std::vector<double>& couple = {}) {
   double mzPeak = 0.0;
   if (kind == 2)
     for (double e : o.knots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, kRays[2], e).mz));
   KindFit fit;
   fit.shape = shape;
   double previous = 1.0, previousX = 1.0;
-  for (double e : o.knots) {
+  for (std::size_t knot = 0; knot < o.knots.size(); ++knot) {
+    const double e = o.knots[knot], knotCouple = couple.empty() ? 0.0 : couple[knot];
     if (e == 0.0) {
       fit.ratio.push_back(1.0);
       fit.ratioX.push_back(1.0);
@@ -463,11 +544,11 @@ KindFit identifyKind(const Options& o, ExactCache* exact, double g, int kind, do
     const Point x = exact->at(g, kRays[kind], e);
     if (kind == 2) {
       std::tie(previous, previousX) =
-          identifySpinPair(o, g, e, x, mzPeak, previous, previousX, shape);
+          identifySpinPair(o, g, e, x, mzPeak, previous, previousX, shape, knotCouple);
       fit.ratio.push_back(previous);
       fit.ratioX.push_back(previousX);
       fit.error.push_back(
-          spinError(fastsimScaled(o, g, 2, e, previous, previousX, shape), x, mzPeak));
+          spinError(fastsimScaled(o, g, 2, e, previous, previousX, shape, knotCouple), x, mzPeak));
       continue;
     }
     // Scan ln r, then refine around the best by golden section. A small pull towards r = 1 picks
@@ -509,11 +590,12 @@ KindFit identifyKind(const Options& o, ExactCache* exact, double g, int kind, do
 // Spin: the bound's shape per a/b, the flattest of 1, 0.75, 0.5, 0.25 whose fit keeps every
 // knot within the targets (error below 0.01: force 0.01 mu fz, moment 5 % of the peak), else the
 // best of them.
-KindFit identifySpin(const Options& o, ExactCache* exact, double g) {
+KindFit identifySpin(const Options& o, ExactCache* exact, double g,
+                     const std::vector<double>& couple) {
   KindFit best;
   double bestWorst = 1e300;
   for (double shape : {1.0, 0.75, 0.5, 0.25}) {
-    KindFit fit = identifyKind(o, exact, g, 2, shape);
+    KindFit fit = identifyKind(o, exact, g, 2, shape, couple);
     const double worst = *std::max_element(fit.error.begin(), fit.error.end());
     if (worst < bestWorst) bestWorst = worst, best = fit;
     if (worst < 0.01) return fit;
@@ -805,9 +887,13 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
 // One mesh's rows (fastsim_nx o.nx) in increasing a/b, its fit errors into `notes`.
 std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream* notes) {
   std::map<double, std::string> rows;  // per a/b: the table's blocks in increasing a/b
-  for (double g : o.ratios)
+  for (double g : o.ratios) {
+    std::vector<double> couple;  // eta's fit's lateral coupling, which spin's is fitted on
     for (int kind = 0; kind < 3; ++kind) {
-      const KindFit fit = kind == 2 ? identifySpin(o, exact, g) : identifyKind(o, exact, g, kind);
+      const KindFit fit = kind == 2                 ? identifySpin(o, exact, g, {})
+                          : kind == 1 && o.coupling ? identifyLateral(o, exact, g)
+                                                    : identifyKind(o, exact, g, kind);
+      if (kind == 1) couple = fit.couple;
       double worst = 0.0;
       for (std::size_t i = 0; i < o.knots.size(); ++i) {
         char line[160];
@@ -815,6 +901,12 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
                       o.knots[i], fit.ratio[i], fit.error[i], o.nx);
         rows[g] += line;
         worst = std::max(worst, fit.error[i]);
+      }
+      for (std::size_t i = 0; i < fit.couple.size(); ++i) {  // eta's coupling, its fit's error
+        char line[160];
+        std::snprintf(line, sizeof line, "%g,22c,%g,%.6f,%.5f,%d\n", g, o.knots[i], fit.couple[i],
+                      fit.error[i], o.nx);
+        rows[g] += line;
       }
       if (kind == 2)  // spin's second parameter: same knots, the same fit's error
         for (std::size_t i = 0; i < o.knots.size(); ++i) {
@@ -835,6 +927,7 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
                     kRays[kind].name.c_str(), worst);
       *notes << note;
     }
+  }
   if (!o.spinShares.empty()) {  // the correction on top of the single kinds' table
     std::stringstream single;
     single << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n";

@@ -216,6 +216,48 @@ TEST(SteadyCalibration, RefusesMalformedTablesNamingTheLine) {
             std::string::npos);
 }
 
+TEST(SteadyCalibration, LateralCouplingIsEtasCouplingFadingWithSpin) {
+  // Kind 22c: the coupling c per a/b and knot, any sign, interpolated linearly in e and in
+  // ln(a/b); Flexibilities::lateralCoupling = 3 C11 c / (8 a b) times eta's share of the lateral
+  // creepages' squares to the sixth; 0 without eta or without the kind.
+  const std::string h = "a_over_b,kind,epsilon,ratio\n";
+  const std::string body =
+      h +
+      "0.5,11,0,1\n0.5,11,1,1\n0.5,22,0,1\n0.5,22,1,1\n0.5,23,0,1\n0.5,23,1,1\n"
+      "0.5,22c,0,-0.4\n0.5,22c,1,-0.2\n"
+      "2,11,0,1\n2,11,1,1\n2,22,0,1\n2,22,1,1\n2,23,0,1\n2,23,1,1\n"
+      "2,22c,0,-0.8\n2,22c,1,0.2\n";
+  const SteadyCalibration t = SteadyCalibration::load(writeTable(body));
+  EXPECT_DOUBLE_EQ(t.at(0.5).coupling(0.5), -0.3);
+  EXPECT_DOUBLE_EQ(t.at(0.5).coupling(9.0), -0.2);  // held
+  EXPECT_DOUBLE_EQ(t.at(1.0).coupling(1.0), 0.0);   // halfway in ln(a/b)
+  EXPECT_DOUBLE_EQ(SteadyCalibration::load(writeTable(kTwoRows)).at(1.0).coupling(1.0), 0.0);
+  const double a = 4e-3, b = 8e-3, G = 8.2e10, muFz = 3e3;
+  const CreepCoefficients k = kalkerCoefficients(a / b, 0.28);
+  const FlexibilityCalibration c = t.at(0.5);
+  const Creepages eta{0.0, 2e-4, 0.0}, xi{2e-4, 0.0, 0.0};
+  const double e = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, eta);
+  ASSERT_LT(e, 1.0);
+  const double full = 3.0 * k.c11 * c.coupling(e) / (8.0 * a * b);
+  EXPECT_DOUBLE_EQ(c.step(a, b, G, k, muFz, eta).L.lateralCoupling, full);
+  EXPECT_EQ(c.step(a, b, G, k, muFz, xi).L.lateralCoupling, 0.0);
+  // Spin as large as eta in e^2: (1/2)^6 of the coupling at that e.
+  const double phi = k.c22 * eta.eta / (k.c23 * std::sqrt(a * b));
+  const Creepages both{0.0, eta.eta, phi};
+  double squares[3];
+  const double eb = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, both, squares);
+  ASSERT_NEAR(squares[1], squares[2], 1e-12 * squares[1]);
+  EXPECT_NEAR(c.step(a, b, G, k, muFz, both).L.lateralCoupling,
+              3.0 * k.c11 * c.coupling(eb) / (8.0 * a * b) / 64.0, 1e-12 * std::abs(full));
+  // In every a/b or in none; a negative value is no malformed ratio.
+  EXPECT_NE(message(h + "1,11,0,1\n1,22,0,1\n1,23,0,1\n1,22c,0,-0.3\n2,11,0,1\n2,22,0,1\n"
+                        "2,23,0,1\n")
+                .find("every a/b must hold every kind"),
+            std::string::npos);
+  EXPECT_NE(message(h + "1,11,0,1\n1,22,0,1\n1,23,0,1\n1,22c,0.5,-0.3\n").find(":5: the knots"),
+            std::string::npos);
+}
+
 TEST(SteadyCalibration, OneBlockPerMeshTheNearestInOneOverNx) {
   // Two meshes, 5 and 20 nodes per strip (columns found by name, in any order after ratio).
   const std::string h = "a_over_b,kind,epsilon,ratio,fastsim_nx,fit_error\n";

@@ -266,11 +266,12 @@ TEST(TransientFastSim, FourStripLanesMarchBitForBitAsTwoStrips) {
   // two-strip march: tractions, slip flags, filter states and forces equal bit for bit, on a fixed
   // mesh larger than a patch whose load varies (strips of different lengths, edges moving), on
   // carried steps (the adaptive mesh's path), first- and second-order filters, x and y on
-  // different filters, with spin, with a history scale, through zero creepage (the tiny path) and
+  // different filters, with spin, with the lateral coupling and without, with a history scale,
+  // through zero creepage (the tiny path) and
   // a bound next to zero (the lanes' stop).
   if (!fourStripLanesAvailable()) GTEST_SKIP() << "this CPU has no AVX: only the two-strip march";
   const double a0 = 6e-3, b0 = 4e-3, fz0 = 8e4, V = 20.0, dt = 5e-5;
-  const Flexibilities L = kalkerFlexibilities(a0, b0, 8.2e10, kalkerCoefficients(a0 / b0, 0.28));
+  const Flexibilities L0 = kalkerFlexibilities(a0, b0, 8.2e10, kalkerCoefficients(a0 / b0, 0.28));
   for (const bool second : {false, true})
     for (const int n : {5, 11, 23}) {
       const PatchMesh mesh(n, n + 2, std::cbrt(1.5) * a0, std::cbrt(1.5) * b0);
@@ -303,6 +304,9 @@ TEST(TransientFastSim, FourStripLanesMarchBitForBitAsTwoStrips) {
         const Creepages c{w * 1.5e-3 * std::cos(k / 9.0), w * 8e-4 * std::sin(k / 5.0),
                           w * 0.4 * std::sin(k / 7.0)};
         const double r = k % 25 == 0 ? 0.97 : 1.0;
+        // The lateral coupling (calibrated FastSim's) on every other step.
+        Flexibilities L = L0;
+        L.lateralCoupling = k % 2 == 0 ? -3e4 : 0.0;
         CreepForces x, y;
         if (k % 3 == 2) {  // carried, the patch stretched along the strips
           map.set(k % 2 == 0 ? 0.95 : 1.04);
@@ -330,6 +334,51 @@ TEST(TransientFastSim, FourStripLanesMarchBitForBitAsTwoStrips) {
       // Both regimes were marched.
       EXPECT_GT(slipping, 100) << second << n;
       EXPECT_GT(stuck, 100) << second << n;
+    }
+}
+
+TEST(TransientFastSim, CoupledMarchSettlesOnCoupledSteadyFastSim) {
+  // The lateral coupling in the residual-along-traction march (calibrated nss): under constant
+  // input, x and y on different filters, in partial slip, the traction settles on steady
+  // FastSim's with the same coupling, whatever the step length, two strips or four at a time.
+  const double a = 6e-3, b = 4e-3, fz = 8e4, V = 20.0, mu = 0.3;
+  Flexibilities L = kalkerFlexibilities(a, b, 8.2e10, kalkerCoefficients(a / b, 0.28));
+  L.lateralCoupling = -3e4;
+  const PatchMesh mesh(24, 20, a, b);
+  TractionField steady, f;
+  steady.resize(mesh.size());
+  f.resize(mesh.size());
+  parabolicBound(mesh, a, b, fz, mu, &steady);
+  parabolicBound(mesh, a, b, fz, mu, &f);
+  const Creepages c{5e-4, 1.5e-3, 1.0};
+  const CreepForces ref = steadyFastSim(mesh, L, c, &steady);
+  Flexibilities plain = L;
+  plain.lateralCoupling = 0.0;
+  TractionField g;
+  g.resize(mesh.size());
+  parabolicBound(mesh, a, b, fz, mu, &g);
+  const CreepForces uncoupled = steadyFastSim(mesh, plain, c, &g);
+  ASSERT_GT(std::abs(ref.mz - uncoupled.mz), 0.02 * std::abs(ref.mz));  // the coupling acts
+  int slipping = 0;
+  for (int k = 0; k < mesh.size(); ++k) slipping += steady.bound(k) > 0.0 && steady.slip(k);
+  ASSERT_GT(slipping, mesh.size() / 10);
+  const double element = 2.0 * a / mesh.nx(), muFz = mu * fz;
+  for (const auto lanes :
+       {TransientState::FourStripLanes::kOff, TransientState::FourStripLanes::kOn})
+    for (double steps : {0.3, 1.0, 4.0}) {
+      const double dt = steps * element / V;
+      const FilterZ zx = discretise(ChiParameters{0.4, 1.1, 0.6}, a, V, dt),
+                    zy = discretise(ChiParameters{0.5, 1.0, 0.7}, a, V, dt);
+      TransientState st;
+      st.resize(mesh.size());
+      st.setSaturation(TransientState::Saturation::kResidualAlongTraction);
+      st.setFourStripLanes(lanes);
+      CreepForces o;
+      for (int k = 0; k < static_cast<int>(80.0 * a / (steps * element)); ++k)
+        o = transientFastSim(mesh, L, c, V, dt, zx, zy, 1.0, &st, &f);
+      EXPECT_NEAR(o.fx, ref.fx, 1e-6 * muFz) << steps;
+      EXPECT_NEAR(o.fy, ref.fy, 1e-6 * muFz) << steps;
+      EXPECT_NEAR(o.mz, ref.mz, 1e-6 * std::abs(ref.mz)) << steps;
     }
 }
 

@@ -277,36 +277,46 @@ CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& f) {
 
 namespace {
 
-// One strip of the steady march: its drive and running traction and sums.
+// One strip of the steady march: its drive and running traction and sums. kCoupled: the x drive
+// takes the lateral coupling (Flexibilities::lateralCoupling, perTy = its value times y_j) of the
+// upstream node's lateral traction; the classic march is its own instance without it.
+template <bool kCoupled>
 struct SteadyStrip {
-  double dx, aj, sx, gy, gphi;
+  double dx, aj, sx, gy, gphi, perTy;
   int k0;
   double tx = 0.0, ty = 0.0;
   StripSums sums = {};
   [[gnu::always_inline]] void node(int i, double h, const double* xn, const FieldPointers& out) {
     const int k = k0 + i;
     const UpstreamStep step(i, dx, aj, h);
-    tx -= step.h * sx;
+    if constexpr (kCoupled)
+      tx -= step.h * (sx + perTy * ty);  // ty: still the upstream node's
+    else
+      tx -= step.h * sx;
     ty -= step.h * (gy + gphi * step.xMid);
     sums.node(k, xn[k], out.bound[k], &tx, &ty, out);
   }
 };
 
-}  // namespace
-
-CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
-                          TractionField* f) {
+template <bool kCoupled>
+CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
+                        TractionField* f) {
+  using Strip = SteadyStrip<kCoupled>;
   const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, gphiX = c.phi / L.spinX();
   const FieldPointers out(f);
   const double* const xn = mesh.xNorms().data();
   const int nx = mesh.nx(), ny = mesh.ny();
   ForceSums sums;
   auto strip = [&](int j) __attribute__((always_inline)) {
-    return SteadyStrip{
-        mesh.stripStep(j), mesh.stripHalfLength(j), gx - gphiX * mesh.stripY(j), gy, gphi,
-        mesh.index(0, j)};
+    return Strip{mesh.stripStep(j),
+                 mesh.stripHalfLength(j),
+                 gx - gphiX * mesh.stripY(j),
+                 gy,
+                 gphi,
+                 L.lateralCoupling * mesh.stripY(j),
+                 mesh.index(0, j)};
   };
-  auto finish = [&](int j, const SteadyStrip& s) {
+  auto finish = [&](int j, const Strip& s) {
     const StripEntry& e = f->entry[j];
     for (int i = 0; i < std::min(e.first, nx); ++i) out.unloaded(s.k0 + i);
     for (int i = std::max(nx - e.first, e.first); i < nx; ++i) out.unloaded(s.k0 + i);
@@ -317,7 +327,7 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
   // latency (a saturated node's square root and division sit on its strip's chain). Each strip's
   // nodes still go in order: the result is that of one strip at a time.
   for (; j + 3 < ny; j += 4) {
-    SteadyStrip S[4] = {strip(j), strip(j + 1), strip(j + 2), strip(j + 3)};
+    Strip S[4] = {strip(j), strip(j + 1), strip(j + 2), strip(j + 3)};
     int at[4], end[4];
     for (int m = 0; m < 4; ++m) {
       const StripEntry& e = f->entry[j + m];
@@ -336,7 +346,7 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
   }
   // Two strips at a time, the same.
   for (; j + 1 < ny; j += 2) {
-    SteadyStrip A = strip(j), B = strip(j + 1);
+    Strip A = strip(j), B = strip(j + 1);
     const StripEntry ea = f->entry[j], eb = f->entry[j + 1];
     int ia = ea.first, ib = eb.first;
     const int la = nx - ea.first, lb = nx - eb.first;
@@ -353,7 +363,7 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
     finish(j + 1, B);
   }
   if (j < ny) {
-    SteadyStrip A = strip(j);
+    Strip A = strip(j);
     const StripEntry ea = f->entry[j];
     const int la = nx - ea.first;
     if (ea.first < la) A.node(ea.first, ea.h, xn, out);
@@ -361,6 +371,14 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
     finish(j, A);
   }
   return sums.forces();
+}
+
+}  // namespace
+
+CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
+                          TractionField* f) {
+  if (L.lateralCoupling != 0.0) return steadyMarch<true>(mesh, L, c, f);
+  return steadyMarch<false>(mesh, L, c, f);
 }
 
 }  // namespace wheel_rail_contact

@@ -24,6 +24,13 @@ struct Flexibilities {
   /// calibrated FastSim's second spin parameter, steady_calibration.hpp); 0: L3, as in Kalker's
   /// theory.
   double L3x = 0.0;
+  /// Coupling of the longitudinal slip to the lateral traction [1/m^2] (the calibrated FastSim's,
+  /// steady_calibration.hpp): the x drive gains lateralCoupling y tau_y, tau_y the upstream
+  /// node's lateral traction, y the strip's lateral position. Odd in y, it adds no force in
+  /// linear theory, only a moment; in full slip it turns the traction off the rigid slip's
+  /// direction, as the longitudinal displacement that lateral traction makes through Poisson's
+  /// ratio does in exact theory. 0: Kalker's FastSim.
+  double lateralCoupling = 0.0;
   double spinX() const { return L3x > 0.0 ? L3x : L3; }
 };
 Flexibilities kalkerFlexibilities(double a, double b, double G, const CreepCoefficients& c);

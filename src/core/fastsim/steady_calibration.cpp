@@ -159,6 +159,10 @@ inline void FlexibilityCalibration::lookUpCorrection(double s3, double t, double
   }
 }
 
+double FlexibilityCalibration::coupling(double e) const {
+  return logRatio(kCouplingKind, e);  // stored as it is, not as a logarithm
+}
+
 double FlexibilityCalibration::ratio(int kind, double e) const {
   return std::exp(logRatio(kind, e));
 }
@@ -201,6 +205,14 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   } else if (finite) {
     // A subnormal sum (creepages near 1e-155): its reciprocal would overflow to infinity.
     for (int i = 0; i < 3; ++i) share[i] = e2[i] / squares;
+  }
+  // The lateral coupling, times eta's share of the lateral creepages' e2^2 + e3^2 to the sixth:
+  // spin's own parameters (23, 23x, 23s) are fitted without it, and on spin's lateral traction it
+  // put a moment that those parameters already carry (doc/calibrated_fastsim.md, "Mz from eta in
+  // the core"). Without eta it is 0; without spin, c itself.
+  if (!eps_[kCouplingKind].empty() && e2[1] > 0.0) {
+    const double q = e2[1] / (e2[1] + e2[2]), q2 = q * q;
+    L.lateralCoupling = lateralCoupling(logRatioOf(kCouplingKind) * (q2 * q2 * q2), a, b, k);
   }
   // The combined correction's ln multipliers, of L1, L2, L3 and of the bound's shape, in one
   // lookup; each goes into the exp of the ratio it multiplies. None for one kind or xi with eta.
@@ -388,6 +400,7 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
                      : f[1] == "23"  ? 2
                      : f[1] == "23x" ? 3
                      : f[1] == "23s" ? 4
+                     : f[1] == "22c" ? 10
                      : f[1] == "c1"  ? 5
                      : f[1] == "c2"  ? 6
                      : f[1] == "c3"  ? 7
@@ -395,16 +408,17 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
                      : f[1] == "c3x" ? 9
                                      : -1;
     if (kind < 0)
-      fail(path, n, "kind must be 11, 22, 23, 23x, 23s, c1, c2, c3, cs or c3x, got '" + f[1] + "'");
+      fail(path, n,
+           "kind must be 11, 22, 23, 23x, 23s, 22c, c1, c2, c3, cs or c3x, got '" + f[1] + "'");
     if (!(ab > 0.0)) fail(path, n, "a_over_b must be > 0");
-    if (!(r > 0.0)) fail(path, n, "ratio must be > 0");
+    if (!(r > 0.0) && kind != 10) fail(path, n, "ratio must be > 0");
     const double logAB = std::log(ab);
     if (rows.empty() || rows.back().logAB != logAB) {
       if (!rows.empty() && !(logAB > rows.back().logAB))
         fail(path, n, "a_over_b must increase from one block to the next");
       rows.push_back(Row{logAB, {}, {}, {}, {}, {}, {}});
     }
-    if (kind >= 5) {
+    if (kind >= 5 && kind < 10) {
       if (!given(kSpinShare) || !given(kXiShare) || !given(kSign))
         fail(path, n, "a c-kind row needs spin_share, xi_share and sign");
       const double s3 = number(path, n, f[column[kSpinShare]]),
@@ -423,12 +437,14 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
       continue;
     }
     Row& row = rows.back();
-    std::vector<double>& x = row.eps[kind];
+    const int slot = kind == 10 ? FlexibilityCalibration::kCouplingKind : kind;
+    std::vector<double>& x = row.eps[slot];
     if (kind == 4 && !(r <= 1.0)) fail(path, n, "a bound shape (23s) must be in (0, 1]");
-    if (x.empty() ? (e != 0.0 || (kind != 4 && r != 1.0)) : !(e > x.back()))
+    // 23s and 22c take any value at knot 0 (a shape, a coupling: not ratios to Kalker's).
+    if (x.empty() ? (e != 0.0 || (kind != 4 && kind != 10 && r != 1.0)) : !(e > x.back()))
       fail(path, n, "the knots of a kind start at epsilon 0, ratio 1 and increase");
     x.push_back(e);
-    row.ratio[kind].push_back(r);
+    row.ratio[slot].push_back(r);
   }
   if (!header) fail(path, n, "no header");
   for (std::size_t m = 0; m < t.meshes_.size(); ++m) {
@@ -437,7 +453,7 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
                                  ? " (fastsim_nx " + std::to_string(t.meshes_[m].nx) + ")"
                                  : std::string();
     for (const Row& row : rows)
-      for (int k = 0; k < 5; ++k)
+      for (int k = 0; k < 6; ++k)
         if ((k < 3 && row.eps[k].empty()) || row.eps[k] != rows.front().eps[k])
           fail(path, n, "every a/b must hold every kind, with the same epsilon knots" + mesh);
     // The combined correction: a full grid (every multiplier, sign, spin share and xi share) with
@@ -522,15 +538,17 @@ void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
   const Row& hi = rows[std::min(i + 1, rows.size() - 1)];
   const double t =
       (&lo == &hi || !(x > lo.logAB)) ? 0.0 : std::min(1.0, (x - lo.logAB) / (hi.logAB - lo.logAB));
-  for (int k = 0; k < 5; ++k) {
+  for (int k = 0; k < 6; ++k) {
     c->eps_[k] = lo.eps[k];  // every row has the same knots: the storage c holds is reused
     c->logRatio_[k].resize(lo.ratio[k].size());
-    for (std::size_t j = 0; j < lo.ratio[k].size(); ++j)
-      c->logRatio_[k][j] = std::log(lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]));
+    for (std::size_t j = 0; j < lo.ratio[k].size(); ++j) {
+      const double v = lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]);
+      c->logRatio_[k][j] = k == FlexibilityCalibration::kCouplingKind ? v : std::log(v);
+    }
     reciprocalWidths(c->eps_[k], &c->perWidth_[k]);
   }
   c->sharedKnots_ = true;
-  for (int k = 1; k < 5; ++k)
+  for (int k = 1; k < 6; ++k)
     if (!c->eps_[k].empty() && c->eps_[k] != c->eps_[0]) c->sharedKnots_ = false;
   c->corrS3_ = lo.corrS3;
   c->corrT_ = lo.corrT;

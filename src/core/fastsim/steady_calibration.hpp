@@ -40,11 +40,21 @@
 /// one share the moment otherwise than under pure spin, and four multipliers could not fit force
 /// and moment together (doc/calibrated_fastsim.md, "L3x's own multiplier").
 ///
+/// The moment from eta (kind 22c, optional: none is Kalker's FastSim's u = L tau): exact theory
+/// keeps a spin moment from lateral creepage into full slip, decaying as 1 / e, which FastSim
+/// cannot make (without spin its saturated traction has one direction over the patch). It comes
+/// from Poisson's ratio: lateral traction displaces the surface longitudinally, oddly in y, and
+/// rolling turns that into longitudinal slip. The table's coupling c(e) (dimensionless, per a/b,
+/// interpolated linearly in e and a/b, held beyond the last knot) adds (c / G)(y / b) tau_y to the
+/// longitudinal slip, i.e. lateralCoupling = c / (G b L1,Kalker) to the x drive
+/// (Flexibilities::lateralCoupling); identified with 22's ratio on eta alone against Fy and Mz.
+/// Odd in y, it leaves every force of linear theory as it was.
+///
 /// Table (CSV, '#' comment lines: command, Poisson ratio, grids, fit errors):
 ///   a_over_b,kind,epsilon,ratio[,...]   optional columns, named in the header, in any order:
 ///   fit_error, fastsim_nx, spin_share, xi_share, sign (an empty or missing field: not given)
-///   kind in {11, 22, 23, 23x, 23s, c1, c2, c3, cs, c3x}; c-kinds carry their direction (sign +1 or
-///   -1)
+///   kind in {11, 22, 23, 23x, 23s, 22c, c1, c2, c3, cs, c3x}; c-kinds carry their direction (sign
+///   +1 or -1); 22c's "ratio" is the coupling c, any sign
 /// fastsim_nx: the FastSim mesh's nodes per strip the row was identified on (FastSim's own
 /// discretisation error differs per mesh, the exact curves do not); each mesh's rows in one block.
 /// A table without the column is one mesh that serves every nx.
@@ -128,6 +138,14 @@ class FlexibilityCalibration {
   /// logarithm.
   double ratio(int kind, double e) const;
   double logRatio(int kind, double e) const;
+  /// Kind 5: the table's coupling c at normalised creepage e (22c; 0 where the table has none).
+  double coupling(double e) const;
+  static constexpr int kCouplingKind = 5;
+  /// Flexibilities::lateralCoupling [1/m^2] of coupling c at patch (a, b): c / (G b L1,Kalker) =
+  /// 3 C11 c / (8 a b).
+  static double lateralCoupling(double c, double a, double b, const CreepCoefficients& k) {
+    return 3.0 * k.c11 * c / (8.0 * a * b);
+  }
   /// Normalised creepage e (above) at patch (a, b); infinity where muFz <= 0. `squares`, if
   /// given, receives e1^2, e2^2, e3^2 (each kind's share; finite only where muFz > 0).
   static double normalisedCreepage(double a, double b, double G, const CreepCoefficients& k,
@@ -135,10 +153,12 @@ class FlexibilityCalibration {
 
  private:
   friend class SteadyCalibration;
-  std::vector<double> eps_[5], logRatio_[5];  // knots, ln ratio at them
+  // Per kind (0-4: 11, 22, 23, 23x, 23s; 5: 22c) its knots and ln ratio at them (22c: the
+  // coupling itself).
+  std::vector<double> eps_[6], logRatio_[6];
   // 1 / (eps_[k][i] - eps_[k][i - 1]) at i (index 0 unused): a knot cell's weight without a
   // division.
-  std::vector<double> perWidth_[5];
+  std::vector<double> perWidth_[6];
   // Where every kind present holds kind 11's knots (the shipped table), one search of e serves
   // them all; set by SteadyCalibration::at.
   bool sharedKnots_ = false;
@@ -201,7 +221,7 @@ class SteadyCalibration {
  private:
   struct Row {
     double logAB;
-    std::vector<double> eps[5], ratio[5];
+    std::vector<double> eps[6], ratio[6];  // FlexibilityCalibration's kinds (22c: c itself)
     std::vector<double> corrS3, corrT, corrEps, corr;  // as FlexibilityCalibration's, ratios
   };
   struct Mesh {
