@@ -87,7 +87,9 @@ TEST(NssModel, CalibratedSettlesOnSteadyFastSimAtEveryStepLength) {
   ContactParameters sp = p;
   sp.model = "steady";
   const double muFz = p.mu * p.fz0, element = 2.0 * p.a0 / p.nx;
-  const Creepages cases[] = {{0.0, 0.0, 4.0}, {0.0, 1e-3, 4.0}, {2e-3, -1e-3, 2.0}};
+  // Eta alone and xi with eta: the lateral coupling (kind 22c) at full weight.
+  const Creepages cases[] = {
+      {0.0, 0.0, 4.0}, {0.0, 1e-3, 4.0}, {2e-3, -1e-3, 2.0}, {0.0, 1e-3, 0.0}, {1e-3, -1e-3, 0.0}};
   for (const Creepages& c : cases) {
     const StepInput in{0.0, 20.0, c.xi, c.eta, c.phi, p.fz0};
     const StepOutput ref = makeContactModel(sp)->step(in);

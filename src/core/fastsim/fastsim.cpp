@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace wheel_rail_contact {
 
@@ -280,17 +281,21 @@ namespace {
 // One strip of the steady march: its drive and running traction and sums. kCoupled: the x drive
 // takes the lateral coupling (Flexibilities::lateralCoupling, perTy = its value times y_j) of the
 // upstream node's lateral traction; the classic march is its own instance without it.
+struct NoCoupling {
+  NoCoupling(double) {}
+};
 template <bool kCoupled>
 struct SteadyStrip {
-  double dx, aj, sx, gy, gphi, perTy;
+  double dx, aj, sx, gy, gphi;
+  [[no_unique_address]] std::conditional_t<kCoupled, double, NoCoupling> perTy;
   int k0;
   double tx = 0.0, ty = 0.0;
   StripSums sums = {};
   [[gnu::always_inline]] void node(int i, double h, const double* xn, const FieldPointers& out) {
     const int k = k0 + i;
     const UpstreamStep step(i, dx, aj, h);
-    if constexpr (kCoupled)
-      tx -= step.h * (sx + perTy * ty);  // ty: still the upstream node's
+    if constexpr (kCoupled)  // ty: still the upstream node's; the product off tx's chain
+      tx = (tx - step.h * sx) - (step.h * perTy) * ty;
     else
       tx -= step.h * sx;
     ty -= step.h * (gy + gphi * step.xMid);
@@ -325,8 +330,9 @@ CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Cre
   int j = 0;
   // Four strips at a time: their marches are independent chains, so each fills the others'
   // latency (a saturated node's square root and division sit on its strip's chain). Each strip's
-  // nodes still go in order: the result is that of one strip at a time.
-  for (; j + 3 < ny; j += 4) {
+  // nodes still go in order: the result is that of one strip at a time. The coupled march goes two
+  // at a time: with its extra running operand four strips spilled registers and ran slower.
+  for (; !kCoupled && j + 3 < ny; j += 4) {
     Strip S[4] = {strip(j), strip(j + 1), strip(j + 2), strip(j + 3)};
     int at[4], end[4];
     for (int m = 0; m < 4; ++m) {

@@ -140,16 +140,17 @@ using Pair = Eigen::Array2d;
 // linearly in x; over a step it is taken at the step's midpoint x + h/2 (exact for a linear term):
 // push_y = p0 + pushPerXn x/a. The upstream decay stays scalar, on the march's serial chain.
 // The lateral coupling (Flexibilities::lateralCoupling, perTy its value times the strip's y) adds
-// h perTy tau_y,up to the x drive: coupleX tau_y,up off the x guess, tau_y,up the upstream node's
-// new lateral traction (the calibrated march only; 0 without a coupling).
+// h perTy tau_y,up to the x drive, tau_y,up taken as the upstream node's lateral traction of the
+// step before (r times): coupleX tau_y,old,up off the x guess, off the march's serial chain, and
+// equal to steady FastSim's coupling at a fixed point (the calibrated march only; 0 without a
+// coupling).
 struct PackedStep {
   Pair memory, lag, push;
   Pair scaledInverseDecay;  // r (1 + h beta) (slipsAlongTheResidual)
   Pair decaySwapped;        // (decayY, decayX) (slipsAlongTheResidual)
   double squaredScale;      // r^2 (slipsAlongTheResidual)
   double decayX, decayY, pushPerXn;
-  double coupleX;    // h perTy decayX
-  double coupleOld;  // r^2 h perTy (slipsAlongTheResidual: the coupling of r v to tau_y,old)
+  double coupleX;  // r h perTy decayX
   // beta: (X.beta, Y.beta); lagPerLength is the same for both directions.
   PackedStep(const Pair& beta, double lagPerLength, double r, double h, double driveX, double gy,
              double gphi, double a, double perTy) {
@@ -163,8 +164,7 @@ struct PackedStep {
     decayX = decay(0);
     decayY = decay(1);
     pushPerXn = h * gphi * a * decayY;
-    coupleX = h * perTy * decay(0);
-    coupleOld = r * r * h * perTy;
+    coupleX = r * h * perTy * decay(0);
   }
 };
 
@@ -329,10 +329,9 @@ struct StateUpdate {
   // point, so that v and lambda, off the march's serial chain through tau_up, add no latency to
   // it. tau_i is along guess_i / (1 + lambda decay_i), i.e. along guess_i w_i with w_i = g^2 (1 +
   // lambda decay_j), j the other direction: times both denominators and g^2, no division.
-  // r v . tau_old, with r v = (history - memory tau_old) r / decay + r^2 upstreamOld (less the
-  // lateral coupling's r^2 h perTy tau_y,old of the upstream node in x).
-  Pair rSteady = (history - m.memory * old) * m.scaledInverseDecay + m.squaredScale * upstreamOld;
-  rSteady(0) -= m.coupleOld * upstreamOld(1);
+  // r v . tau_old, with r v = (history - memory tau_old) r / decay + r^2 upstreamOld.
+  const Pair rSteady =
+      (history - m.memory * old) * m.scaledInverseDecay + m.squaredScale * upstreamOld;
   const double g2 = g * g, excess = std::max((rSteady * old).sum() - g2, 0.0);
   const Pair w = g2 + excess * m.decaySwapped;
   const Pair d = Pair(*tx, *ty) * w;
@@ -366,11 +365,9 @@ struct StripMarch {
                                    const FieldPointers& out, const StateUpdate<kSecond>& update) {
     const Pair &old = o.t, &s = o.s;
     // The upstream traction enters last: it is the only operand on the march's serial chain.
-    const Pair guess = m.memory * old - m.lag * s - m.push;  // PackedStep's history
-    if constexpr (kResidualAlongTraction)
-      tx = (guess(0) + m.decayX * tx) - m.coupleX * ty;  // ty: still the upstream node's
-    else
-      tx = guess(0) + m.decayX * tx;
+    Pair guess = m.memory * old - m.lag * s - m.push;  // PackedStep's history
+    if constexpr (kResidualAlongTraction) guess(0) -= m.coupleX * oldUpstream(1);
+    tx = guess(0) + m.decayX * tx;
     ty = (guess(1) - m.pushPerXn * xn[k]) + m.decayY * ty;
     if constexpr (kResidualAlongTraction) {
       const Pair own(guess(0), guess(1) - m.pushPerXn * xn[k]), upstreamOld = oldUpstream;
@@ -530,7 +527,6 @@ struct Lanes {
     kInverseY,
     kScale2,
     kCoupleX,
-    kCoupleOld,
     kConstants
   };
   enum Running { kTx, kTy, kUpX, kUpY, kSumX, kSumY, kSumXnY, kLoaded, kStuck, kRunning };
@@ -553,8 +549,7 @@ struct Lanes {
                                    m.scaledInverseDecay(0),
                                    m.scaledInverseDecay(1),
                                    m.squaredScale,
-                                   m.coupleX,
-                                   m.coupleOld};
+                                   m.coupleX};
     for (int r = 0; r < kConstants; ++r) c[r][q] = cq[r];
     const double vq[kRunning] = {s->tx,      s->ty,      s->oldUpstream(0), s->oldUpstream(1),
                                  s->sums.tx, s->sums.ty, s->sums.xnTy,      0.0,
@@ -600,7 +595,7 @@ template <bool kSecond, class Strip, class Reader>
           decayX = load(c[L::kDecayX]), decayY = load(c[L::kDecayY]),
           pushPerXn = load(c[L::kPushPerXn]), inverseX = load(c[L::kInverseX]),
           inverseY = load(c[L::kInverseY]), scale2 = load(c[L::kScale2]),
-          coupleX = load(c[L::kCoupleX]), coupleOld = load(c[L::kCoupleOld]);
+          coupleX = load(c[L::kCoupleX]);
   const V rateX = _mm256_set1_pd(update.rate(0)), rateY = _mm256_set1_pd(update.rate(1)),
           rateOldX = _mm256_set1_pd(update.rateOld(0)),
           rateOldY = _mm256_set1_pd(update.rateOld(1)),
@@ -632,11 +627,10 @@ template <bool kSecond, class Strip, class Reader>
     V h[6];  // oldX, oldY, sX, sY, s2X, s2Y
     reader.template read<kSecond>(i, p, h);
     const V oldX = h[0], oldY = h[1], sX = h[2], sY = h[3];
-    const V guessX = sub(sub(mul(memX, oldX), mul(lagX, sX)), pushX);
+    const V guessX = sub(sub(sub(mul(memX, oldX), mul(lagX, sX)), pushX), mul(coupleX, upY));
     const V guessY = sub(sub(mul(memY, oldY), mul(lagY, sY)), pushY);
     const V x = at(xn, node), ownY = sub(guessY, mul(pushPerXn, x));
-    const V nx = sub(add(guessX, mul(decayX, tx)), mul(coupleX, ty)),
-            ny = add(ownY, mul(decayY, ty));
+    const V nx = add(guessX, mul(decayX, tx)), ny = add(ownY, mul(decayY, ty));
     const V g = at(out.bound, node), g2 = mul(g, g);
     const V t2 = add(mul(nx, nx), mul(ny, ny));
     const V slips = greater(t2, g2);
@@ -656,8 +650,7 @@ template <bool kSecond, class Strip, class Reader>
       ty = ny;
     } else {
       // slipsAlongTheResidual in every lane, taken where the lane slips.
-      const V rX = sub(add(mul(sub(guessX, mul(memX, oldX)), inverseX), mul(scale2, upX)),
-                       mul(coupleOld, upY));
+      const V rX = add(mul(sub(guessX, mul(memX, oldX)), inverseX), mul(scale2, upX));
       const V rY = add(mul(sub(ownY, mul(memY, oldY)), inverseY), mul(scale2, upY));
       const V excess =
           _mm256_max_pd(_mm256_setzero_pd(), sub(add(mul(rX, oldX), mul(rY, oldY)), g2));
