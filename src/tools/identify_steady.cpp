@@ -430,7 +430,8 @@ struct KindFit {
 // the first fitted knot's coupling (linear theory's moment: the coupling's only work there).
 KindFit identifyLateral(const Options& o, ExactCache* exact, double g) {
   double mzPeak = 0.0;
-  for (double e : o.knots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, kRays[1], e).mz));
+  for (double e : o.knots)
+    if (e > 0.0) mzPeak = std::max(mzPeak, std::abs(exact->at(g, kRays[1], e).mz));
   KindFit fit;
   double lr = 0.0, couple = 0.0;
   bool first = true;
