@@ -417,6 +417,43 @@ double lateralError(const Point& p, const Point& x, double mzPeak) {
          100.0 * std::max(0.0, f - kLateralForceCap);
 }
 
+// A search over two parameters: the point and its cost, the best found so far.
+struct PairSearch {
+  double x0, x1, cost;
+};
+
+// The (n + 1)^2 grid over [lo0, hi0] x [lo1, hi1]: a point of lower cost replaces `best`.
+template <class Cost>
+void scanPair(const Cost& cost, double lo0, double hi0, double lo1, double hi1, int n,
+              PairSearch* best) {
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k <= n; ++k) {
+      const double x0 = lo0 + (hi0 - lo0) * i / n, x1 = lo1 + (hi1 - lo1) * k / n;
+      const double c = cost(x0, x1);
+      if (c < best->cost) *best = {x0, x1, c};
+    }
+}
+
+// Pattern refinement from `best` along both axes and diagonals, steps of h halving down to 1e-5.
+template <class Cost>
+void refinePair(const Cost& cost, double h, PairSearch* best) {
+  for (; h > 1e-5; h *= 0.5)
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const auto& [d0, d1] : {std::pair<double, double>{h, 0},
+                                   {-h, 0},
+                                   {0, h},
+                                   {0, -h},
+                                   {h, h},
+                                   {-h, -h},
+                                   {h, -h},
+                                   {-h, h}}) {
+        const double c = cost(best->x0 + d0, best->x1 + d1);
+        if (c < best->cost) *best = {best->x0 + d0, best->x1 + d1, c}, moved = true;
+      }
+    }
+}
+
 struct KindFit {
   std::vector<double> ratio, ratioX, error;
   std::vector<double> couple;  // eta: the lateral coupling (22c), per knot
@@ -448,37 +485,14 @@ KindFit identifyLateral(const Options& o, ExactCache* exact, double g) {
       return lateralError(fastsimScaled(o, g, 1, e, std::exp(l), 1.0, 0.0, c), x, mzPeak) +
              1e-3 * std::abs(l) + (first ? 0.0 : kCouplingPull * std::abs(c - previous));
     };
-    double best = lr, bestC = couple, bestCost = cost(lr, couple);
-    auto scan = [&](double lo, double hi, double loC, double hiC) {
-      const int n = 40;
-      for (int i = 0; i <= n; ++i)
-        for (int k = 0; k <= n; ++k) {
-          const double l = lo + (hi - lo) * i / n, c = loC + (hiC - loC) * k / n;
-          const double v = cost(l, c);
-          if (v < bestCost) bestCost = v, best = l, bestC = c;
-        }
-    };
+    PairSearch best{lr, couple, cost(lr, couple)};
     if (first)
-      scan(-0.6, 0.6, -2.0, 1.0);
+      scanPair(cost, -0.6, 0.6, -2.0, 1.0, 40, &best);
     else
-      scan(lr - 0.4, lr + 0.4, couple - 0.4, couple + 0.4);
-    for (double h = 0.02; h > 1e-5; h *= 0.5)
-      for (bool moved = true; moved;) {
-        moved = false;
-        for (const auto& [dl, dc] : {std::pair<double, double>{h, 0},
-                                     {-h, 0},
-                                     {0, h},
-                                     {0, -h},
-                                     {h, h},
-                                     {-h, -h},
-                                     {h, -h},
-                                     {-h, h}}) {
-          const double v = cost(best + dl, bestC + dc);
-          if (v < bestCost) bestCost = v, best += dl, bestC += dc, moved = true;
-        }
-      }
-    lr = best;
-    couple = bestC;
+      scanPair(cost, lr - 0.4, lr + 0.4, couple - 0.4, couple + 0.4, 40, &best);
+    refinePair(cost, 0.02, &best);
+    lr = best.x0;
+    couple = best.x1;
     first = false;
     fit.ratio.push_back(std::exp(lr));
     fit.couple.push_back(couple);
@@ -504,36 +518,14 @@ std::pair<double, double> identifySpinPair(const Options& o, double g, double e,
   // The longitudinal spin drive moves further from knot to knot across the curve's peak (and at
   // a/b = 5 already in the linear range): its window is twice as wide.
   const double c0 = std::log(previous), cx0 = std::log(previousX), span = 0.6, spanX = 1.2;
-  double best = c0, bestX = cx0, bestCost = cost(c0, cx0);
-  auto scan = [&](double lo, double hi, double loX, double hiX) {
-    const int n = 48;
-    for (int i = 0; i <= n; ++i)
-      for (int k = 0; k <= n; ++k) {
-        const double lr = lo + (hi - lo) * i / n, lrx = loX + (hiX - loX) * k / n;
-        const double c = cost(lr, lrx);
-        if (c < bestCost) bestCost = c, best = lr, bestX = lrx;
-      }
-  };
-  scan(c0 - span, c0 + span, cx0 - spanX, cx0 + spanX);
+  PairSearch best{c0, cx0, cost(c0, cx0)};
+  scanPair(cost, c0 - span, c0 + span, cx0 - spanX, cx0 + spanX, 48, &best);
   // Where no pair near the previous one fits (FastSim's spin curve past its peak where the exact
   // one is not yet), the whole plausible range: continuity yields to the fit.
-  if (bestCost > 0.005) scan(std::log(0.2), std::log(5.0), std::log(0.1), std::log(10.0));
-  for (double h = 2.0 * span / 48; h > 1e-5; h *= 0.5)
-    for (bool moved = true; moved;) {
-      moved = false;
-      for (const auto& [dr, drx] : {std::pair<double, double>{h, 0},
-                                    {-h, 0},
-                                    {0, h},
-                                    {0, -h},
-                                    {h, h},
-                                    {-h, -h},
-                                    {h, -h},
-                                    {-h, h}}) {
-        const double c = cost(best + dr, bestX + drx);
-        if (c < bestCost) bestCost = c, best += dr, bestX += drx, moved = true;
-      }
-    }
-  return {std::exp(best), std::exp(bestX)};
+  if (best.cost > 0.005)
+    scanPair(cost, std::log(0.2), std::log(5.0), std::log(0.1), std::log(10.0), 48, &best);
+  refinePair(cost, 2.0 * span / 48, &best);
+  return {std::exp(best.x0), std::exp(best.x1)};
 }
 
 // Kind `kind` alone (spin: on the lateral coupling `couple` per knot, empty: none).
