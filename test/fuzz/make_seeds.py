@@ -6,7 +6,7 @@ from the END of the data: a seed is its choices in decoding order, reversed. The
 mirrors Decoder / decodeParameters / decodeInput in fuzz_contact_step.cpp (keep them in step);
 doubles are encoded as raw bits (Decoder::value case 3), so every seed value is exact.
 fuzz_scenario_csv seeds are text: the shipped scenes, cut-down scenes and malformed variants.
-usage: make_seeds.py   (rewrites both corpus folders)
+usage: make_seeds.py   (rewrites the generated seeds of both corpus folders)
 """
 import math
 import pathlib
@@ -74,6 +74,20 @@ def encode(model="steady", mesh="fixed", nx=20, ny=20, params=None, steps=(), ch
             e.flag(f in s)
             if f in s:
                 e.value(s[f])
+        # Per-step geometry (a and b together) and friction: decodeInput's pick(4) == 3 gives them.
+        e.pick(3 if "a" in s or "b" in s else 0)
+        if "a" in s or "b" in s:
+            e.flag(s.get("a", 0.0) == 0.0)
+            if s.get("a", 0.0) != 0.0:
+                e.value(s["a"])
+            e.pick(7 if s.get("b", 0.0) == 0.0 else 0)
+            if s.get("b", 0.0) != 0.0:
+                e.value(s["b"])
+        e.pick(3 if "mu" in s else 0)
+        if "mu" in s:
+            e.flag(s["mu"] == 0.0)
+            if s["mu"] != 0.0:
+                e.value(s["mu"])
     return e.data()
 
 
@@ -131,7 +145,8 @@ def step_seeds():
     seeds["mesh_ny0_invalid"] = encode("nss", "fixed", 20, 0, steps=[{}])
     seeds["mesh_60x60_nss"] = encode("nss", "adaptive", 60, 60, steps=[{}, dict(fz=1.2e5)])
     seeds["mesh_2x1_shenli"] = encode("shen-li", "fixed", 2, 1, steps=[{}, {}, dict(phi=3.0)])
-    seeds["mu_zero"] = encode("nss", "fixed", 10, 10, dict(mu=("special", 0)), steps=[{}, {}])
+    seeds["mu_zero"] = encode("nss", "fixed", 10, 10, dict(mu=("special", 0)),
+                              steps=[{}, {}, dict(eta=1e-3)])
     seeds["a_over_b_10"] = encode("nss", "adaptive", 10, 10, dict(a0=0.04, b0=0.004),
                                   steps=[{}, dict(fz=4e4)])
     seeds["a_over_b_0.1"] = encode("shen-li", "fixed", 10, 10, dict(a0=0.0004, b0=0.004),
@@ -181,9 +196,8 @@ def csv_seeds():
 
 
 def write(folder, seeds):
+    """Writes the generated seeds; inputs kept from fuzzing findings sit beside them, untouched."""
     folder.mkdir(parents=True, exist_ok=True)
-    for old in folder.iterdir():
-        old.unlink()
     for name, data in seeds.items():
         (folder / name).write_bytes(data)
     print(f"{folder.relative_to(ROOT)}: {len(seeds)} seeds")

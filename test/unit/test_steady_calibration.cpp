@@ -241,6 +241,8 @@ TEST(SteadyCalibration, LateralCouplingIsEtasCouplingFadingWithSpin) {
   const double full = 3.0 * k.c11 * c.coupling(e) / (8.0 * a * b);
   EXPECT_DOUBLE_EQ(c.step(a, b, G, k, muFz, eta).L.lateralCoupling, full);
   EXPECT_EQ(c.step(a, b, G, k, muFz, xi).L.lateralCoupling, 0.0);
+  // No friction (mu fz = 0: e infinite, spin's square 0 * inf): no coupling, not NaN.
+  EXPECT_EQ(c.step(a, b, G, k, 0.0, eta).L.lateralCoupling, 0.0);
   // Spin as large as eta in e^2: (1/2)^6 of the coupling at that e.
   const double phi = k.c22 * eta.eta / (k.c23 * std::sqrt(a * b));
   const Creepages both{0.0, eta.eta, phi};

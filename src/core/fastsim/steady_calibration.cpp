@@ -209,8 +209,9 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   // The lateral coupling, times eta's share of the lateral creepages' e2^2 + e3^2 to the sixth:
   // spin's own parameters (23, 23x, 23s) are fitted without it, and on spin's lateral traction it
   // put a moment that those parameters already carry (doc/calibrated_fastsim.md, "Mz from eta in
-  // the core"). Without eta it is 0; without spin, c itself.
-  if (!eps_[kCouplingKind].empty() && e2[1] > 0.0) {
+  // the core"). Without eta it is 0; without spin, c itself; without friction (e infinite, the
+  // squares inf or NaN) none: every node slips with zero traction.
+  if (finite && !eps_[kCouplingKind].empty() && e2[1] > 0.0) {
     const double q = e2[1] / (e2[1] + e2[2]), q2 = q * q;
     L.lateralCoupling = lateralCoupling(logRatioOf(kCouplingKind) * (q2 * q2 * q2), a, b, k);
   }
