@@ -588,6 +588,10 @@ KindFit identifyKind(const Options& o, ExactCache* exact, double g, int kind, do
     fit.ratioX.push_back(1.0);
     fit.error.push_back(pointError(fastsimScaled(o, g, kind, e, previous), x, mzPeak));
   }
+  // 23x at knot 0 is linear theory's spin moment (C33), which FastSim's L3 = L3x misses; the first
+  // knot's fit is in the linear range (the ratio is flat there), and the core applies knot 0's
+  // value at every share of spin (FlexibilityCalibration::step).
+  if (kind == 2 && fit.ratioX.size() > 1) fit.ratioX[0] = fit.ratioX[1];
   return fit;
 }
 

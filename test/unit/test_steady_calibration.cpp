@@ -110,9 +110,14 @@ TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
     EXPECT_NEAR(s.L.L1, rho * m[0] * ((1 - w) * L0.L1 + w * crss), 1e-14 * s.L.L1) << e;
     EXPECT_NEAR(s.L.L2, rho * m[1] * ((1 - w) * L0.L2 + w * crss), 1e-14 * s.L.L2) << e;
     EXPECT_NEAR(s.L.L3, rho * m[2] * ((1 - w) * L0.L3 + w * crss), 1e-14 * s.L.L3) << e;
-    EXPECT_NEAR(s.L.L3x, s.L.L3 * std::exp(e2[2] / (e * e) * c.logRatio(3, e)) * m[4],
-                1e-14 * s.L.L3x);
     const double s3 = e2[2] / (e * e);
+    EXPECT_NEAR(
+        s.L.L3x,
+        s.L.L3 *
+            std::exp(s3 * c.logRatio(3, e) + (1.0 - s3) * c.logRatio(3, 0.0) *
+                                                 FlexibilityCalibration::linearSpinMoment(e)) *
+            m[4],
+        1e-14 * s.L.L3x);
     EXPECT_NEAR(s.boundShape, c.towardsFullSlip(c.ratio(4, e) * s3 * m[3], e, s3),
                 1e-14 * s.boundShape);
     EXPECT_NE(m[0], 1.0);  // the correction acts on these directions
@@ -211,6 +216,10 @@ TEST(SteadyCalibration, RefusesMalformedTablesNamingTheLine) {
   EXPECT_NE(message(one + "1,23s,0,1.5\n").find(":5: a bound shape (23s) must be in (0, 1]"),
             std::string::npos);
   EXPECT_EQ(message(one + "1,23x,0,1\n1,23s,0,0.5\n"), "");
+  // 23x's knot 0 is linear theory's spin moment, any ratio; 11, 22 and 23 start at 1.
+  EXPECT_EQ(message(one + "1,23x,0,0.4\n"), "");
+  EXPECT_NE(message(h + "1,11,0,1\n1,22,0,1\n1,23,0,0.9\n").find(":4: the knots"),
+            std::string::npos);
   EXPECT_NE(message(one + "1,23x,0,1\n2,11,0,1\n2,22,0,1\n2,23,0,1\n")
                 .find("every a/b must hold every kind"),
             std::string::npos);
@@ -322,6 +331,42 @@ TEST(SteadyCalibration, SpinsSecondParameterAndBoundShapeFollowSpinsShare) {
             c.flexibilities(a, b, G, k, muFz, c1).L3);
   EXPECT_EQ(c.boundShape(a, b, G, k, muFz, c1), 0.0);
   EXPECT_EQ(SteadyCalibration().at(1.0).boundShape(a, b, G, k, muFz, c13), 0.0);
+}
+
+TEST(SteadyCalibration, LinearSpinMomentHoldsAtEveryShareOfSpinUntilThePatchSlips) {
+  // 23x is 0.5 at knot 0 (linear theory's spin moment) and 4 at e = 5: spin's own curve carries
+  // spin's share of e^2, the rest keeps knot 0's ratio up to kLinearSpinMomentTo and loses it by
+  // kLinearSpinMomentEnd.
+  const std::string path = writeTable(
+      "a_over_b,kind,epsilon,ratio\n1,11,0,1\n1,11,5,1\n1,22,0,1\n1,22,5,1\n1,23,0,1\n"
+      "1,23,5,1\n1,23x,0,0.5\n1,23x,5,4\n");
+  const FlexibilityCalibration c = SteadyCalibration::load(path).at(1.0);
+  const double a = 5e-3, b = 5e-3, G = 8.2e10, muFz = 3e3;
+  const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
+  const double unit = muFz / (G * a * b);
+  // xi with a tenth of e^2 spin's, at normalised creepage e.
+  auto spinX = [&](double e) {
+    const Creepages cr{std::sqrt(0.9) * e * unit / k.c11, 0.0,
+                       std::sqrt(0.1) * e * unit / (k.c23 * std::sqrt(a * b))};
+    const Flexibilities L = c.flexibilities(a, b, G, k, muFz, cr);
+    return L.L3x / L.L3;
+  };
+  for (double e : {0.01, 0.5 * FlexibilityCalibration::kLinearSpinMomentTo,
+                   0.5 * (FlexibilityCalibration::kLinearSpinMomentTo +
+                          FlexibilityCalibration::kLinearSpinMomentEnd),
+                   FlexibilityCalibration::kLinearSpinMomentEnd + 0.1}) {
+    const double own = std::log(0.5) + e / 5.0 * std::log(8.0);  // 23x's ln ratio at e
+    const double expected =
+        std::exp(0.1 * own + 0.9 * std::log(0.5) * FlexibilityCalibration::linearSpinMoment(e));
+    EXPECT_NEAR(spinX(e), expected, 1e-12 * expected) << e;
+  }
+  EXPECT_EQ(FlexibilityCalibration::linearSpinMoment(0.0), 1.0);
+  EXPECT_EQ(FlexibilityCalibration::linearSpinMoment(FlexibilityCalibration::kLinearSpinMomentTo),
+            1.0);
+  EXPECT_EQ(FlexibilityCalibration::linearSpinMoment(FlexibilityCalibration::kLinearSpinMomentEnd),
+            0.0);
+  // Near linear theory L3x is knot 0's, whatever the share of spin.
+  EXPECT_NEAR(spinX(1e-3), 0.5, 1e-3);
 }
 
 TEST(SteadyCalibration, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOnItsEdges) {

@@ -249,13 +249,16 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   L.L2 = r2 * ((1.0 - w) * L.L2 + w * crss);
   L.L3 = r3 * ((1.0 - w) * L.L3 + w * crss);
   // Without spin (e3 = 0) both spin terms are exactly their classic values: no exp.
-  // The correction's fifth multiplier (c3x) acts on L3x alone, in the same exp.
+  // The correction's fifth multiplier (c3x) acts on L3x alone, in the same exp. 23x's knot 0 is
+  // linear theory's spin moment (C33): it holds for the rest of e^2 too (spin's own curve has it
+  // for spin's share) until the patch slips (linearSpinMoment).
   const bool spin = finite && e2[2] > 0.0;
-  if (spin && (!eps_[3].empty() || corrected))
-    L.L3x = L.L3 *
-            stepExp((eps_[3].empty() ? 0.0 : share[2] * logRatioOf(3)) + (corrected ? lm[4] : 0.0),
-                    table);
-  else if (!eps_[3].empty())
+  if (spin && (!eps_[3].empty() || corrected)) {
+    double lx = corrected ? lm[4] : 0.0;
+    if (!eps_[3].empty())
+      lx += share[2] * logRatioOf(3) + (1.0 - share[2]) * logRatio_[3][0] * linearSpinMoment(e);
+    L.L3x = L.L3 * stepExp(lx, table);
+  } else if (!eps_[3].empty())
     L.L3x = L.L3;
   // The bound's shape: shape_23s(e) times spin's share of e^2 (no friction: parabolic).
   if (spin && !eps_[4].empty())
@@ -441,8 +444,9 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
     const int slot = kind == 10 ? FlexibilityCalibration::kCouplingKind : kind;
     std::vector<double>& x = row.eps[slot];
     if (kind == 4 && !(r <= 1.0)) fail(path, n, "a bound shape (23s) must be in (0, 1]");
-    // 23s and 22c take any value at knot 0 (a shape, a coupling: not ratios to Kalker's).
-    if (x.empty() ? (e != 0.0 || (kind != 4 && kind != 10 && r != 1.0)) : !(e > x.back()))
+    // 23s and 22c take any value at knot 0 (a shape, a coupling: not ratios to Kalker's), and
+    // 23x its linear value (L3x over L3 for exact theory's linear spin moment, C33).
+    if (x.empty() ? (e != 0.0 || (kind < 3 && r != 1.0)) : !(e > x.back()))
       fail(path, n, "the knots of a kind start at epsilon 0, ratio 1 and increase");
     x.push_back(e);
     row.ratio[slot].push_back(r);

@@ -16,7 +16,11 @@
 /// k = 3 pi a / 32 (CONTACT's FASTSIM, Vollebregt and Voltr 2023): a single
 /// creepage of kind k gets L_k ratio_k(e) exactly, so the table is identified on single creepages.
 /// Spin has a second parameter: the flexibility of its longitudinal drive (-phi y / L3x,
-/// Flexibilities::L3x) is L3x = L3 ratio_23x(e)^(e3^2 / e^2). One flexibility ratio moves the
+/// Flexibilities::L3x) is L3x = L3 ratio_23x(e)^(e3^2 / e^2) ratio_23x(0)^((1 - e3^2 / e^2) w(e)),
+/// w = linearSpinMoment(e). Near linear theory spin's moment comes from that drive alone,
+/// phi 8 a^2 b^3 / (15 L3x), so L3x = L3 misses C33 (by 2-64 % of the exact moment at a/b 0.2-5);
+/// 23x's knot 0 is the ratio that gives exact theory's, and it holds whatever spin's share until
+/// the patch slips (w = 1 up to e = 2, 0 from e = 4.5). One flexibility ratio moves the
 /// spin curve along e only, and FastSim's pure-spin Fy peaks higher than the exact one and its Mz
 /// runs low; a stiffer longitudinal spin drive saturates the patch earlier and carries more of the
 /// moment, so the pair (ratio_23, ratio_23x) fits Fy and Mz together. Optional in the table
@@ -58,11 +62,11 @@
 /// fastsim_nx: the FastSim mesh's nodes per strip the row was identified on (FastSim's own
 /// discretisation error differs per mesh, the exact curves do not); each mesh's rows in one block.
 /// A table without the column is one mesh that serves every nx.
-/// Every a/b holds the same epsilon knots per kind (increasing, the first 0 with ratio 1); ln
-/// ratio is interpolated linearly in epsilon and held beyond the last knot; the ratio linearly in
-/// ln(a/b) between rows, clamped at the table's ends. The table is identified at nu = 0.28: at
-/// another nu the same ratios apply to that nu's Kalker flexibilities (the normalisation by
-/// C_ij(nu) carries the first-order effect of nu).
+/// Every a/b holds the same epsilon knots per kind (increasing, the first 0; there 11, 22 and 23
+/// have ratio 1); ln ratio is interpolated linearly in epsilon and held beyond the last knot; the
+/// ratio linearly in ln(a/b) between rows, clamped at the table's ends. The table is identified at
+/// nu = 0.28: at another nu the same ratios apply to that nu's Kalker flexibilities (the
+/// normalisation by C_ij(nu) carries the first-order effect of nu).
 #pragma once
 
 #include <cmath>
@@ -146,6 +150,16 @@ class FlexibilityCalibration {
   static double lateralCoupling(double c, double a, double b, const CreepCoefficients& k) {
     return 3.0 * k.c11 * c / (8.0 * a * b);
   }
+  /// The weight of 23x's knot 0 (linear theory's spin moment) on the share of e^2 that is not
+  /// spin's: 1 up to kLinearSpinMomentTo, falling linearly to 0 at kLinearSpinMomentEnd. Through
+  /// partial slip it keeps spin's moment where spin is a small share; in full slip the combined
+  /// correction carries the moment, as it was fitted to (kept to e = 4.5 rather than 1 or 3: the
+  /// held-out directions, doc/calibrated_fastsim.md, "Linear theory's spin moment").
+  static double linearSpinMoment(double e) {
+    const double w = (kLinearSpinMomentEnd - e) / (kLinearSpinMomentEnd - kLinearSpinMomentTo);
+    return w >= 1.0 ? 1.0 : w <= 0.0 ? 0.0 : w;
+  }
+  static constexpr double kLinearSpinMomentTo = 2.0, kLinearSpinMomentEnd = 4.5;
   /// Normalised creepage e (above) at patch (a, b); infinity where muFz <= 0. `squares`, if
   /// given, receives e1^2, e2^2, e3^2 (each kind's share; finite only where muFz > 0).
   static double normalisedCreepage(double a, double b, double G, const CreepCoefficients& k,
