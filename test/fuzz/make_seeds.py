@@ -77,12 +77,13 @@ def encode(model="steady", mesh="fixed", nx=20, ny=20, params=None, steps=(), ch
         # Per-step geometry (a and b together) and friction: decodeInput's pick(4) == 3 gives them.
         e.pick(3 if "a" in s or "b" in s else 0)
         if "a" in s or "b" in s:
-            e.flag(s.get("a", 0.0) == 0.0)
-            if s.get("a", 0.0) != 0.0:
-                e.value(s["a"])
-            e.pick(7 if s.get("b", 0.0) == 0.0 else 0)
-            if s.get("b", 0.0) != 0.0:
-                e.value(s["b"])
+            a, b = s.get("a", 0.0), s.get("b", 0.0)
+            e.flag(a == 0.0)
+            if a != 0.0:
+                e.value(a)
+            e.pick(7 if b == 0.0 else 0)
+            if b != 0.0:
+                e.value(b)
         e.pick(3 if "mu" in s else 0)
         if "mu" in s:
             e.flag(s["mu"] == 0.0)

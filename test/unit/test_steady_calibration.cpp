@@ -30,6 +30,21 @@ const char* const kTwoRows =
     "0.5,11,0,1,0\n0.5,11,1,2,0\n0.5,22,0,1,0\n0.5,22,1,0.5,0\n0.5,23,0,1,0\n0.5,23,2,3,0\n"
     "2,11,0,1,0\n2,11,1,4,0\n2,22,0,1,0\n2,22,1,0.5,0\n2,23,0,1,0\n2,23,2,1,0\n";
 
+// The round patch the flexibility tests step on: a = b = 5 mm, steel, mu fz = 3 kN, nu 0.28.
+struct RoundPatch {
+  double a = 5e-3, b = 5e-3, G = 8.2e10, muFz = 3e3;
+  CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
+  // The creepages whose normalised parts (FlexibilityCalibration::normalisedCreepage) are e1,
+  // e2, e3.
+  Creepages normalised(double e1, double e2, double e3) const {
+    const double unit = muFz / (G * a * b);
+    return {e1 * unit / k.c11, e2 * unit / k.c22, e3 * unit / (k.c23 * std::sqrt(a * b))};
+  }
+  CalibratedStep step(const FlexibilityCalibration& c, const Creepages& cr) const {
+    return c.step(a, b, G, k, muFz, cr);
+  }
+};
+
 std::string message(const std::string& body) {
   try {
     SteadyCalibration::load(writeTable(body));
@@ -316,21 +331,17 @@ TEST(SteadyCalibration, SpinsSecondParameterAndBoundShapeFollowSpinsShare) {
       "a_over_b,kind,epsilon,ratio\n1,11,0,1\n1,11,1,1\n1,22,0,1\n1,22,1,1\n1,23,0,1\n"
       "1,23,1,1\n1,23x,0,1\n1,23x,1,4\n1,23s,0,0.5\n1,23s,1,0.5\n");
   const FlexibilityCalibration c = SteadyCalibration::load(path).at(1.0);
-  const double a = 5e-3, b = 5e-3, G = 8.2e10, muFz = 3e3;
-  const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
-  const double unit = muFz / (G * a * b);
+  const RoundPatch p;
   // e1 = e3 = 1 / sqrt(2): e = 1, spin's share 1/2.
-  const Creepages c13{std::sqrt(0.5) * unit / k.c11, 0.0,
-                      std::sqrt(0.5) * unit / (k.c23 * std::sqrt(a * b))};
-  const Flexibilities L = c.flexibilities(a, b, G, k, muFz, c13);
-  EXPECT_NEAR(L.L3x, L.L3 * 2.0, 1e-12 * L.L3);  // 4^(1/2)
-  EXPECT_NEAR(c.boundShape(a, b, G, k, muFz, c13), 0.25, 1e-12);
+  const Creepages c13 = p.normalised(std::sqrt(0.5), 0.0, std::sqrt(0.5));
+  const CalibratedStep s = p.step(c, c13);
+  EXPECT_NEAR(s.L.L3x, s.L.L3 * 2.0, 1e-12 * s.L.L3);  // 4^(1/2)
+  EXPECT_NEAR(s.boundShape, 0.25, 1e-12);
   // No spin: Kalker's L3x (0: L3) and the parabolic bound, as classic.
-  const Creepages c1{unit / k.c11, 0.0, 0.0};
-  EXPECT_EQ(c.flexibilities(a, b, G, k, muFz, c1).spinX(),
-            c.flexibilities(a, b, G, k, muFz, c1).L3);
-  EXPECT_EQ(c.boundShape(a, b, G, k, muFz, c1), 0.0);
-  EXPECT_EQ(SteadyCalibration().at(1.0).boundShape(a, b, G, k, muFz, c13), 0.0);
+  const CalibratedStep s1 = p.step(c, p.normalised(1.0, 0.0, 0.0));
+  EXPECT_EQ(s1.L.spinX(), s1.L.L3);
+  EXPECT_EQ(s1.boundShape, 0.0);
+  EXPECT_EQ(p.step(SteadyCalibration().at(1.0), c13).boundShape, 0.0);
 }
 
 TEST(SteadyCalibration, LinearSpinMomentHoldsAtEveryShareOfSpinUntilThePatchSlips) {
@@ -341,14 +352,10 @@ TEST(SteadyCalibration, LinearSpinMomentHoldsAtEveryShareOfSpinUntilThePatchSlip
       "a_over_b,kind,epsilon,ratio\n1,11,0,1\n1,11,5,1\n1,22,0,1\n1,22,5,1\n1,23,0,1\n"
       "1,23,5,1\n1,23x,0,0.5\n1,23x,5,4\n");
   const FlexibilityCalibration c = SteadyCalibration::load(path).at(1.0);
-  const double a = 5e-3, b = 5e-3, G = 8.2e10, muFz = 3e3;
-  const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
-  const double unit = muFz / (G * a * b);
+  const RoundPatch p;
   // xi with a tenth of e^2 spin's, at normalised creepage e.
   auto spinX = [&](double e) {
-    const Creepages cr{std::sqrt(0.9) * e * unit / k.c11, 0.0,
-                       std::sqrt(0.1) * e * unit / (k.c23 * std::sqrt(a * b))};
-    const Flexibilities L = c.flexibilities(a, b, G, k, muFz, cr);
+    const Flexibilities L = p.step(c, p.normalised(std::sqrt(0.9) * e, 0.0, std::sqrt(0.1) * e)).L;
     return L.L3x / L.L3;
   };
   for (double e : {0.01, 0.5 * FlexibilityCalibration::kLinearSpinMomentTo,
@@ -408,12 +415,9 @@ TEST(SteadyCalibration, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOn
   EXPECT_NEAR(m1(h, h, 0.0, false), 1.0, 1e-12);              // no spin
   EXPECT_NEAR(m1(0.0, 2.0 * h, 2.0 * h, false), 2.0, 1e-12);  // held beyond the last knot
   // The bound's shape: spin's share (1/2) times the table's 23s (1) times cs (3), capped at 2.
-  const double a = 5e-3, b = 5e-3, G = 8.2e10, muFz = 3e3, unit = muFz / (G * a * b);
-  const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
-  const Creepages c23{0.0, h * unit / k.c22, h * unit / (k.c23 * std::sqrt(a * b))};
-  EXPECT_NEAR(c.boundShape(a, b, G, k, muFz, c23), 1.5, 1e-12);
-  const Creepages far{0.0, 4.0 * c23.eta, 4.0 * c23.phi};
-  EXPECT_NEAR(c.boundShape(a, b, G, k, muFz, far), 1.5, 1e-12);
+  const RoundPatch p;
+  EXPECT_NEAR(p.step(c, p.normalised(0.0, h, h)).boundShape, 1.5, 1e-12);
+  EXPECT_NEAR(p.step(c, p.normalised(0.0, 4.0 * h, 4.0 * h)).boundShape, 1.5, 1e-12);
   // Malformed correction rows and a grid missing a direction are refused, naming the line.
   const std::string single = body.substr(0, body.find("1,c1,"));
   EXPECT_NE(message(single + "1,c1,0,1,0\n").find(":12: a c-kind row needs"), std::string::npos);
@@ -442,11 +446,10 @@ TEST(SteadyCalibration, FifthCorrectionScalesTheLongitudinalSpinDriveAlone) {
       }
   const FlexibilityCalibration without = SteadyCalibration::load(writeTable(plain)).at(1.0);
   const FlexibilityCalibration with = SteadyCalibration::load(writeTable(plain + c3x)).at(1.0);
-  const double a = 5e-3, b = 5e-3, G = 8.2e10, muFz = 3e3, unit = muFz / (G * a * b);
-  const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
+  const RoundPatch p;
   const double h = std::sqrt(0.5);
-  const Creepages c{0.0, h * unit / k.c22, h * unit / (k.c23 * std::sqrt(a * b))};  // e = 1
-  const CalibratedStep s0 = without.step(a, b, G, k, muFz, c), s1 = with.step(a, b, G, k, muFz, c);
+  const Creepages c = p.normalised(0.0, h, h);  // e = 1
+  const CalibratedStep s0 = p.step(without, c), s1 = p.step(with, c);
   EXPECT_EQ(s1.L.L1, s0.L.L1);
   EXPECT_EQ(s1.L.L2, s0.L.L2);
   EXPECT_EQ(s1.L.L3, s0.L.L3);
@@ -454,12 +457,10 @@ TEST(SteadyCalibration, FifthCorrectionScalesTheLongitudinalSpinDriveAlone) {
   EXPECT_NEAR(s1.L.spinX(), 4.0 * s0.L.spinX(), 1e-12 * s0.L.spinX());
   // Half way to the knot, ln halfway: 2. Without spin there is no correction: L3x is L3.
   const Creepages half{0.0, 0.5 * c.eta, 0.5 * c.phi};
-  EXPECT_NEAR(with.step(a, b, G, k, muFz, half).L.spinX(),
-              2.0 * without.step(a, b, G, k, muFz, half).L.spinX(),
-              1e-12 * without.step(a, b, G, k, muFz, half).L.spinX());
-  const Creepages noSpin{0.0, c.eta, 0.0};
-  EXPECT_EQ(with.step(a, b, G, k, muFz, noSpin).L.spinX(),
-            with.step(a, b, G, k, muFz, noSpin).L.L3);
+  const double halfWithout = p.step(without, half).L.spinX();
+  EXPECT_NEAR(p.step(with, half).L.spinX(), 2.0 * halfWithout, 1e-12 * halfWithout);
+  const Flexibilities noSpin = p.step(with, {0.0, c.eta, 0.0}).L;
+  EXPECT_EQ(noSpin.spinX(), noSpin.L3);
   // c3x in some directions only is refused.
   EXPECT_NE(message(plain + c3x.substr(0, c3x.rfind("1,c3x,0,1"))).find("misses a direction"),
             std::string::npos);

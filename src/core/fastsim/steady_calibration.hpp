@@ -69,6 +69,7 @@
 /// normalisation by C_ij(nu) carries the first-order effect of nu).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <iosfwd>
 #include <string>
@@ -156,8 +157,8 @@ class FlexibilityCalibration {
   /// correction carries the moment, as it was fitted to (kept to e = 4.5 rather than 1 or 3: the
   /// held-out directions, doc/calibrated_fastsim.md, "Linear theory's spin moment").
   static double linearSpinMoment(double e) {
-    const double w = (kLinearSpinMomentEnd - e) / (kLinearSpinMomentEnd - kLinearSpinMomentTo);
-    return w >= 1.0 ? 1.0 : w <= 0.0 ? 0.0 : w;
+    return std::clamp((kLinearSpinMomentEnd - e) / (kLinearSpinMomentEnd - kLinearSpinMomentTo),
+                      0.0, 1.0);
   }
   static constexpr double kLinearSpinMomentTo = 2.0, kLinearSpinMomentEnd = 4.5;
   /// Normalised creepage e (above) at patch (a, b); infinity where muFz <= 0. `squares`, if
