@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
@@ -30,10 +31,14 @@ struct CurvePoint {
   double fx, fy, mz;  // exact, fx, fy over mu fz, mz over mu fz sqrt(ab)
 };
 
-std::map<std::pair<double, std::string>, std::vector<CurvePoint>> readExact() {
-  std::map<std::pair<double, std::string>, std::vector<CurvePoint>> curves;
+// Exact curves by a/b and ray.
+using Curves = std::map<std::pair<double, std::string>, std::vector<CurvePoint>>;
+
+// An exact curves file of doc/data (identify_steady's cache).
+Curves readExact(const std::string& file = "steady_exact_curves.csv") {
+  Curves curves;
   for (const SteadyCurvePoint& p :
-       readSteadyCurves(std::string(WRC_SOURCE_DIR) + "/doc/data/steady_exact_curves.csv"))
+       readSteadyCurves(std::string(WRC_SOURCE_DIR) + "/doc/data/" + file))
     if (p.epsilon > 0.0) curves[{p.aOverB, p.ray}].push_back({p.epsilon, p.c, p.fx, p.fy, p.mz});
   return curves;
 }
@@ -43,9 +48,9 @@ struct CurveError {
 };
 
 CurveError fastsimError(double ab, const std::vector<CurvePoint>& curve,
-                        const FlexibilityCalibration& cal, int nx = 20) {
+                        const FlexibilityCalibration& cal, int nx = 20, double nu = kNu) {
   const double a = 5e-3 * std::sqrt(ab), b = 5e-3 / std::sqrt(ab);
-  const CreepCoefficients k = kalkerCoefficients(ab, kNu);
+  const CreepCoefficients k = kalkerCoefficients(ab, nu);
   const PatchMesh mesh(nx, nx, a, b);
   TractionField f;
   f.resize(mesh.size());
@@ -83,26 +88,32 @@ class CalibratedSteady : public testing::Test {
     EXPECT_LT(cal, tolerance) << ab << " " << ray;
     EXPECT_LT(cal, 0.5 * error(ab, ray.c_str(), false).force) << ab << " " << ray;
   }
-  static std::map<std::pair<double, std::string>, std::vector<CurvePoint>> curves_;
+  static Curves curves_;
   static SteadyCalibration table_;
 };
-std::map<std::pair<double, std::string>, std::vector<CurvePoint>> CalibratedSteady::curves_;
+Curves CalibratedSteady::curves_;
 SteadyCalibration CalibratedSteady::table_;
+
+// One partial-slip point of rays 11 and 23 at a/b = 1 re-solved at Poisson's ratio nu (about a
+// second): the cached curves are the solver's own, at that nu.
+void expectTheSolversOwn(const Curves& c, double nu) {
+  const double ab = 1.0, a = 5e-3, b = 5e-3;
+  HalfspaceSolver s(HalfspaceGrid::covering(a, b, 20, 20), kG, nu);
+  s.setHertzPressure(a, b, kFz);
+  for (const char* ray : {"11", "23"}) {
+    const auto it = c.find({ab, std::string(ray)});
+    ASSERT_NE(it, c.end()) << ray;
+    const CurvePoint& p = it->second[it->second.size() / 3];
+    const HalfspaceSolution& x = s.solve(RollingMode::kSteady, p.c, kMu);
+    EXPECT_NEAR(x.fx / (kMu * kFz), p.fx, 2e-5) << nu << " " << ray;
+    EXPECT_NEAR(x.fy / (kMu * kFz), p.fy, 2e-5) << nu << " " << ray;
+  }
+}
 
 }  // namespace
 
 TEST_F(CalibratedSteady, TheCachedExactCurvesAreTheSolversOwn) {
-  // One partial-slip point per kind at a/b = 1, re-solved (about a second).
-  const double ab = 1.0, a = 5e-3, b = 5e-3;
-  HalfspaceSolver s(HalfspaceGrid::covering(a, b, 20, 20), kG, kNu);
-  s.setHertzPressure(a, b, kFz);
-  for (const char* ray : {"11", "23"}) {
-    const auto& curve = curves_.at({ab, std::string(ray)});
-    const CurvePoint& p = curve[curve.size() / 3];
-    const HalfspaceSolution& x = s.solve(RollingMode::kSteady, p.c, kMu);
-    EXPECT_NEAR(x.fx / (kMu * kFz), p.fx, 2e-5) << ray;
-    EXPECT_NEAR(x.fy / (kMu * kFz), p.fy, 2e-5) << ray;
-  }
+  expectTheSolversOwn(curves_, kNu);
 }
 
 TEST_F(CalibratedSteady, SingleCreepageCurvesWithinOnePercentOfMuFz) {
@@ -288,5 +299,47 @@ TEST_F(CalibratedSteady, EachMeshsTableMeetsTheSingleCreepageTargetOnItsOwnMesh)
         EXPECT_LT(fastsimError(ab, it->second, t.at(ab), nx).force, bound)
             << nx << "x" << nx << " " << ab << " " << ray;
       }
+  }
+}
+
+TEST(CalibratedSteadyAtOtherNu, TheTableIdentifiedAtNu028HoldsOverSteelsRange) {
+  // The table is identified at nu 0.28 and applied at any nu on that nu's own Kalker
+  // coefficients (doc/calibrated_fastsim.md, "Other Poisson's ratios"). Against the exact curves
+  // solved at 0.25 and 0.30 (identify_steady --nu NU --exact
+  // doc/data/steady_exact_curves_nuNU.csv; re-solved at two points here), every ray at a/b
+  // 0.2-5: forces within issue 19's targets as at 0.28 (measured single creepages 0.0080 /
+  // 0.0091, combined 0.0196 / 0.0190), but r10 at a/b 0.2 (0.026 at 0.28; 0.026 / 0.029), and
+  // under half of classic's wherever classic misses the target (h4 at a/b 5: 0.61 / 0.58 of it,
+  // 0.60 at 0.28); pure spin's Mz within 5 % (2.6-2.9 %); eta's moment, which the lateral
+  // coupling carries (identified at 0.28), within 4.5 % at a/b 0.2-2 (measured up to 4.1 /
+  // 2.8 %; 0.7-1.8 % at 0.28).
+  const SteadyCalibration table = SteadyCalibration::shipped().forMesh(20);
+  for (const double nu : {0.25, 0.30}) {
+    char file[64];
+    std::snprintf(file, sizeof file, "steady_exact_curves_nu%.2f.csv", nu);
+    const Curves curves = readExact(file);
+    expectTheSolversOwn(curves, nu);
+    ASSERT_EQ(curves.size(), 5u * 55u) << file;
+    for (const auto& [key, curve] : curves) {
+      const auto& [ab, ray] = key;
+      EXPECT_EQ(curve.size(), 12u) << nu << " " << ab << " " << ray;
+      const CurveError cal = fastsimError(ab, curve, table.at(ab), 20, nu);
+      const CurveError classic = fastsimError(ab, curve, SteadyCalibration().at(ab), 20, nu);
+      const bool single = ray == "11" || ray == "22" || ray == "23";
+      EXPECT_LT(cal.force, single                     ? 0.01
+                           : ray == "r10" && ab < 0.3 ? 0.032
+                                                      : 0.02)
+          << nu << " " << ab << " " << ray;
+      if (classic.force > 0.02) {
+        const double share = ray == "h4" && ab > 3.0 ? 0.65 : 0.5;  // as at 0.28
+        EXPECT_LT(cal.force, share * classic.force) << nu << " " << ab << " " << ray;
+      }
+      if (ray == "23") {
+        EXPECT_LT(cal.moment, 0.05) << nu << " " << ab;
+      }
+      if (ray == "22" && ab < 3.0) {
+        EXPECT_LT(cal.moment, 0.045) << nu << " " << ab;
+      }
+    }
   }
 }
