@@ -266,7 +266,15 @@ struct Solved {
 
 class ExactCache {
  public:
+  // The points are keyed by a/b, ray and e alone: a cache made for another setup (nu, grid, G,
+  // mu, fz; its first line) is refused rather than read as this one's.
   ExactCache(const std::string& path, const Options& o) : path_(path), o_(o) {
+    std::ifstream in(path);
+    std::string first;
+    if (in && std::getline(in, first) && first != setupLine())
+      throw std::runtime_error("--exact " + path + " was solved for another setup:\n  " + first +
+                               "\nnot\n  " + setupLine() +
+                               "\n(--nu, --grid: give each setup a cache of its own)");
     for (const SteadyCurvePoint& p : readSteadyCurves(path))
       map_[Key{p.aOverB, p.ray, p.epsilon}] = {{p.fx, p.fy, p.mz}, p.c};
   }
@@ -294,13 +302,19 @@ class ExactCache {
     return p;
   }
   int solved() const { return solved_; }
+  // The cache's first line: the setup its points were solved for.
+  std::string setupLine() const {
+    std::ostringstream s;
+    s << "# Exact steady creep curves (our half-space solver, " << o_.grid << "x" << o_.grid
+      << " elements over 1.1a x 1.1b, Hertz pressure; G " << o_.G << " Pa, nu " << o_.nu << ", mu "
+      << o_.mu << ", fz " << o_.fz << " N, sqrt(ab) 5 mm)";
+    return s.str();
+  }
   void save() {
     if (!dirty_) return;
     dirty_ = false;
     std::ofstream out = tools::writeFile(path_);
-    out << "# Exact steady creep curves (our half-space solver, " << o_.grid << "x" << o_.grid
-        << " elements over 1.1a x 1.1b, Hertz pressure; G " << o_.G << " Pa, nu " << o_.nu
-        << ", mu " << o_.mu << ", fz " << o_.fz << " N, sqrt(ab) 5 mm)\n"
+    out << setupLine() << "\n"
         << "# made by: identify_steady (src/tools/identify_steady.cpp); a cache: its points are "
            "read, not recomputed\n"
         << "# epsilon: normalised creepage (steady_calibration.hpp); fx, fy over mu fz; mz over "
