@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "../process.hpp"
 #include "wheel_rail_contact/ContactState.h"
 #include "wheel_rail_contact/Creepage.h"
 #include "wheel_rail_contact/NormalLoad.h"
@@ -209,18 +210,6 @@ class ContactClient {
   ros::Subscriber stateSub_, forceSub_;
   ros::ServiceClient reset_, step_;
 };
-
-/// Runs a command, returns its exit code and output (stdout and stderr).
-inline int run(const std::string& command, std::string* output) {
-  FILE* p = popen((command + " 2>&1").c_str(), "r");
-  if (!p) return -1;
-  char buf[4096];
-  output->clear();
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) output->append(buf, n);
-  const int status = pclose(p);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 struct Row {
   double t, fx, fy, mz, fz, a, b, adhesion;

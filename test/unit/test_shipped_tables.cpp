@@ -7,19 +7,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "process.hpp"
 #include "wheel_rail_contact/fastsim/chi_table.hpp"
 #include "wheel_rail_contact/shipped_tables.hpp"
 
 using namespace wheel_rail_contact;
 
-namespace {
-std::string fileText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-}  // namespace
+using wrc_test::fileText;
 
 TEST(ShippedTables, EveryTableIsItsConfigFileByteForByte) {
   ASSERT_FALSE(shippedTableNames().empty());
