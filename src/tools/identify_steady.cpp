@@ -48,8 +48,10 @@ using namespace wheel_rail_contact;
 
 namespace {
 
+const char* const kDefaultExact = "doc/data/steady_exact_curves.csv";
+
 struct Options {
-  std::string out, exact = "doc/data/steady_exact_curves.csv", curves, table;
+  std::string out, exact = kDefaultExact, curves, table;
   int grid = 20, nx = 20;  // nx: the mesh being identified or evaluated, one of `meshes`
   std::vector<int> meshes = {20};
   double nu = 0.28, G = 8.2e10, mu = 0.3, fz = 1e4;
@@ -88,6 +90,8 @@ const char* const kUsage =
     "                       [--moment-study]\n"
     "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
     "          --table classic: no table)\n"
+    "--exact:  the exact points' cache, read and extended (the default, relative to the\n"
+    "          repository root, must exist; a FILE that does not is a new cache)\n"
     "--curves: write exact / classic / calibrated curves at --points for every ray\n"
     "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis, one table block\n"
     "          per mesh (fastsim_nx); evaluation: each mesh on the table's nearest (one --nx\n"
@@ -1288,6 +1292,12 @@ int run(const Options& o, int argc, char** argv) {
     if (nx < 2) throw std::runtime_error("--nx: every mesh needs at least 2 nodes per axis");
   if (!o.curves.empty() && o.meshes.size() != 1)
     throw std::runtime_error("--curves: one --nx (the curves file holds one mesh)");
+  // The default cache is relative to the repository root: run elsewhere, the tool would find no
+  // cache and start solving every point (hours). A new cache is asked for by name.
+  if (o.exact == kDefaultExact && !std::ifstream(o.exact))
+    throw std::runtime_error(std::string("no exact cache ") + kDefaultExact +
+                             " here: run from the repository root, or give --exact FILE (a new "
+                             "cache is started where FILE does not exist)");
   ExactCache exact(o.exact, o);
   struct Saver {  // keeps what was solved even when a later step throws
     ExactCache* c;

@@ -1,29 +1,61 @@
 #include "validation/steady_curves.hpp"
 
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 namespace wheel_rail_contact {
 
+namespace {
+
+constexpr int kFields = 9;
+const char* const kHeader = "a_over_b,ray,epsilon,xi,eta,phi,fx,fy,mz";
+
+std::vector<std::string> fields(const std::string& line) {
+  std::vector<std::string> f;
+  std::stringstream ss(line);
+  for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
+  if (!line.empty() && line.back() == ',') f.emplace_back();  // a trailing empty field
+  return f;
+}
+
+}  // namespace
+
 std::vector<SteadyCurvePoint> readSteadyCurves(const std::string& path) {
   std::vector<SteadyCurvePoint> out;
   std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line.rfind("a_over_b", 0) == 0) continue;
-    std::stringstream ss(line);
-    std::vector<std::string> f;
-    for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
-    if (f.size() < 9) throw std::runtime_error(path + ": short line: " + line);
-    try {
-      out.push_back({std::stod(f[0]), f[1], std::stod(f[2]),
-                     Creepages{std::stod(f[3]), std::stod(f[4]), std::stod(f[5])}, std::stod(f[6]),
-                     std::stod(f[7]), std::stod(f[8])});
-    } catch (const std::logic_error&) {  // stod: invalid_argument or out_of_range
-      throw std::runtime_error(path + ": not a number in: " + line);
+  bool header = false;
+  long n = 0;
+  auto fail = [&](const std::string& why) {
+    throw std::runtime_error(path + ":" + std::to_string(n) + ": " + why);
+  };
+  for (std::string line; std::getline(in, line);) {
+    ++n;
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      // The columns are the cache's own, in its order: a file of other columns (a curves file of
+      // --curves, say) is not read as exact points.
+      if (line != kHeader) fail("expected the header " + std::string(kHeader) + ", not: " + line);
+      header = true;
+      continue;
     }
+    const std::vector<std::string> f = fields(line);
+    if (f.size() != kFields)
+      fail(std::to_string(f.size()) + " fields, not " + std::to_string(kFields) + ": " + line);
+    double v[kFields];
+    for (int i = 0; i < kFields; ++i) {
+      if (i == 1) continue;  // the ray's name
+      char* end = nullptr;
+      v[i] = std::strtod(f[i].c_str(), &end);
+      if (f[i].empty() || *end != '\0' || !std::isfinite(v[i]))
+        fail("not a finite number: '" + f[i] + "' in: " + line);
+    }
+    if (f[1].empty()) fail("no ray: " + line);
+    out.push_back({v[0], f[1], v[2], Creepages{v[3], v[4], v[5]}, v[6], v[7], v[8]});
   }
+  if (n > 0 && !header) fail("no header " + std::string(kHeader));
   return out;
 }
 
