@@ -48,7 +48,8 @@ TEST(SteadyCurvesFile, RefusesOtherColumnsExtraFieldsAndBadNumbers) {
   // A curves file (--curves: exact / classic / calibrated columns) is not an exact cache.
   EXPECT_NE(readError("c1.csv", std::string(kSetup) +
                                     "a_over_b,ray,epsilon,xi,eta,phi,fx_exact,fy_exact,mz_exact,"
-                                    "fx_classic\n" + kPoint)
+                                    "fx_classic\n" +
+                                    kPoint)
                 .find("expected the header"),
             std::string::npos);
   EXPECT_NE(readError("c2.csv", std::string(kSetup) + kPoint).find("expected the header"),
