@@ -94,7 +94,8 @@ const char* const kUsage =
     "          repository root, must exist; a FILE that does not is a new cache)\n"
     "--curves: write exact / classic / calibrated curves at --points for every ray\n"
     "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis, one table block\n"
-    "          per mesh (fastsim_nx); evaluation: each mesh on the table's nearest (one --nx\n"
+    "          per mesh (fastsim_nx); evaluation: each mesh on the table's, interpolated (one "
+    "--nx\n"
     "          with --curves)\n"
     "--spin-shares, --xi-shares: the combined correction's direction grid (none: no correction)\n"
     "--smoothing: the pull of each direction's multipliers towards its neighbours' (mu fz per\n"
@@ -988,7 +989,8 @@ void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
       << "# (src/core/fastsim/steady_calibration.hpp). Identified " << date << " by: " << command
       << "\n# against our exact solver (" << o.grid << "x" << o.grid << ", nu " << o.nu
       << "; exact curves cached in " << o.exact << ") per FastSim mesh (fastsim_nx; a model "
-      << "takes the mesh nearest its nx in 1/nx); other nu: the same ratios.\n"
+      << "interpolates between the meshes in 1/nx, the nearest beyond them); other nu: the same "
+         "ratios.\n"
       << "# fit_error: max(|dFx|, |dFy|) / (mu fz) at the knot (spin, kinds 23 and 23x fitted "
          "together, and the combined correction c1, c2, c3, cs, c3x: the larger of that and 0.2 "
          "|dMz| / "

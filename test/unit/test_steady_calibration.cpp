@@ -284,25 +284,35 @@ TEST(SteadyCalibration, LateralCouplingIsEtasCouplingFadingWithSpin) {
             std::string::npos);
 }
 
-TEST(SteadyCalibration, OneBlockPerMeshTheNearestInOneOverNx) {
+TEST(SteadyCalibration, OneBlockPerMeshInterpolatedInOneOverNxBetweenThem) {
   // Two meshes, 5 and 20 nodes per strip (columns found by name, in any order after ratio).
   const std::string h = "a_over_b,kind,epsilon,ratio,fastsim_nx,fit_error\n";
-  auto mesh = [](int nx, double r) {
+  auto mesh = [](int nx, double r, const char* knot = "1") {
     const std::string n = std::to_string(nx), v = std::to_string(r);
-    return "1,11,0,1," + n + "\n1,11,1," + v + "," + n + ",0\n1,22,0,1," + n + "\n1,23,0,1," + n +
-           "\n";
+    return "1,11,0,1," + n + "\n1,11," + knot + "," + v + "," + n + ",0\n1,22,0,1," + n +
+           "\n1,23,0,1," + n + "\n";
   };
   const SteadyCalibration t = SteadyCalibration::load(writeTable(h + mesh(20, 2) + mesh(5, 4)));
   EXPECT_EQ(t.meshes(), (std::vector<int>{5, 20}));
-  EXPECT_THROW(t.at(1.0), std::logic_error);  // which mesh is the caller's to say
-  EXPECT_DOUBLE_EQ(t.forMesh(5).at(1.0).ratio(0, 1.0), 4.0);
-  EXPECT_DOUBLE_EQ(t.forMesh(20).at(1.0).ratio(0, 1.0), 2.0);
-  // Nearest in 1/nx: 8 is as near 5 as 20 (1/5 - 1/8 = 1/8 - 1/20), a tie for the finer mesh; 7
-  // is nearer 5, 40 nearer 20.
-  EXPECT_DOUBLE_EQ(t.forMesh(8).at(1.0).ratio(0, 1.0), 2.0);
-  EXPECT_DOUBLE_EQ(t.forMesh(7).at(1.0).ratio(0, 1.0), 4.0);
-  EXPECT_DOUBLE_EQ(t.forMesh(40).at(1.0).ratio(0, 1.0), 2.0);
-  EXPECT_EQ(t.forMesh(7).meshes(), (std::vector<int>{5}));
+  EXPECT_THROW(t.at(1.0), std::logic_error);           // which mesh is the caller's to say
+  EXPECT_EQ(t.forMesh(5).at(1.0).ratio(0, 1.0), 4.0);  // an identified mesh: its own, exactly
+  EXPECT_EQ(t.forMesh(20).at(1.0).ratio(0, 1.0), 2.0);
+  EXPECT_EQ(t.forMesh(20).meshes(), (std::vector<int>{20}));
+  // Between them, ln ratio linear in 1/nx: 8 is half way (1/5 - 1/8 = 1/8 - 1/20), 7 at
+  // (1/5 - 1/7) / (1/5 - 1/20) = 8/21 of the way.
+  EXPECT_NEAR(t.forMesh(8).at(1.0).ratio(0, 1.0), std::pow(2.0, 1.5), 1e-12);
+  EXPECT_NEAR(t.forMesh(7).at(1.0).ratio(0, 1.0), std::pow(2.0, 2.0 - 8.0 / 21.0), 1e-12);
+  EXPECT_EQ(t.forMesh(7).meshes(), (std::vector<int>{7}));
+  // Beyond the table's meshes, the nearest.
+  EXPECT_EQ(t.forMesh(40).at(1.0).ratio(0, 1.0), 2.0);
+  EXPECT_EQ(t.forMesh(3).at(1.0).ratio(0, 1.0), 4.0);
+  // Meshes identified on other knots are not blended: the nearest in 1/nx, a tie (8) for the
+  // finer mesh.
+  const SteadyCalibration other =
+      SteadyCalibration::load(writeTable(h + mesh(20, 2) + mesh(5, 4, "1.5")));
+  EXPECT_EQ(other.forMesh(8).at(1.0).ratio(0, 1.5), 2.0);
+  EXPECT_EQ(other.forMesh(7).at(1.0).ratio(0, 1.5), 4.0);
+  EXPECT_EQ(other.forMesh(7).meshes(), (std::vector<int>{5}));
   // A table without fastsim_nx serves every mesh.
   const SteadyCalibration any = SteadyCalibration::load(writeTable(kTwoRows));
   EXPECT_EQ(any.meshes(), (std::vector<int>{0}));

@@ -510,10 +510,49 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
   return t;
 }
 
+bool SteadyCalibration::sameKnots(const std::vector<Row>& x, const std::vector<Row>& y) {
+  if (x.size() != y.size()) return false;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Row &p = x[i], &q = y[i];
+    if (p.logAB != q.logAB || p.corrS3 != q.corrS3 || p.corrT != q.corrT ||
+        p.corrEps != q.corrEps || p.corr.size() != q.corr.size())
+      return false;
+    for (int k = 0; k < 6; ++k)
+      if (p.eps[k] != q.eps[k] || p.ratio[k].size() != q.ratio[k].size()) return false;
+  }
+  return true;
+}
+
 SteadyCalibration SteadyCalibration::forMesh(int nx) const {
   if (meshes_.size() <= 1) return *this;
   SteadyCalibration t;
-  t.meshes_.push_back(nearestMesh(meshes_, nx));
+  // Between two identified meshes the ratios are interpolated in 1/nx (ln ratio; the coupling
+  // itself), where both hold the same knots; on an identified mesh, beyond the table's meshes or
+  // between tables of other knots, the nearest mesh.
+  std::size_t i = 0;
+  while (i + 1 < meshes_.size() && meshes_[i + 1].nx <= nx) ++i;
+  const Mesh &lo = meshes_[i], &hi = meshes_[std::min(i + 1, meshes_.size() - 1)];
+  if (nx <= lo.nx || nx >= hi.nx || lo.nx == 0 || !sameKnots(lo.rows, hi.rows)) {
+    t.meshes_.push_back(nearestMesh(meshes_, nx));
+    return t;
+  }
+  const double w = (1.0 / lo.nx - 1.0 / nx) / (1.0 / lo.nx - 1.0 / hi.nx);
+  auto blend = [w](double x, double y) {
+    return std::exp((1.0 - w) * std::log(x) + w * std::log(y));
+  };
+  Mesh m = lo;
+  m.nx = nx;
+  for (std::size_t r = 0; r < m.rows.size(); ++r) {
+    Row& row = m.rows[r];
+    const Row& h = hi.rows[r];
+    for (int k = 0; k < 6; ++k)
+      for (std::size_t j = 0; j < row.ratio[k].size(); ++j)
+        row.ratio[k][j] = k == FlexibilityCalibration::kCouplingKind
+                              ? row.ratio[k][j] + w * (h.ratio[k][j] - row.ratio[k][j])
+                              : blend(row.ratio[k][j], h.ratio[k][j]);
+    for (std::size_t j = 0; j < row.corr.size(); ++j) row.corr[j] = blend(row.corr[j], h.corr[j]);
+  }
+  t.meshes_.push_back(std::move(m));
   return t;
 }
 

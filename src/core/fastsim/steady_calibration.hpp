@@ -219,9 +219,11 @@ class SteadyCalibration {
   /// The table shipped with the package (config/steady_calibration.csv, meshes 5x5 to 40x40,
   /// compiled in; parsed once per process).
   static const SteadyCalibration& shipped();
-  /// The mesh identified nearest nx nodes per strip, as a table of its own: nearest in 1/nx (the
-  /// march's step along the strip; a tie goes to the finer mesh), as ChiTable::forMesh. A table
-  /// of one mesh (or none) is itself.
+  /// The table for a FastSim mesh of nx nodes per strip, as a table of its own: an identified
+  /// mesh's own; between two identified meshes of the same knots their ratios interpolated in
+  /// 1/nx (the march's step along the strip; ln ratio, the coupling itself); beyond the table's
+  /// meshes (or between meshes of other knots) the nearest in 1/nx, a tie to the finer, as
+  /// ChiTable::forMesh. A table of one mesh (or none) is itself.
   SteadyCalibration forMesh(int nx) const;
   /// nx of each mesh the table holds, increasing (one 0: a table without fastsim_nx).
   std::vector<int> meshes() const;
@@ -244,6 +246,8 @@ class SteadyCalibration {
     std::vector<Row> rows;  // sorted by a/b
   };
   std::vector<Mesh> meshes_;  // sorted by nx
+  // Whether two meshes' tables hold the same a/b rows and knots (identified on the same grids).
+  static bool sameKnots(const std::vector<Row>& x, const std::vector<Row>& y);
 };
 
 }  // namespace wheel_rail_contact
