@@ -161,12 +161,34 @@ TEST_F(CalibratedSteady, SmallSpinShareWithEtaAlongPhiWithinTwoPercentOfMuFz) {
   // h4 (0.5, 1, 0.25): spin 5 % of e^2 with eta phi > 0, held out of every choice of the
   // calibration: measured 0.018 / 0.008 / 0.017 at a/b 0.2 / 1 / 5 (classic 0.029-0.121); at a/b 5
   // 0.60 of classic's, 0.010 before linear theory's spin moment held for the rest of e^2, which
-  // took its Mz from 5.5-15 % of the peak to 2.9-6.2 % at a/b 0.5-5 (classic's).
+  // took its Mz from 5.5-15 % of the peak to 2.9-6.2 % at a/b 0.5-5 (classic's); with the
+  // coupling held at small spin shares 5.0 / 4.0 / 7.2 / 2.7 % at a/b 0.5 / 1 / 2 / 5 (force 0.017
+  // / 0.008 / 0.016).
   for (double ab : {0.2, 1.0}) expectWithinAndUnderHalfOfClassic(ab, "h4", 0.02);
   const double cal = error(5.0, "h4", true).force;
   EXPECT_LT(cal, 0.02);
   EXPECT_LT(cal, 0.65 * error(5.0, "h4", false).force);
-  for (double ab : {0.5, 1.0, 2.0, 5.0}) EXPECT_LT(error(ab, "h4", true).moment, 0.065) << ab;
+  for (double ab : {0.5, 1.0, 2.0, 5.0}) EXPECT_LT(error(ab, "h4", true).moment, 0.075) << ab;
+}
+
+TEST_F(CalibratedSteady, SmallSpinSharesMomentFromEtaNearerTheExactCurve) {
+  // Where spin is a small share (2-8 % of e^2) the moment is mostly eta's, carried by the lateral
+  // coupling; held there (FlexibilityCalibration::heldCoupling) rather than faded with spin's
+  // share, the six such rays' Mz is above 5 % of the peak on 15 of their 30 curves (23 before),
+  // mean 5.2 % (6.0 %), worst at a/b 0.2 (r1 9.8 %, as before) (doc/calibrated_fastsim.md, "The
+  // coupling held at small spin shares").
+  int above = 0;
+  double sum = 0.0, worst = 0.0;
+  for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
+    for (const char* ray : {"h3", "h4", "h7", "r1", "r2", "r10"}) {
+      const double m = error(ab, ray, true).moment;
+      above += m > 0.05;
+      sum += m;
+      worst = std::max(worst, m);
+    }
+  EXPECT_LE(above, 16);
+  EXPECT_LT(sum / 30.0, 0.055);
+  EXPECT_LT(worst, 0.105);
 }
 
 TEST_F(CalibratedSteady, SpinSharesBetweenTheSmallKnotsWithinTwoPercentOfMuFz) {
@@ -244,8 +266,9 @@ TEST_F(CalibratedSteady, LinearSpinMomentIsTheExactSolversAtEveryShareOfSpin) {
   // Near linear theory (e = 0.05: forces 5 % of mu fz) spin's moment comes from its longitudinal
   // drive alone, phi 8 a^2 b^3 / (15 L3x): with L3x = L3 (classic) it misses C33, by 2-64 % of the
   // exact moment at a/b 0.2-5. 23x's knot 0 holds at every share of spin: measured pure spin
-  // within 0.7 %, h3 and h4 (spin 2 % and 5 % of e^2) within 5.1 % and 4.0 % (classic 2-21 % and
-  // 10-28 %; the rest is eta's moment, whose coupling fades with spin's share).
+  // within 0.7 %; the rays whose spin is 2-8 % of e^2 (h3, h4, h7, r1, r2, r10) within 4.5 % since
+  // the coupling is held at small spin shares (11.5 % before; classic 2-28 %): the rest of their
+  // moment is eta's, the coupling's.
   auto atLinear = [&](double ab, const char* ray, bool calibrated) {
     const auto it = curves_.find({ab, ray});
     EXPECT_NE(it, curves_.end()) << ab << " " << ray;
@@ -258,8 +281,8 @@ TEST_F(CalibratedSteady, LinearSpinMomentIsTheExactSolversAtEveryShareOfSpin) {
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0}) {
     EXPECT_LT(atLinear(ab, "23", true), 0.01) << ab;
     EXPECT_LT(atLinear(ab, "23", true), 0.5 * atLinear(ab, "23", false)) << ab;
-    for (const char* ray : {"h3", "h4"})
-      EXPECT_LT(atLinear(ab, ray, true), 0.06) << ab << " " << ray;
+    for (const char* ray : {"h3", "h4", "h7", "r1", "r2", "r10"})
+      EXPECT_LT(atLinear(ab, ray, true), 0.05) << ab << " " << ray;
   }
 }
 

@@ -209,11 +209,16 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   // The lateral coupling, times eta's share of the lateral creepages' e2^2 + e3^2 to the sixth:
   // spin's own parameters (23, 23x, 23s) are fitted without it, and on spin's lateral traction it
   // put a moment that those parameters already carry (doc/calibrated_fastsim.md, "Mz from eta in
-  // the core"). Without eta it is 0; without spin, c itself; without friction (e infinite, the
-  // squares inf or NaN) none: every node slips with zero traction.
+  // the core"). Where spin is a small share the rest of it is held (heldCoupling), its moment on
+  // spin's traction taken back through L3x below. Without eta it is 0; without spin, c itself;
+  // without friction (e infinite, the squares inf or NaN) none: every node slips with zero
+  // traction.
+  double held = 0.0;
   if (finite && !eps_[kCouplingKind].empty() && e2[1] > 0.0) {
-    const double q = e2[1] / (e2[1] + e2[2]), q2 = q * q;
-    L.lateralCoupling = lateralCoupling(logRatioOf(kCouplingKind) * (q2 * q2 * q2), a, b, k);
+    const double q = e2[1] / (e2[1] + e2[2]), q2 = q * q, q6 = q2 * q2 * q2;
+    held = heldCoupling(e, share[2]);
+    L.lateralCoupling =
+        lateralCoupling(logRatioOf(kCouplingKind) * (q6 + (1.0 - q6) * held), a, b, k);
   }
   // The combined correction's ln multipliers, of L1, L2, L3 and of the bound's shape, in one
   // lookup; each goes into the exp of the ratio it multiplies. None for one kind or xi with eta.
@@ -260,6 +265,14 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
     L.L3x = L.L3 * stepExp(lx, table);
   } else if (!eps_[3].empty())
     L.L3x = L.L3;
+  // The held coupling's moment on spin's lateral traction, in linear theory
+  // -kappa phi a^4 b^3 32 / (315 L3) against the spin drive's -phi 8 a^2 b^3 / (15 L3x), is taken
+  // back by a stiffer drive: 1 / L3x less kappa a^2 (4 / 21) / L3 (spinCouplingCompensation).
+  if (spin && held > 0.0) {
+    const double perL3x =
+        1.0 / L.spinX() - held * spinCouplingCompensation(L.lateralCoupling, a, L.L3);
+    if (perL3x > 0.0) L.L3x = 1.0 / perL3x;
+  }
   // The bound's shape: shape_23s(e) times spin's share of e^2 (no friction: parabolic).
   if (spin && !eps_[4].empty())
     s.boundShape = towardsFullSlip(

@@ -161,6 +161,25 @@ class FlexibilityCalibration {
                       0.0, 1.0);
   }
   static constexpr double kLinearSpinMomentTo = 2.0, kLinearSpinMomentEnd = 4.5;
+  /// The share of the lateral coupling held where spin is a small share s3 = e3^2 / e^2 of the
+  /// creepage, beyond the (e2^2 / (e2^2 + e3^2))^6 that spin's own parameters were identified
+  /// with: 1 - e / kLinearSpinMomentEnd (0 beyond), times 1 up to s3 = kHeldCouplingFrom falling
+  /// linearly to 0 at kHeldCouplingTo. There the moment is eta's (its coupling), which the sixth
+  /// power faded: linear theory's moment came out 5-9 % low (doc/calibrated_fastsim.md, "The
+  /// coupling held at small spin shares").
+  static double heldCoupling(double e, double s3) {
+    return std::max(0.0, 1.0 - e / kLinearSpinMomentEnd) *
+           std::clamp((kHeldCouplingTo - s3) / (kHeldCouplingTo - kHeldCouplingFrom), 0.0, 1.0);
+  }
+  static constexpr double kHeldCouplingFrom = 0.06, kHeldCouplingTo = 0.12;
+  /// What the coupling kappa [1/m^2] on a patch of semi-axis a [m] takes from 1 / L3x [N/m^3] so
+  /// that spin's moment in linear theory stays the same: kappa a^2 (4 / 21) / L3. The coupling's
+  /// moment on spin's lateral traction tau_y = -(phi / (2 L3)) (a_y^2 - x^2) is
+  /// -kappa phi a^4 b^3 32 / (315 L3) (integrated over the ellipse), the spin drive's
+  /// -phi 8 a^2 b^3 / (15 L3x).
+  static double spinCouplingCompensation(double kappa, double a, double L3) {
+    return kappa * a * a * (4.0 / 21.0) / L3;
+  }
   /// Normalised creepage e (above) at patch (a, b); infinity where muFz <= 0. `squares`, if
   /// given, receives e1^2, e2^2, e3^2 (each kind's share; finite only where muFz > 0).
   static double normalisedCreepage(double a, double b, double G, const CreepCoefficients& k,
