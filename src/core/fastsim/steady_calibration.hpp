@@ -164,9 +164,9 @@ class FlexibilityCalibration {
   /// The share of the lateral coupling held where spin is a small share s3 = e3^2 / e^2 of the
   /// creepage, beyond the (e2^2 / (e2^2 + e3^2))^6 that spin's own parameters were identified
   /// with: 1 - e / kLinearSpinMomentEnd (0 beyond), times 1 up to s3 = kHeldCouplingFrom falling
-  /// linearly to 0 at kHeldCouplingTo. There the moment is eta's (its coupling), which the sixth
-  /// power faded: linear theory's moment came out 5-9 % low (doc/calibrated_fastsim.md, "The
-  /// coupling held at small spin shares").
+  /// linearly to 0 at kHeldCouplingTo. There the moment is mostly eta's (its coupling), which the
+  /// sixth power faded: linear theory's moment was up to 11.5 % off (doc/calibrated_fastsim.md,
+  /// "The coupling held at small spin shares").
   static double heldCoupling(double e, double s3) {
     return std::max(0.0, 1.0 - e / kLinearSpinMomentEnd) *
            std::clamp((kHeldCouplingTo - s3) / (kHeldCouplingTo - kHeldCouplingFrom), 0.0, 1.0);
