@@ -323,7 +323,7 @@ class ExactCache {
            "read, not recomputed\n"
         << "# epsilon: normalised creepage (steady_calibration.hpp); fx, fy over mu fz; mz over "
            "mu fz sqrt(ab)\n"
-        << "a_over_b,ray,epsilon,xi,eta,phi,fx,fy,mz\n";
+        << kSteadyCurvesHeader << "\n";
     char line[256];
     for (const auto& [key, v] : map_) {
       const Creepages& c = v.c;

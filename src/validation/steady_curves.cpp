@@ -10,8 +10,7 @@ namespace wheel_rail_contact {
 
 namespace {
 
-constexpr int kFields = 9;
-const char* const kHeader = "a_over_b,ray,epsilon,xi,eta,phi,fx,fy,mz";
+constexpr int kFields = 9;  // kSteadyCurvesHeader's columns
 
 std::vector<std::string> fields(const std::string& line) {
   std::vector<std::string> f;
@@ -37,7 +36,8 @@ std::vector<SteadyCurvePoint> readSteadyCurves(const std::string& path) {
     if (!header) {
       // The columns are the cache's own, in its order: a file of other columns (a curves file of
       // --curves, say) is not read as exact points.
-      if (line != kHeader) fail("expected the header " + std::string(kHeader) + ", not: " + line);
+      if (line != kSteadyCurvesHeader)
+        fail("expected the header " + std::string(kSteadyCurvesHeader) + ", not: " + line);
       header = true;
       continue;
     }
@@ -55,7 +55,7 @@ std::vector<SteadyCurvePoint> readSteadyCurves(const std::string& path) {
     if (f[1].empty()) fail("no ray: " + line);
     out.push_back({v[0], f[1], v[2], Creepages{v[3], v[4], v[5]}, v[6], v[7], v[8]});
   }
-  if (n > 0 && !header) fail("no header " + std::string(kHeader));
+  if (n > 0 && !header) fail("no header " + std::string(kSteadyCurvesHeader));
   return out;
 }
 

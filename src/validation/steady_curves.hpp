@@ -18,10 +18,13 @@ struct SteadyCurvePoint {
   double fx = 0.0, fy = 0.0, mz = 0.0;
 };
 
+/// The cache's header line, its columns in order: written by identify_steady, required here.
+inline constexpr const char* kSteadyCurvesHeader = "a_over_b,ray,epsilon,xi,eta,phi,fx,fy,mz";
+
 /// The points of `path` in file order; none if the file does not exist or is empty. Throws
 /// std::runtime_error naming the file and line where the first line that is not a comment is not
-/// the header a_over_b,ray,epsilon,xi,eta,phi,fx,fy,mz (other or more columns are refused, not
-/// ignored), where a line has other than its 9 fields, or where a field is not a finite number.
+/// kSteadyCurvesHeader (other or more columns are refused, not ignored), where a line has other
+/// than its 9 fields, or where a field is not a finite number.
 std::vector<SteadyCurvePoint> readSteadyCurves(const std::string& path);
 
 }  // namespace wheel_rail_contact
