@@ -1,9 +1,10 @@
 #include "wheel_rail_contact/scenario.hpp"
 
+#include "core/csv_fields.hpp"
+
 #include <array>
 #include <cmath>
 #include <cstdlib>
-#include <sstream>
 
 namespace wheel_rail_contact {
 
@@ -19,12 +20,11 @@ std::string trim(const std::string& s) {
   return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
 }
 
+// The line's fields (splitCsvFields), each trimmed: scenarios are written by hand too.
 std::vector<std::string> splitCsv(const std::string& line) {
   std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) out.push_back(trim(cell));
-  if (!line.empty() && line.back() == ',') out.emplace_back();
+  splitCsvFields(line, &out);
+  for (std::string& cell : out) cell = trim(cell);
   return out;
 }
 
@@ -45,6 +45,7 @@ std::vector<ScenarioRow> readScenario(std::istream& in, const std::string& sourc
   std::array<int, kColumns.size()> col{};
   col.fill(-1);
   bool haveHeader = false;
+  std::size_t columns = 0;
   std::vector<ScenarioRow> rows;
   while (std::getline(in, line)) {
     ++lineNo;
@@ -66,8 +67,13 @@ std::vector<ScenarioRow> readScenario(std::istream& in, const std::string& sourc
       if ((col[6] < 0) != (col[7] < 0))
         fail(source, lineNo, "columns 'a' and 'b' must be given together");
       haveHeader = true;
+      columns = cells.size();
       continue;
     }
+    if (cells.size() > columns)
+      fail(source, lineNo,
+           std::to_string(cells.size()) + " fields, more than the header's " +
+               std::to_string(columns) + " columns");
     double v[kColumns.size()] = {};
     for (size_t k = 0; k < kColumns.size(); ++k) {
       if (col[k] < 0) continue;  // an optional column not given: 0, the parameters apply

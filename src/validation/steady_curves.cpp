@@ -1,9 +1,10 @@
 #include "validation/steady_curves.hpp"
 
+#include "core/csv_fields.hpp"
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace wheel_rail_contact {
@@ -12,14 +13,6 @@ namespace {
 
 constexpr int kFields = 9;  // kSteadyCurvesHeader's columns
 
-std::vector<std::string> fields(const std::string& line) {
-  std::vector<std::string> f;
-  std::stringstream ss(line);
-  for (std::string s; std::getline(ss, s, ',');) f.push_back(s);
-  if (!line.empty() && line.back() == ',') f.emplace_back();  // a trailing empty field
-  return f;
-}
-
 }  // namespace
 
 std::vector<SteadyCurvePoint> readSteadyCurves(const std::string& path) {
@@ -27,6 +20,7 @@ std::vector<SteadyCurvePoint> readSteadyCurves(const std::string& path) {
   std::ifstream in(path);
   bool header = false;
   long n = 0;
+  std::vector<std::string> f;  // the line's fields
   auto fail = [&](const std::string& why) {
     throw std::runtime_error(path + ":" + std::to_string(n) + ": " + why);
   };
@@ -41,7 +35,7 @@ std::vector<SteadyCurvePoint> readSteadyCurves(const std::string& path) {
       header = true;
       continue;
     }
-    const std::vector<std::string> f = fields(line);
+    splitCsvFields(line, &f);
     if (f.size() != kFields)
       fail(std::to_string(f.size()) + " fields, not " + std::to_string(kFields) + ": " + line);
     double v[kFields];

@@ -59,7 +59,7 @@ TEST(ChiTable, ShippedTableLoadsAndIsStable) {
 TEST(ChiTable, PicksTheMeshNearestInOneOverNx) {
   // Meshes 10 and 40 (kinds interleaved with meshes, as a user might write them); chi1 names
   // the mesh. 1/nx halfway between 1/10 and 1/40 is nx = 16: 15 takes 10, 17 takes 40.
-  std::string text = "a_over_b,kind,chi1,chi2,chi3,fastsim_nx,err\n";
+  std::string text = "a_over_b,kind,chi1,chi2,chi3,fastsim_nx,err_log\n";
   for (const char* kind : {"11", "22", "23"})
     for (int nx : {40, 10})
       text += std::string("1,") + kind + "," + std::to_string(nx) + ",1,0.5," + std::to_string(nx) +
@@ -84,7 +84,7 @@ TEST(ChiTable, MeshColumnErrorsNameTheMesh) {
   EXPECT_NE(loadError(h + "1,11,0.1,1,1,1\n").find(":2: fastsim_nx must be an integer >= 2"),
             std::string::npos);
   EXPECT_NE(loadError(h + "1,11,0.1,1,1,ten\n").find("got 'ten'"), std::string::npos);
-  EXPECT_NE(loadError(h + "1,11,0.1,1,1\n").find("expected 6 or more fields"), std::string::npos);
+  EXPECT_NE(loadError(h + "1,11,0.1,1,1\n").find("expected 6 fields"), std::string::npos);
   EXPECT_NE(
       loadError(h + kinds10 + "1,11,0.1,1,1,20\n").find("no rows for kind 22 at fastsim_nx 20"),
       std::string::npos);
@@ -115,9 +115,16 @@ TEST(ChiTable, EveryMalformedTableGetsAMessageNamingTheProblem) {
       {"# only a comment\n", ":1: empty: no header"},
       {"a_over_b;kind;chi1;chi2;chi3\n", ":1: expected header"},
       {std::string(kHeader), "no rows for kind 11"},
-      {std::string(kHeader) + "1,11,0.1,1\n", ":3: expected 5 or more fields"},
+      {std::string(kHeader) + "1,11,0.1,1\n", ":3: expected 5 fields"},
+      {std::string(kHeader) + "1,11,0.1,1,1,\n", ":3: expected 5 fields, as the header's columns"},
+      {std::string(kHeader) + "1,11,0.1,1,1,0.2\n", "got 6"},
       {std::string(kHeader) + "1\n",
-       ":3: expected 5 or more fields (a_over_b,kind,chi1,chi2,chi3), got 1"},
+       ":3: expected 5 fields, as the header's columns (a_over_b,kind,chi1,chi2,chi3), got 1"},
+      {"a_over_b,kind,chi1,chi2,chi3,max_err\n", ":1: column 'max_err' unknown or repeated"},
+      {"a_over_b,kind,chi1,chi2,chi3,err_log,err_log\n",
+       ":1: column 'err_log' unknown or repeated"},
+      {"a_over_b,kind,chi1,chi2,chi3,\n", ":1: column '' unknown or repeated"},
+      {"a_over_b,kind,chi1,chi2,chi3x\n", ":1: expected header"},
       {std::string(kHeader) + "1,11,nan,1,1\n", ":3: field 3 is not a finite number"},
       {std::string(kHeader) + "1,11,0.1,1,inf\n", ":3: field 5 is not a finite number"},
       {std::string(kHeader) + "NaN,11,0.1,1,1\n", ":3: field 1 is not a finite number"},
@@ -168,6 +175,7 @@ TEST(ChiTable, RejectsAnUnstableSecondOrderRowNamingIt) {
       "1.5,23,0.1,1.0,0.1,1.0,0.01\n");  // B < 0, B^2 > 4 chi1 chi2 chi3 chi5
   EXPECT_NE(e.find(":4:"), std::string::npos) << e;
   EXPECT_NE(e.find("kind 23 at a/b = 1.5"), std::string::npos) << e;
-  EXPECT_NE(loadError("a_over_b,kind,chi1,chi2,chi3,chi4,chi5\n1,11,0.2,1,0.3\n").find("7 or more"),
+  EXPECT_NE(loadError("a_over_b,kind,chi1,chi2,chi3,chi4,chi5\n1,11,0.2,1,0.3\n")
+                .find("expected 7 fields"),
             std::string::npos);
 }

@@ -70,5 +70,10 @@ TEST(Scenario, BadInputNamesLineAndField) {
   EXPECT_EQ(errorOf("t,V,xi,eta,phi,fz\n0,1,0,0,0,1\n0,1,0,0,0,1\n"),
             "s.csv:3: field 't': time must increase strictly");
   EXPECT_EQ(errorOf("t,V,xi,eta,phi,fz\n0,1,0,,0,1\n"), "s.csv:2: field 'eta': not a number ('')");
+  // A field beyond the header's columns, a trailing comma's empty one too, is not data to drop.
+  EXPECT_EQ(errorOf("t,V,xi,eta,phi,fz\n0,1,0,0,0,1,7\n"),
+            "s.csv:2: 7 fields, more than the header's 6 columns");
+  EXPECT_EQ(errorOf("t,V,xi,eta,phi,fz\n0,1,0,0,0,1,\n"),
+            "s.csv:2: 7 fields, more than the header's 6 columns");
   EXPECT_EQ(errorOf(""), "s.csv:0: no header line (expected t,V,xi,eta,phi,fz)");
 }

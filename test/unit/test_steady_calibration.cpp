@@ -364,6 +364,9 @@ TEST(SteadyCalibration, OneBlockPerMeshInterpolatedInOneOverNxBetweenThem) {
             std::string::npos);
   EXPECT_NE(message(h + "1,11,0,1,5,0,7\n").find(":2: more fields than the header"),
             std::string::npos);
+  // A trailing comma is one more (empty) field, as every reader of the package counts them.
+  EXPECT_NE(message(h + "1,11,0,1,5,0,\n").find(":2: more fields than the header"),
+            std::string::npos);
   EXPECT_NE(message("a_over_b,kind,epsilon,ratio,nx\n").find(":1: unknown column 'nx'"),
             std::string::npos);
   EXPECT_NE(message("a_over_b,kind,epsilon,ratio,sign,sign\n").find(":1: column 'sign' repeated"),

@@ -7,7 +7,9 @@
 /// chi4, chi5 (optional columns, named in the header right after chi3): the second-order F of
 /// second_order_flexibility.hpp; 0 in a first-order row. A table without them is first order.
 /// fastsim_nx (optional column, anywhere after chi3): the FastSim mesh's nodes per strip the row
-/// was fitted at; a table without it is one mesh that serves every nx.
+/// was fitted at; a table without it is one mesh that serves every nx. err_log, err_linear,
+/// err_max, shenli_err_log (optional, identify_chi's fit errors) are not read; any other column
+/// is an error, and every row has the header's fields.
 #pragma once
 
 #include <istream>
@@ -22,10 +24,10 @@ namespace wheel_rail_contact {
 
 class ChiTable {
  public:
-  /// Reads a table. Throws std::runtime_error naming the file and line on any malformed (fewer
-  /// than 5 fields), non-finite, unstable (chi3 <= 0) or out-of-order (a/b not increasing within
-  /// its kind and mesh) entry, a fastsim_nx below 2, on a missing header (an empty file), or if a
-  /// mesh lacks a kind.
+  /// Reads a table. Throws std::runtime_error naming the file and line on an unknown or repeated
+  /// column, any malformed (not the header's field count), non-finite, unstable (chi3 <= 0) or
+  /// out-of-order (a/b not increasing within its kind and mesh) entry, a fastsim_nx below 2, on a
+  /// missing header (an empty file), or if a mesh lacks a kind.
   static ChiTable load(const std::string& path);
   /// The same from a stream; `source` names it in messages.
   static ChiTable parse(std::istream& in, const std::string& source);

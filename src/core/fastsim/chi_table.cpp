@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/csv_fields.hpp"
 #include "core/fastsim/nearest_mesh.hpp"
 #include "wheel_rail_contact/shipped_tables.hpp"
 
@@ -44,20 +45,42 @@ ChiTable ChiTable::uniformSecondOrder(const SecondOrderChi& chi) {
 
 namespace {
 
-// The header's column of `name` after chi3, or -1.
-int columnOf(const std::string& header, const std::string& name) {
-  std::stringstream ss(header);
-  int k = 0;
-  for (std::string s; std::getline(ss, s, ','); ++k)
-    if (k > 4 && s == name) return k;
-  return -1;
-}
-
 // What the header says about the columns.
 struct Layout {
   bool second = false;  // chi4,chi5 right after chi3
   int meshColumn = -1;  // fastsim_nx's field, if any
+  std::size_t columns = 0;
 };
+
+// The columns identify_chi writes after chi3 (chi5) besides fastsim_nx: its fit errors, for the
+// reader of the table, not read here.
+const char* const kFitErrorColumns[] = {"err_log", "err_linear", "err_max", "shenli_err_log"};
+
+Layout parseHeader(const std::string& path, long n, const std::string& line) {
+  std::vector<std::string> f;
+  splitCsvFields(line, &f);
+  const char* const leading[] = {"a_over_b", "kind", "chi1", "chi2", "chi3", "chi4", "chi5"};
+  Layout L;
+  for (int i = 0; i < 5; ++i)
+    if (f.size() <= static_cast<std::size_t>(i) || f[i] != leading[i])
+      fail(path, n, "expected header a_over_b,kind,chi1,chi2,chi3");
+  L.second = f.size() >= 7 && f[5] == leading[5] && f[6] == leading[6];
+  for (std::size_t i = L.second ? 7 : 5; i < f.size(); ++i) {
+    if (f[i] == "fastsim_nx" && L.meshColumn < 0) {
+      L.meshColumn = static_cast<int>(i);
+      continue;
+    }
+    const auto known = std::find(std::begin(kFitErrorColumns), std::end(kFitErrorColumns), f[i]);
+    if (known == std::end(kFitErrorColumns) ||
+        std::find(f.begin() + 5, f.begin() + i, f[i]) != f.begin() + i)
+      fail(path, n,
+           "column '" + f[i] +
+               "' unknown or repeated (after chi3 or chi4,chi5: fastsim_nx, err_log, err_linear, "
+               "err_max, shenli_err_log)");
+  }
+  L.columns = f.size();
+  return L;
+}
 
 // One data row, checked: fields, finite numbers, kind, a/b > 0, a stable F.
 struct ParsedRow {
@@ -69,16 +92,16 @@ struct ParsedRow {
 
 ParsedRow parseRow(const std::string& path, long n, const std::string& line, const Layout& L) {
   ParsedRow r;
-  std::stringstream ss(line);
-  for (std::string s; std::getline(ss, s, ',');) r.f.push_back(s);
+  splitCsvFields(line, &r.f);
   const std::vector<std::string>& f = r.f;
   const int chiFields = L.second ? 7 : 5;
-  const std::size_t needed = std::max(chiFields, L.meshColumn + 1);
-  if (f.size() < needed)  // more columns (fit errors) are allowed and ignored
+  if (f.size() != L.columns)
     fail(path, n,
-         "expected " + std::to_string(needed) + " or more fields (a_over_b,kind,chi1,chi2,chi3" +
-             (L.second ? ",chi4,chi5" : "") + (L.meshColumn > 0 ? ",...,fastsim_nx" : "") +
-             "), got " + std::to_string(f.size()));
+         "expected " + std::to_string(L.columns) +
+             " fields, as the header's columns (a_over_b,kind,chi1,chi2,chi3" +
+             (L.second ? ",chi4,chi5" : "") +
+             (L.columns > static_cast<std::size_t>(chiFields) ? ",..." : "") + "), got " +
+             std::to_string(f.size()));
   double v[7] = {0, 0, 0, 0, 0, 0, 0};
   for (int k : {0, 2, 3, 4, 5, 6}) {
     if (k >= chiFields) break;
@@ -130,11 +153,8 @@ ChiTable ChiTable::parse(std::istream& in, const std::string& path) {
     ++n;
     if (line.empty() || line[0] == '#') continue;
     if (!header) {
-      if (line.rfind("a_over_b,kind,chi1,chi2,chi3", 0) != 0)
-        fail(path, n, "expected header a_over_b,kind,chi1,chi2,chi3");
+      layout = parseHeader(path, n, line);
       header = true;
-      layout = {line.rfind("a_over_b,kind,chi1,chi2,chi3,chi4,chi5", 0) == 0,
-                columnOf(line, "fastsim_nx")};
       continue;
     }
     const ParsedRow r = parseRow(path, n, line, layout);

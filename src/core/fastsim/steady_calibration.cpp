@@ -1,5 +1,6 @@
 #include "core/fastsim/steady_calibration.hpp"
 
+#include "core/csv_fields.hpp"
 #include "core/fastsim/nearest_mesh.hpp"
 #include "wheel_rail_contact/shipped_tables.hpp"
 
@@ -364,15 +365,7 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
   while (std::getline(in, line)) {
     ++n;
     if (line.empty() || line[0] == '#') continue;
-    // Split at the commas; a line ending in a comma has no empty last field.
-    std::size_t nf = 0;
-    for (std::size_t start = 0; start < line.size();) {
-      const std::size_t comma = std::min(line.find(',', start), line.size());
-      if (nf == f.size()) f.emplace_back();
-      f[nf++].assign(line, start, comma - start);
-      start = comma + 1;
-    }
-    f.resize(nf);
+    splitCsvFields(line, &f);
     if (!header) {
       if (f.size() < 4 || f[0] != "a_over_b" || f[1] != "kind" || f[2] != "epsilon" ||
           f[3] != "ratio")
