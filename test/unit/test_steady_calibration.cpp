@@ -144,17 +144,26 @@ TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
 
 TEST(SteadyCalibration, SmallSpinSharesGoTowardsHertzsShapeInFullSlipOnly) {
   // Below kSmallSpinShare (0.25), in full slip (e >= 5), the shape is Hertz's moment shape; in
-  // partial slip (e <= 2.5), from kSmallSpinShare on and without spin it is the table's own.
+  // partial slip, from kSmallSpinShare on and without spin it is the table's own. The blend starts
+  // at e = 2.5, and at 1.5 where the lateral coupling is held (spin's share up to 0.06, linearly
+  // between 0.06 and 0.12: 2 at 0.09).
   const FlexibilityCalibration c = SteadyCalibration::shipped().forMesh(20).at(1.0);
   constexpr double hertz = FlexibilityCalibration::kHertzMomentShape;
+  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.02), 1.5);
+  EXPECT_DOUBLE_EQ(FlexibilityCalibration::fullSlipFrom(0.09), 2.0);
+  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.15), 2.5);
   for (double shape : {0.0, 0.3, 1.8}) {
-    EXPECT_EQ(c.towardsFullSlip(shape, 2.5, 0.02), shape);
+    EXPECT_EQ(c.towardsFullSlip(shape, 1.5, 0.02), shape);
+    EXPECT_EQ(c.towardsFullSlip(shape, 2.0, 0.09), shape);
+    EXPECT_EQ(c.towardsFullSlip(shape, 2.5, 0.15), shape);
     EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 0.0), shape);
     EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 0.25), shape);
     EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 1.0), shape);
     EXPECT_NEAR(c.towardsFullSlip(shape, 5.0, 0.01), shape + (hertz - shape) * 0.96, 1e-12);
-    // Continuous in e and s3: half way in e, half the blend.
-    EXPECT_NEAR(c.towardsFullSlip(shape, 3.75, 0.01), shape + (hertz - shape) * 0.48, 1e-12);
+    // Continuous in e and s3: half way in e, half the blend, times (1 - s3 / 0.25).
+    EXPECT_NEAR(c.towardsFullSlip(shape, 3.25, 0.01), shape + (hertz - shape) * 0.48, 1e-12);
+    EXPECT_NEAR(c.towardsFullSlip(shape, 3.5, 0.09), shape + (hertz - shape) * 0.32, 1e-12);
+    EXPECT_NEAR(c.towardsFullSlip(shape, 3.75, 0.15), shape + (hertz - shape) * 0.2, 1e-12);
   }
   // Classic (no correction table): nothing to fill in.
   EXPECT_EQ(SteadyCalibration().at(1.0).towardsFullSlip(0.3, 13.0, 0.02), 0.3);

@@ -122,9 +122,9 @@ class FlexibilityCalibration {
   static constexpr double kHertzMomentShape = (3.0 * M_PI / 16.0 - 8.0 / 15.0) * 105.0 / 4.0;
   /// The bound's shape for combined creepages with a small spin share s3 = e3^2 / e^2, below
   /// kSmallSpinShare: the table's `shape` at normalised creepage e blended towards
-  /// kHertzMomentShape as the patch goes into full slip (smoothly over e from kFullSlipFrom to 5),
-  /// by (1 - s3 / kSmallSpinShare) min(1, s3 / 0.01). In full slip the traction is mu p along the
-  /// rigid slip, which spin turns over the patch: force and moment are the pressure's weighted
+  /// kHertzMomentShape as the patch goes into full slip (smoothly over e from fullSlipFrom(s3) to
+  /// 5), by (1 - s3 / kSmallSpinShare) min(1, s3 / 0.01). In full slip the traction is mu p along
+  /// the rigid slip, which spin turns over the patch: force and moment are the pressure's weighted
   /// sums of that direction field, right only with Hertz's weights. From kSmallSpinShare on the
   /// identified correction decides; without a correction (or spin), `shape` is returned.
   double towardsFullSlip(double shape, double e, double s3) const;
@@ -136,8 +136,15 @@ class FlexibilityCalibration {
   /// and, near linear theory, hold the correction interpolated between no spin and the first knot
   /// from it on (identify_steady).
   static constexpr double kSmallSpinShare = 0.25;
-  /// Normalised creepage from which towardsFullSlip moves the shape.
-  static constexpr double kFullSlipFrom = 2.5;
+  /// Normalised creepage from which towardsFullSlip moves the shape: kFullSlipFrom, and
+  /// kHeldFullSlipFrom where the lateral coupling is held (heldShare): the held coupling's moment
+  /// fades as the patch slips, and the full-slip shape takes it over that much sooner (the six
+  /// small-share rays' moment, doc/calibrated_fastsim.md, "The blend's start where the coupling is
+  /// held").
+  static double fullSlipFrom(double s3) {
+    return kFullSlipFrom + (kHeldFullSlipFrom - kFullSlipFrom) * heldShare(s3);
+  }
+  static constexpr double kFullSlipFrom = 2.5, kHeldFullSlipFrom = 1.5;
   static constexpr int kCorrections = 5;
   /// Ratio of kind k (0: 11, 1: 22, 2: 23, 3: 23x, 4: 23s) at normalised creepage e, and its
   /// logarithm.
@@ -168,8 +175,11 @@ class FlexibilityCalibration {
   /// sixth power faded: linear theory's moment was up to 11.5 % off (doc/calibrated_fastsim.md,
   /// "The coupling held at small spin shares").
   static double heldCoupling(double e, double s3) {
-    return std::max(0.0, 1.0 - e / kLinearSpinMomentEnd) *
-           std::clamp((kHeldCouplingTo - s3) / (kHeldCouplingTo - kHeldCouplingFrom), 0.0, 1.0);
+    return std::max(0.0, 1.0 - e / kLinearSpinMomentEnd) * heldShare(s3);
+  }
+  /// heldCoupling's factor of spin's share s3: 1 up to kHeldCouplingFrom, 0 from kHeldCouplingTo.
+  static double heldShare(double s3) {
+    return std::clamp((kHeldCouplingTo - s3) / (kHeldCouplingTo - kHeldCouplingFrom), 0.0, 1.0);
   }
   static constexpr double kHeldCouplingFrom = 0.06, kHeldCouplingTo = 0.12;
   /// What the coupling kappa [1/m^2] on a patch of semi-axis a [m] takes from 1 / L3x [N/m^3] so
