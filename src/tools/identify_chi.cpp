@@ -105,7 +105,8 @@ int run(const Options& o) {
            "a / lambda; chi dimensionless.\n"
         << "# Fitted by identify_chi on " << date << " against the exact half-space solver on a "
         << grid << "x" << grid << " grid, nu = " << nu << ", FastSim meshes " << meshList(o.meshes)
-        << " (column fastsim_nx;\n# NssModel uses the mesh nearest its nx in 1/nx), on "
+        << " (column fastsim_nx;\n# NssModel interpolates in 1/nx between the meshes around its "
+           "nx), on "
            "C^/C_steady over lambda/a in [1, 100] ("
         << points << " log-spaced points), measure d(ln lambda/a).\n"
         << "# err_log, err_linear: mean |r_exact - r_nss| in d(ln lambda/a) and d(lambda/a); "

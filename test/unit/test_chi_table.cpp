@@ -56,21 +56,34 @@ TEST(ChiTable, ShippedTableLoadsAndIsStable) {
   }
 }
 
-TEST(ChiTable, PicksTheMeshNearestInOneOverNx) {
+TEST(ChiTable, InterpolatesBetweenMeshesInOneOverNxAndTakesTheNearestBeyond) {
   // Meshes 10 and 40 (kinds interleaved with meshes, as a user might write them); chi1 names
-  // the mesh. 1/nx halfway between 1/10 and 1/40 is nx = 16: 15 takes 10, 17 takes 40.
-  std::string text = "a_over_b,kind,chi1,chi2,chi3,fastsim_nx,err_log\n";
-  for (const char* kind : {"11", "22", "23"})
-    for (int nx : {40, 10})
-      text += std::string("1,") + kind + "," + std::to_string(nx) + ",1,0.5," + std::to_string(nx) +
-              ",0\n";
-  const ChiTable t = ChiTable::load(write("meshes.csv", text));
+  // the mesh. 1/nx halfway between 1/10 and 1/40 is nx = 16: chi1 25 there.
+  auto table = [](const char* ab40) {
+    std::string text = "a_over_b,kind,chi1,chi2,chi3,fastsim_nx,err_log\n";
+    for (const char* kind : {"11", "22", "23"})
+      for (int nx : {40, 10})
+        text += std::string(nx == 40 ? ab40 : "1") + "," + kind + "," + std::to_string(nx) +
+                ",1,0.5," + std::to_string(nx) + ",0\n";
+    return text;
+  };
+  const ChiTable t = ChiTable::load(write("meshes.csv", table("1")));
   EXPECT_EQ(t.meshes(), (std::vector<int>{10, 40}));
   EXPECT_THROW(t.at(CreepageKind::kXi, 1.0), std::logic_error);  // which mesh?
-  const std::pair<int, double> picks[] = {{2, 10},  {10, 10}, {15, 10}, {17, 40},
-                                          {20, 40}, {40, 40}, {400, 40}};
-  for (const auto& p : picks)
-    EXPECT_EQ(t.forMesh(p.first).at(CreepageKind::kPhi, 1.0).chi1, p.second) << p.first;
+  auto chi1 = [](const ChiTable& c, int nx) {
+    return c.forMesh(nx).at(CreepageKind::kPhi, 1.0).chi1;
+  };
+  // A fitted mesh's own chi exactly, beyond the table's meshes the nearest.
+  for (const auto& p : std::vector<std::pair<int, double>>{{2, 10}, {10, 10}, {40, 40}, {400, 40}})
+    EXPECT_EQ(chi1(t, p.first), p.second) << p.first;
+  EXPECT_NEAR(chi1(t, 16), 25.0, 1e-12);
+  EXPECT_NEAR(chi1(t, 20), 10.0 + 30.0 * (0.1 - 0.05) / 0.075, 1e-12);
+  EXPECT_EQ(t.forMesh(16).meshes(), (std::vector<int>{16}));
+  EXPECT_EQ(t.forMesh(16).at(CreepageKind::kXi, 1.0).chi3, 0.5);
+  // Meshes fitted at other a/b: the nearest (1/nx: 15 takes 10, 17 takes 40).
+  const ChiTable apart = ChiTable::load(write("apart.csv", table("2")));
+  EXPECT_EQ(chi1(apart, 15), 10.0);
+  EXPECT_EQ(chi1(apart, 17), 40.0);
   // A table without the column serves every mesh.
   const ChiTable one = ChiTable::load(
       write("one.csv", std::string(kHeader) + "1,11,0.1,1,0.2\n1,22,0.1,1,0.2\n1,23,0.1,1,0.2\n"));

@@ -193,6 +193,27 @@ ChiTable ChiTable::forMesh(int nx) const {
   if (meshes_.size() <= 1) return *this;
   ChiTable t;
   t.meshes_.push_back(nearestMesh(meshes_, nx));
+  // Between two identified meshes each chi is interpolated in 1/nx, where both meshes hold the
+  // same a/b rows and every interpolated row stays stable; else the nearest mesh.
+  const Mesh *lo = nullptr, *hi = nullptr;
+  double w = 0.0;
+  if (!meshesAround(meshes_, nx, &lo, &hi, &w)) return t;
+  Mesh m{nx, {}};
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<Row>&a = lo->rows[k], &b = hi->rows[k];
+    if (a.size() != b.size()) return t;
+    for (std::size_t r = 0; r < a.size(); ++r) {
+      if (a[r].logAB != b[r].logAB) return t;
+      auto mix = [w](double x, double y) { return x + w * (y - x); };
+      const SecondOrderChi &x = a[r].chi, &y = b[r].chi;
+      const SecondOrderChi c{mix(x.chi1, y.chi1), mix(x.chi2, y.chi2), mix(x.chi3, y.chi3),
+                             mix(x.chi4, y.chi4), mix(x.chi5, y.chi5)};
+      const bool firstOrder = c.chi4 == 0.0 && c.chi5 == 0.0;
+      if (!(firstOrder ? ChiParameters{c.chi1, c.chi2, c.chi3}.valid() : c.valid())) return t;
+      m.rows[k].push_back({a[r].logAB, c});
+    }
+  }
+  t.meshes_.front() = std::move(m);
   return t;
 }
 

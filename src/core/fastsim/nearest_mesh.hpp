@@ -19,6 +19,21 @@ const Mesh& nearestMesh(const std::vector<Mesh>& meshes, int nx) {
   return *best;
 }
 
+/// Where nx lies strictly between two of `meshes` (sorted by increasing nx, none of them nx = 0,
+/// "any"): the two neighbours and nx's place w in [0, 1] between them in 1/nx (the march's step
+/// along the strip). False on an identified mesh or beyond the table's meshes: nearestMesh.
+template <class Mesh>
+bool meshesAround(const std::vector<Mesh>& meshes, int nx, const Mesh** lo, const Mesh** hi,
+                  double* w) {
+  std::size_t i = 0;
+  while (i + 1 < meshes.size() && meshes[i + 1].nx <= nx) ++i;
+  if (i + 1 >= meshes.size() || meshes[i].nx == 0 || nx <= meshes[i].nx) return false;
+  *lo = &meshes[i];
+  *hi = &meshes[i + 1];
+  *w = (1.0 / (*lo)->nx - 1.0 / nx) / (1.0 / (*lo)->nx - 1.0 / (*hi)->nx);
+  return true;
+}
+
 /// Sorts `meshes` by increasing nx, as nearestMesh needs them.
 template <class Mesh>
 void sortByNodes(std::vector<Mesh>* meshes) {

@@ -536,22 +536,20 @@ SteadyCalibration SteadyCalibration::forMesh(int nx) const {
   // Between two identified meshes the ratios are interpolated in 1/nx (ln ratio; the coupling
   // itself), where both hold the same knots; on an identified mesh, beyond the table's meshes or
   // between tables of other knots, the nearest mesh.
-  std::size_t i = 0;
-  while (i + 1 < meshes_.size() && meshes_[i + 1].nx <= nx) ++i;
-  const Mesh &lo = meshes_[i], &hi = meshes_[std::min(i + 1, meshes_.size() - 1)];
-  if (nx <= lo.nx || nx >= hi.nx || lo.nx == 0 || !sameKnots(lo.rows, hi.rows)) {
+  const Mesh *lo = nullptr, *hi = nullptr;
+  double w = 0.0;
+  if (!meshesAround(meshes_, nx, &lo, &hi, &w) || !sameKnots(lo->rows, hi->rows)) {
     t.meshes_.push_back(nearestMesh(meshes_, nx));
     return t;
   }
-  const double w = (1.0 / lo.nx - 1.0 / nx) / (1.0 / lo.nx - 1.0 / hi.nx);
   auto blend = [w](double x, double y) {
     return std::exp((1.0 - w) * std::log(x) + w * std::log(y));
   };
-  Mesh m = lo;
+  Mesh m = *lo;
   m.nx = nx;
   for (std::size_t r = 0; r < m.rows.size(); ++r) {
     Row& row = m.rows[r];
-    const Row& h = hi.rows[r];
+    const Row& h = hi->rows[r];
     for (int k = 0; k < 6; ++k)
       for (std::size_t j = 0; j < row.ratio[k].size(); ++j)
         row.ratio[k][j] = k == FlexibilityCalibration::kCouplingKind
