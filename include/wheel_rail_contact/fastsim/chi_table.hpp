@@ -39,10 +39,10 @@ class ChiTable {
   static ChiTable uniformSecondOrder(const SecondOrderChi& chi);
 
   /// The table for a FastSim mesh of nx nodes per strip, as a table of its own: between two
-  /// fitted meshes their chi interpolated linearly in 1/nx (the march's step along the strip),
-  /// where both hold the same a/b rows and every row stays stable; on a fitted mesh, beyond the
-  /// table's meshes or else the nearest in 1/nx (a tie goes to the finer mesh). A table of one
-  /// mesh is itself.
+  /// fitted meshes their chi interpolated linearly in 1/nx (the march's step along the strip);
+  /// on a fitted mesh, beyond the table's meshes, or where the two meshes differ in a/b rows or
+  /// an interpolated row would be unstable, the nearest in 1/nx (a tie goes to the finer mesh).
+  /// A table of one mesh is itself.
   ChiTable forMesh(int nx) const;
   /// nx of each mesh the table holds, increasing (one 0: a table without fastsim_nx).
   std::vector<int> meshes() const;
