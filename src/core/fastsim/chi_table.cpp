@@ -25,6 +25,16 @@ int kindIndex(const std::string& s) {
   return -1;
 }
 
+bool firstOrder(const SecondOrderChi& c) {
+  return c.chi4 == 0.0 && c.chi5 == 0.0;
+}
+
+// A row's F stable for every step: a first-order row as ChiParameters (which also allows the
+// static chi1 = chi3 = 0), a second-order one as SecondOrderChi.
+bool stable(const SecondOrderChi& c) {
+  return firstOrder(c) ? ChiParameters{c.chi1, c.chi2, c.chi3}.valid() : c.valid();
+}
+
 }  // namespace
 
 ChiTable ChiTable::shipped() {
@@ -123,14 +133,12 @@ ParsedRow parseRow(const std::string& path, long n, const std::string& line, con
   r.ab = v[0];
   if (!(r.ab > 0.0)) fail(path, n, "a_over_b must be > 0");
   r.chi = {v[2], v[3], v[4], v[5], v[6]};
-  if (r.chi.chi4 == 0.0 && r.chi.chi5 == 0.0) {
-    if (!ChiParameters{r.chi.chi1, r.chi.chi2, r.chi.chi3}.valid())
-      fail(path, n, "chi3 must be > 0 (stable filter)");
-  } else if (!r.chi.valid()) {
+  if (!stable(r.chi))
     fail(path, n,
-         "kind " + f[1] + " at a/b = " + f[0] +
-             ": second-order chi fail SecondOrderChi::valid() (unstable node for some step)");
-  }
+         firstOrder(r.chi) ? "chi3 must be > 0 (stable filter)"
+                           : "kind " + f[1] + " at a/b = " + f[0] +
+                                 ": second-order chi fail SecondOrderChi::valid() (unstable node "
+                                 "for some step)");
   return r;
 }
 
@@ -191,29 +199,32 @@ ChiTable ChiTable::parse(std::istream& in, const std::string& path) {
 
 ChiTable ChiTable::forMesh(int nx) const {
   if (meshes_.size() <= 1) return *this;
-  ChiTable t;
-  t.meshes_.push_back(nearestMesh(meshes_, nx));
   // Between two identified meshes each chi is interpolated in 1/nx, where both meshes hold the
   // same a/b rows and every interpolated row stays stable; else the nearest mesh.
   const Mesh *lo = nullptr, *hi = nullptr;
   double w = 0.0;
-  if (!meshesAround(meshes_, nx, &lo, &hi, &w)) return t;
-  Mesh m{nx, {}};
-  for (int k = 0; k < 3; ++k) {
-    const std::vector<Row>&a = lo->rows[k], &b = hi->rows[k];
-    if (a.size() != b.size()) return t;
-    for (std::size_t r = 0; r < a.size(); ++r) {
-      if (a[r].logAB != b[r].logAB) return t;
-      auto mix = [w](double x, double y) { return x + w * (y - x); };
-      const SecondOrderChi &x = a[r].chi, &y = b[r].chi;
-      const SecondOrderChi c{mix(x.chi1, y.chi1), mix(x.chi2, y.chi2), mix(x.chi3, y.chi3),
-                             mix(x.chi4, y.chi4), mix(x.chi5, y.chi5)};
-      const bool firstOrder = c.chi4 == 0.0 && c.chi5 == 0.0;
-      if (!(firstOrder ? ChiParameters{c.chi1, c.chi2, c.chi3}.valid() : c.valid())) return t;
-      m.rows[k].push_back({a[r].logAB, c});
+  auto interpolated = [&](Mesh* m) {
+    auto mix = [w](double x, double y) { return x + w * (y - x); };
+    for (int k = 0; k < 3; ++k) {
+      const std::vector<Row>&a = lo->rows[k], &b = hi->rows[k];
+      if (a.size() != b.size()) return false;
+      for (std::size_t r = 0; r < a.size(); ++r) {
+        if (a[r].logAB != b[r].logAB) return false;
+        const SecondOrderChi &x = a[r].chi, &y = b[r].chi;
+        const SecondOrderChi c{mix(x.chi1, y.chi1), mix(x.chi2, y.chi2), mix(x.chi3, y.chi3),
+                               mix(x.chi4, y.chi4), mix(x.chi5, y.chi5)};
+        if (!stable(c)) return false;
+        m->rows[k].push_back({a[r].logAB, c});
+      }
     }
-  }
-  t.meshes_.front() = std::move(m);
+    return true;
+  };
+  ChiTable t;
+  Mesh m{nx, {}};
+  if (meshesAround(meshes_, nx, &lo, &hi, &w) && interpolated(&m))
+    t.meshes_.push_back(std::move(m));
+  else
+    t.meshes_.push_back(nearestMesh(meshes_, nx));
   return t;
 }
 

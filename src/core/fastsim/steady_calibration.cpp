@@ -289,8 +289,9 @@ double FlexibilityCalibration::towardsFullSlip(double shape, double e, double s3
 
 double FlexibilityCalibration::hertzShapeBlend(double shape, double e, double s3) {
   constexpr double kTo = 5.0, kSpinShare = 0.01;
+  if (!(s3 > 0.0) || !(s3 < kSmallSpinShare)) return shape;
   const double from = fullSlipFrom(s3);
-  if (!(e > from) || !(s3 > 0.0) || !(s3 < kSmallSpinShare)) return shape;
+  if (!(e > from)) return shape;
   const double q = std::min(1.0, (e - from) / (kTo - from));
   const double w =
       q * q * (3.0 - 2.0 * q) * (1.0 - s3 / kSmallSpinShare) * std::min(1.0, s3 / kSpinShare);
