@@ -372,7 +372,7 @@ Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
                           base.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c) * m[3]);
   if (hertzShapeBlend)  // as the table with its correction does (towardsFullSlip)
     shape = FlexibilityCalibration::hertzShapeBlend(
-        shape, e, r.e[2] * r.e[2] / (r.e[0] * r.e[0] + r.e[1] * r.e[1] + r.e[2] * r.e[2]));
+        shape, e, r.e[2] * r.e[2] / (r.e[0] * r.e[0] + r.e[1] * r.e[1] + r.e[2] * r.e[2]), g);
   flattenedBound(mesh, s.a, s.b, s.fz, s.mu, shape, &f);
   Flexibilities L = base.flexibilities(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
   L.L3x = L.spinX() * m[2] * m[4];
@@ -643,6 +643,14 @@ constexpr double kLinearEnd = 0.1;
 // it the knot's own fit made the paper's combined2 (spin shares down to 0.01 at e <= 0.61) worse,
 // where the interpolation from no spin to the first knot from kSmallSpinShare on did not miss.
 constexpr double kSmallShareFitFrom = 0.75;
+// The same on a wide patch (FlexibilityCalibration::wideness 1, a/b 0.2), linear in the wideness
+// between: there the interpolation left the small shares' partial-slip moment FastSim's own, 6 % of
+// the peak low at e = 0.6 (h7, r2), and the paper's scenes are round patches.
+constexpr double kWideSmallShareFitFrom = 0.35;
+double smallShareFitFrom(double g) {
+  return kSmallShareFitFrom +
+         (kWideSmallShareFitFrom - kSmallShareFitFrom) * FlexibilityCalibration::wideness(g);
+}
 
 // The fifth multiplier (of L3x alone, kind c3x) is 1 below this normalised creepage and pulled
 // towards 1 harder than the others above it. Fitted freely, it moved the first spin share's fit in
@@ -703,7 +711,7 @@ void heldKnot(const CorrectionFit& held, double heldPower, std::size_t i, double
 // (Multipliers) minimising spinError (force and moment weighed as for spin alone), by pattern
 // search in their logarithms from the previous knot's (one continuous branch), with a small pull
 // towards 1. `held` (a spin share s3 below FlexibilityCalibration::kSmallSpinShare): the same xi
-// share and sign's fit at the first spin share sA from it on; knots below kSmallShareFitFrom take
+// share and sign's fit at the first spin share sA from it on; knots below smallShareFitFrom(g) take
 // held's multipliers to the power s3 / sA (what linear interpolation in ln multiplier between no
 // spin and sA gives there, so the knot changes nothing there) and the search goes on from them;
 // every knot is costed with towardsFullSlip's blend.
@@ -726,7 +734,7 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
       return spinError(fastsimCorrected(o, g, r, e, base, expOf(l).data(), held != nullptr), x,
                        mzPeak);
     };
-    if (held && e < kSmallShareFitFrom) {
+    if (held && e < smallShareFitFrom(g)) {
       heldKnot(*held, heldPower, i, lm);
       fit.m.push_back(expOf(lm));
       fit.error.push_back(error(lm));
@@ -760,7 +768,7 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
 // `weight` times their ln distance from `target` (the neighbouring directions' mean), by pattern
 // search from the target, so that of the near-equal optima the one nearest the neighbours is
 // taken. A held small share (`held`, `heldPower` as in identifyDirection) takes its knots below
-// kSmallShareFitFrom from the held fit as it is now.
+// smallShareFitFrom(g) from the held fit as it is now.
 void refitTowards(const Options& o, ExactCache* exact, double g, const Ray& r,
                   const FlexibilityCalibration& base, const CorrectionFit* held, double heldPower,
                   const std::vector<Multipliers>& target, double weight, double refitFrom,
@@ -772,7 +780,7 @@ void refitTowards(const Options& o, ExactCache* exact, double g, const Ray& r,
     if (e <= kLinearEnd || (!held && e < refitFrom)) continue;
     const Point x = exact->at(g, r, e);
     double lm[kMultipliers];
-    if (held && e < kSmallShareFitFrom) {
+    if (held && e < smallShareFitFrom(g)) {
       heldKnot(*held, heldPower, i, lm);
     } else {
       auto cost = [&](const double* l) {

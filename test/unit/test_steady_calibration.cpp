@@ -133,7 +133,7 @@ TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
                                                  FlexibilityCalibration::linearSpinMoment(e)) *
             m[4],
         1e-14 * s.L.L3x);
-    EXPECT_NEAR(s.boundShape, c.towardsFullSlip(c.ratio(4, e) * s3 * m[3], e, s3),
+    EXPECT_NEAR(s.boundShape, c.towardsFullSlip(c.ratio(4, e) * s3 * m[3], e, s3, a / b),
                 1e-14 * s.boundShape);
     EXPECT_NE(m[0], 1.0);  // the correction acts on these directions
     // The separate calls are the same step.
@@ -149,24 +149,57 @@ TEST(SteadyCalibration, SmallSpinSharesGoTowardsHertzsShapeInFullSlipOnly) {
   // between 0.06 and 0.12: 2 at 0.09).
   const FlexibilityCalibration c = SteadyCalibration::shipped().forMesh(20).at(1.0);
   constexpr double hertz = FlexibilityCalibration::kHertzMomentShape;
-  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.02), 1.5);
-  EXPECT_DOUBLE_EQ(FlexibilityCalibration::fullSlipFrom(0.09), 2.0);
-  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.15), 2.5);
+  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.02, 1.0), 1.5);
+  EXPECT_DOUBLE_EQ(FlexibilityCalibration::fullSlipFrom(0.09, 1.0), 2.0);
+  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.15, 1.0), 2.5);
   for (double shape : {0.0, 0.3, 1.8}) {
-    EXPECT_EQ(c.towardsFullSlip(shape, 1.5, 0.02), shape);
-    EXPECT_EQ(c.towardsFullSlip(shape, 2.0, 0.09), shape);
-    EXPECT_EQ(c.towardsFullSlip(shape, 2.5, 0.15), shape);
-    EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 0.0), shape);
-    EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 0.25), shape);
-    EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 1.0), shape);
-    EXPECT_NEAR(c.towardsFullSlip(shape, 5.0, 0.01), shape + (hertz - shape) * 0.96, 1e-12);
+    EXPECT_EQ(c.towardsFullSlip(shape, 1.5, 0.02, 1.0), shape);
+    EXPECT_EQ(c.towardsFullSlip(shape, 2.0, 0.09, 1.0), shape);
+    EXPECT_EQ(c.towardsFullSlip(shape, 2.5, 0.15, 1.0), shape);
+    EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 0.0, 1.0), shape);
+    EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 0.25, 1.0), shape);
+    EXPECT_EQ(c.towardsFullSlip(shape, 13.0, 1.0, 1.0), shape);
+    EXPECT_NEAR(c.towardsFullSlip(shape, 5.0, 0.01, 1.0), shape + (hertz - shape) * 0.96, 1e-12);
     // Continuous in e and s3: half way in e, half the blend, times (1 - s3 / 0.25).
-    EXPECT_NEAR(c.towardsFullSlip(shape, 3.25, 0.01), shape + (hertz - shape) * 0.48, 1e-12);
-    EXPECT_NEAR(c.towardsFullSlip(shape, 3.5, 0.09), shape + (hertz - shape) * 0.32, 1e-12);
-    EXPECT_NEAR(c.towardsFullSlip(shape, 3.75, 0.15), shape + (hertz - shape) * 0.2, 1e-12);
+    EXPECT_NEAR(c.towardsFullSlip(shape, 3.25, 0.01, 1.0), shape + (hertz - shape) * 0.48, 1e-12);
+    EXPECT_NEAR(c.towardsFullSlip(shape, 3.5, 0.09, 1.0), shape + (hertz - shape) * 0.32, 1e-12);
+    EXPECT_NEAR(c.towardsFullSlip(shape, 3.75, 0.15, 1.0), shape + (hertz - shape) * 0.2, 1e-12);
   }
+}
+
+TEST(SteadyCalibration, TheBlendSpansLessCreepageOnAWidePatch) {
+  // From a/b 0.5 on the span is the one above; at a/b 0.2 and below the held shares start at 0.75
+  // and every small share is fully blended from 3.5; linear in a/b between (half way at 0.35).
+  EXPECT_EQ(FlexibilityCalibration::wideness(0.5), 0.0);
+  EXPECT_EQ(FlexibilityCalibration::wideness(5.0), 0.0);
+  EXPECT_EQ(FlexibilityCalibration::wideness(0.2), 1.0);
+  EXPECT_EQ(FlexibilityCalibration::wideness(0.1), 1.0);
+  EXPECT_DOUBLE_EQ(FlexibilityCalibration::wideness(0.35), 0.5);
+  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.02, 0.2), 0.75);
+  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.15, 0.2), 2.5);
+  EXPECT_DOUBLE_EQ(FlexibilityCalibration::fullSlipFrom(0.02, 0.35), 1.125);
+  EXPECT_EQ(FlexibilityCalibration::fullSlipTo(0.2), 3.5);
+  EXPECT_EQ(FlexibilityCalibration::fullSlipTo(1.0), 5.0);
+  const double shape = 0.3, hertz = FlexibilityCalibration::kHertzMomentShape;
+  const double w = (1.0 - 0.02 / 0.25);  // full blend's share factor at s3 = 0.02
+  // Held share at a/b 0.2: from 0.75 to 3.5, half way at 2.125.
+  EXPECT_EQ(FlexibilityCalibration::hertzShapeBlend(shape, 0.75, 0.02, 0.2), shape);
+  EXPECT_NEAR(FlexibilityCalibration::hertzShapeBlend(shape, 2.125, 0.02, 0.2),
+              shape + (hertz - shape) * 0.5 * w, 1e-12);
+  EXPECT_NEAR(FlexibilityCalibration::hertzShapeBlend(shape, 3.5, 0.02, 0.2),
+              shape + (hertz - shape) * w, 1e-12);
+  // A share beyond the hold: from 2.5 to 3.5 there.
+  EXPECT_EQ(FlexibilityCalibration::hertzShapeBlend(shape, 2.5, 0.15, 0.2), shape);
+  EXPECT_NEAR(FlexibilityCalibration::hertzShapeBlend(shape, 3.0, 0.15, 0.2),
+              shape + (hertz - shape) * 0.5 * (1.0 - 0.15 / 0.25), 1e-12);
+  // The same creepage on a round patch is still early in its blend.
+  EXPECT_LT(FlexibilityCalibration::hertzShapeBlend(shape, 2.125, 0.02, 1.0),
+            FlexibilityCalibration::hertzShapeBlend(shape, 2.125, 0.02, 0.2));
+}
+
+TEST(SteadyCalibration, ClassicHasNoBlendTowardsHertzsShape) {
   // Classic (no correction table): nothing to fill in.
-  EXPECT_EQ(SteadyCalibration().at(1.0).towardsFullSlip(0.3, 13.0, 0.02), 0.3);
+  EXPECT_EQ(SteadyCalibration().at(1.0).towardsFullSlip(0.3, 13.0, 0.02, 1.0), 0.3);
 }
 
 TEST(SteadyCalibration, HertzMomentShapeGivesHertzsFullSlipSpinMoment) {

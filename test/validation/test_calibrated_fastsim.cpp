@@ -146,11 +146,11 @@ TEST_F(CalibratedSteady, CombinedWithSpinWithinTwoPercentOfMuFz) {
 TEST_F(CalibratedSteady, SmallSpinShareWithinTwoPercentOfMuFz) {
   // h3 (1, -1, 0.2): spin 2 % of e^2, between xi with eta (no correction) and the grid's smallest
   // spin share (0.06), the weakest direction: issue 19's 0.02 for combined curves; measured
-  // 0.014 / 0.016 / 0.015 at a/b 0.2 / 1 / 5 (0.012 / 0.010 / 0.015 before the blend's earlier
-  // start where the coupling is held; 0.013 / 0.013 / 0.0200 with the lateral coupling
-  // before linear theory's spin moment held for the rest of e^2; classic 0.039-0.144; 0.027 at
-  // a/b 0.2 before the bound went towards Hertz's in full slip, FlexibilityCalibration::
-  // towardsFullSlip).
+  // 0.018 / 0.016 / 0.015 at a/b 0.2 / 1 / 5 (0.014 at a/b 0.2 before the blend's span on wide
+  // patches; 0.012 / 0.010 / 0.015 before the blend's earlier start where the coupling is held;
+  // 0.013 / 0.013 / 0.0200 with the lateral coupling before linear theory's spin moment held for
+  // the rest of e^2; classic 0.039-0.144; 0.027 at a/b 0.2 before the bound went towards Hertz's in
+  // full slip, FlexibilityCalibration:: towardsFullSlip).
   for (double ab : {0.2, 1.0, 5.0}) {
     const double cal = error(ab, "h3", true).force;
     EXPECT_LT(cal, 0.02) << ab;
@@ -160,7 +160,7 @@ TEST_F(CalibratedSteady, SmallSpinShareWithinTwoPercentOfMuFz) {
 
 TEST_F(CalibratedSteady, SmallSpinShareWithEtaAlongPhiWithinTwoPercentOfMuFz) {
   // h4 (0.5, 1, 0.25): spin 5 % of e^2 with eta phi > 0, held out of every choice of the
-  // calibration: measured 0.018 / 0.008 / 0.017 at a/b 0.2 / 1 / 5 (classic 0.029-0.121); at a/b 5
+  // calibration: measured 0.014 / 0.008 / 0.016 at a/b 0.2 / 1 / 5 (classic 0.029-0.121); at a/b 5
   // 0.60 of classic's, 0.010 before linear theory's spin moment held for the rest of e^2, which
   // took its Mz from 5.5-15 % of the peak to 2.9-6.2 % at a/b 0.5-5 (classic's); with the
   // coupling held at small spin shares 5.0 / 4.0 / 7.2 / 2.7 % at a/b 0.5 / 1 / 2 / 5 (force 0.017
@@ -177,8 +177,10 @@ TEST_F(CalibratedSteady, SmallSpinSharesMomentFromEtaNearerTheExactCurve) {
   // coupling; held there (FlexibilityCalibration::heldCoupling) rather than faded with spin's
   // share, the six such rays' Mz was above 5 % of the peak on 15 of their 30 curves (23 before),
   // mean 5.2 % (6.0 %), worst 9.8 % (r1 at a/b 0.2); with the bound going towards Hertz's shape
-  // from e = 1.5 there (fullSlipFrom) 9 of 30, mean 4.5 %, worst 8.1 % (doc/calibrated_fastsim.md,
-  // "The coupling held at small spin shares", "The blend's start where the coupling is held").
+  // from e = 1.5 there (fullSlipFrom) 9 of 30, mean 4.5 %, worst 8.1 %; with the blend's span and
+  // the correction's fit from e = 0.35 on wide patches (a/b 0.2: five of those nine) 4 of 30, mean
+  // 3.9 %, worst 7.2 % (doc/calibrated_fastsim.md, "The coupling held at small spin shares", "The
+  // blend's start where the coupling is held", "The blend's span on wide patches").
   int above = 0;
   double sum = 0.0, worst = 0.0;
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
@@ -188,9 +190,9 @@ TEST_F(CalibratedSteady, SmallSpinSharesMomentFromEtaNearerTheExactCurve) {
       sum += m;
       worst = std::max(worst, m);
     }
-  EXPECT_LE(above, 10);
-  EXPECT_LT(sum / 30.0, 0.047);
-  EXPECT_LT(worst, 0.085);
+  EXPECT_LE(above, 5);
+  EXPECT_LT(sum / 30.0, 0.041);
+  EXPECT_LT(worst, 0.075);
 }
 
 TEST_F(CalibratedSteady, SpinSharesBetweenTheSmallKnotsWithinTwoPercentOfMuFz) {
@@ -216,10 +218,11 @@ TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) 
   // signs of eta phi): r1-r16 placed by hand, r17-r28 and r29-r40 drawn at random (r29-r40 after
   // the grid and its smoothing were chosen). Issue 19's 0.02 on every one but r10 (spin 4.5 %
   // of e^2, below the first spin share, in full slip at a/b 0.2), measured on 20x20 0.001-0.019
-  // (before the denser, smoothed grid up to 0.064; classic 0.011-0.214) and r10 0.023 (0.026
-  // before the blend's earlier start where the coupling is held); under half of classic's
-  // wherever classic misses the target. Mz within issue 19's 5 % of the peak, measured
-  // 0.2-4.5 %, but where the moment is mostly eta's (r1, r2, r10: up to 8.1 %, 9.9 % before) and
+  // (before the denser, smoothed grid up to 0.064; classic 0.011-0.214) and r10 0.027 (0.023
+  // before the blend's span on wide patches, which took the moment of r1, r2, r10 at a/b 0.2
+  // within 5 %; 0.026 before the blend's earlier start where the coupling is held); under half of
+  // classic's wherever classic misses the target. Mz within issue 19's 5 % of the peak, measured
+  // 0.2-4.5 %, but where the moment is mostly eta's (r1, r2, r10: up to 7.1 %, 9.9 % before) and
   // r25 at a/b 5 (5.2 %, 3.7 % before linear theory's spin moment held for the rest of e^2).
   // doc/calibrated_fastsim.md, "A denser grid, fitted smooth", "Mz from eta in the core" and
   // "Linear theory's spin moment".
@@ -228,11 +231,11 @@ TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) 
       const std::string ray = "r" + std::to_string(r);
       const CurveError cal = error(ab, ray.c_str(), true);
       const double classic = error(ab, ray.c_str(), false).force;
-      EXPECT_LT(cal.force, r == 10 ? 0.025 : 0.02) << ab << " " << ray;
+      EXPECT_LT(cal.force, r == 10 ? 0.03 : 0.02) << ab << " " << ray;
       if (classic > 0.02) {
         EXPECT_LT(cal.force, 0.5 * classic) << ab << " " << ray;
       }
-      EXPECT_LT(cal.moment, r == 1 || r == 2 || r == 10 ? 0.085
+      EXPECT_LT(cal.moment, r == 1 || r == 2 || r == 10 ? 0.075
                             : r == 25 && ab > 3.0       ? 0.055
                                                         : 0.05)
           << ab << " " << ray;

@@ -279,20 +279,21 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
     s.boundShape = towardsFullSlip(
         std::min(kMaxBoundShape,
                  stepExp(logRatioOf(4) + (corrected ? lm[3] : 0.0), table) * share[2]),
-        e, share[2]);
+        e, share[2], a / b);
   return s;
 }
 
-double FlexibilityCalibration::towardsFullSlip(double shape, double e, double s3) const {
-  return corrS3_.empty() ? shape : hertzShapeBlend(shape, e, s3);
+double FlexibilityCalibration::towardsFullSlip(double shape, double e, double s3,
+                                               double aOverB) const {
+  return corrS3_.empty() ? shape : hertzShapeBlend(shape, e, s3, aOverB);
 }
 
-double FlexibilityCalibration::hertzShapeBlend(double shape, double e, double s3) {
-  constexpr double kTo = 5.0, kSpinShare = 0.01;
+double FlexibilityCalibration::hertzShapeBlend(double shape, double e, double s3, double aOverB) {
+  constexpr double kSpinShare = 0.01;
   if (!(s3 > 0.0) || !(s3 < kSmallSpinShare)) return shape;
-  const double from = fullSlipFrom(s3);
+  const double from = fullSlipFrom(s3, aOverB);
   if (!(e > from)) return shape;
-  const double q = std::min(1.0, (e - from) / (kTo - from));
+  const double q = std::min(1.0, (e - from) / (fullSlipTo(aOverB) - from));
   const double w =
       q * q * (3.0 - 2.0 * q) * (1.0 - s3 / kSmallSpinShare) * std::min(1.0, s3 / kSpinShare);
   return shape + (kHertzMomentShape - shape) * w;

@@ -121,30 +121,50 @@ class FlexibilityCalibration {
   /// full slip, on a circle, is (8/15 + (4/105) s) mu fz a, Hertz's (3 pi / 16) mu fz a.
   static constexpr double kHertzMomentShape = (3.0 * M_PI / 16.0 - 8.0 / 15.0) * 105.0 / 4.0;
   /// The bound's shape for combined creepages with a small spin share s3 = e3^2 / e^2, below
-  /// kSmallSpinShare: the table's `shape` at normalised creepage e blended towards
-  /// kHertzMomentShape as the patch goes into full slip (smoothly over e from fullSlipFrom(s3) to
-  /// 5), by (1 - s3 / kSmallSpinShare) min(1, s3 / 0.01). In full slip the traction is mu p along
-  /// the rigid slip, which spin turns over the patch: force and moment are the pressure's weighted
-  /// sums of that direction field, right only with Hertz's weights. From kSmallSpinShare on the
-  /// identified correction decides; without a correction (or spin), `shape` is returned.
-  double towardsFullSlip(double shape, double e, double s3) const;
+  /// kSmallSpinShare, on a patch of a/b = aOverB: the table's `shape` at normalised creepage e
+  /// blended towards kHertzMomentShape as the patch goes into full slip (smoothly over e from
+  /// fullSlipFrom(s3, aOverB) to fullSlipTo(aOverB)), by (1 - s3 / kSmallSpinShare)
+  /// min(1, s3 / 0.01). In full slip the traction is mu p along the rigid slip, which spin turns
+  /// over the patch: force and moment are the pressure's weighted sums of that direction field,
+  /// right only with Hertz's weights. From kSmallSpinShare on the identified correction decides;
+  /// without a correction (or spin), `shape` is returned.
+  double towardsFullSlip(double shape, double e, double s3, double aOverB) const;
   /// towardsFullSlip's blend itself, whatever the table (identify_steady fits a knot below
   /// kSmallSpinShare with it).
-  static double hertzShapeBlend(double shape, double e, double s3);
+  static double hertzShapeBlend(double shape, double e, double s3, double aOverB);
   /// Spin's share below which towardsFullSlip acts, whatever the table's spin-share knots. The
   /// shipped table's knots below it (0.1, 0.175) are identified with towardsFullSlip in the fit
   /// and, near linear theory, hold the correction interpolated between no spin and the first knot
   /// from it on (identify_steady).
   static constexpr double kSmallSpinShare = 0.25;
   /// Normalised creepage from which towardsFullSlip moves the shape: kFullSlipFrom, and
-  /// kHeldFullSlipFrom where the lateral coupling is held (heldShare): the held coupling's moment
-  /// fades as the patch slips, and the full-slip shape takes it over that much sooner (the six
-  /// small-share rays' moment, doc/calibrated_fastsim.md, "The blend's start where the coupling is
-  /// held").
-  static double fullSlipFrom(double s3) {
-    return kFullSlipFrom + (kHeldFullSlipFrom - kFullSlipFrom) * heldShare(s3);
+  /// heldFullSlipFrom(aOverB) where the lateral coupling is held (heldShare): the held coupling's
+  /// moment fades as the patch slips, and the full-slip shape takes it over that much sooner (the
+  /// six small-share rays' moment, doc/calibrated_fastsim.md, "The blend's start where the
+  /// coupling is held").
+  static double fullSlipFrom(double s3, double aOverB) {
+    return kFullSlipFrom + (heldFullSlipFrom(aOverB) - kFullSlipFrom) * heldShare(s3);
   }
-  static constexpr double kFullSlipFrom = 2.5, kHeldFullSlipFrom = 1.5;
+  /// kHeldFullSlipFrom, and kWideHeldFullSlipFrom on a wide patch (wideness).
+  static double heldFullSlipFrom(double aOverB) {
+    return kHeldFullSlipFrom + (kWideHeldFullSlipFrom - kHeldFullSlipFrom) * wideness(aOverB);
+  }
+  /// Normalised creepage from which towardsFullSlip gives its full blend: kFullSlipTo, and
+  /// kWideFullSlipTo on a wide patch (wideness).
+  static double fullSlipTo(double aOverB) {
+    return kFullSlipTo + (kWideFullSlipTo - kFullSlipTo) * wideness(aOverB);
+  }
+  /// How wide (b over a) the patch is, for the blend's span: 1 up to a/b = kWideTo, 0 from
+  /// kNarrowFrom, linear in a/b between. On a patch five times as wide as long, spin turns the
+  /// rigid slip over the patch's width (phi b) far more than its share of e (phi sqrt(ab)) says,
+  /// and the full-slip shape has to take the small shares' moment over sooner: from e = 0.75 to
+  /// 3.5 there (doc/calibrated_fastsim.md, "The blend's span on wide patches").
+  static double wideness(double aOverB) {
+    return std::clamp((kNarrowFrom - aOverB) / (kNarrowFrom - kWideTo), 0.0, 1.0);
+  }
+  static constexpr double kFullSlipFrom = 2.5, kHeldFullSlipFrom = 1.5, kFullSlipTo = 5.0;
+  static constexpr double kWideHeldFullSlipFrom = 0.75, kWideFullSlipTo = 3.5;
+  static constexpr double kWideTo = 0.2, kNarrowFrom = 0.5;
   static constexpr int kCorrections = 5;
   /// Ratio of kind k (0: 11, 1: 22, 2: 23, 3: 23x, 4: 23s) at normalised creepage e, and its
   /// logarithm.
