@@ -639,17 +639,17 @@ constexpr int kSmoothingSweeps = 3;
 // Normalised creepage up to which the combined correction is 1.
 constexpr double kLinearEnd = 0.1;
 // Below FlexibilityCalibration::kSmallSpinShare a spin-share knot is fitted from this normalised
-// creepage on only (with towardsFullSlip's blend in the fit, as the table applies it there): below
-// it the knot's own fit made the paper's combined2 (spin shares down to 0.01 at e <= 0.61) worse,
-// where the interpolation from no spin to the first knot from kSmallSpinShare on did not miss.
-constexpr double kSmallShareFitFrom = 0.75;
-// The same on a wide patch (FlexibilityCalibration::wideness 1, a/b 0.2), linear in the wideness
-// between: there the interpolation left the small shares' partial-slip moment FastSim's own, 6 % of
-// the peak low at e = 0.6 (h7, r2), and the paper's scenes are round patches.
-constexpr double kWideSmallShareFitFrom = 0.35;
+// creepage on (with towardsFullSlip's blend in the fit, as the table applies it there), below it
+// holding the correction interpolated between no spin and the first knot from kSmallSpinShare on:
+// kRoundSmallShareFitFrom on a round patch (a/b 1), kSmallShareFitFrom from a/b 2 (or 1/2) on,
+// linear in |ln(a/b)| between. On the round patch the knot's own fit below 0.75 made the paper's
+// combined2 (spin shares down to 0.01 at e <= 0.61) worse, where the interpolation did not miss;
+// on wide and long patches the interpolation left the small shares' partial-slip moment FastSim's
+// own, 6-7 % of the peak off at e = 0.3-0.6 (h7, r2 at a/b 0.2, h4 at a/b 2).
+constexpr double kRoundSmallShareFitFrom = 0.75, kSmallShareFitFrom = 0.35;
 double smallShareFitFrom(double g) {
-  return kSmallShareFitFrom +
-         (kWideSmallShareFitFrom - kSmallShareFitFrom) * FlexibilityCalibration::wideness(g);
+  const double roundness = std::max(0.0, 1.0 - std::abs(std::log(g)) / std::log(2.0));
+  return kSmallShareFitFrom + (kRoundSmallShareFitFrom - kSmallShareFitFrom) * roundness;
 }
 
 // The fifth multiplier (of L3x alone, kind c3x) is 1 below this normalised creepage and pulled
@@ -843,7 +843,7 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
       const auto before = byShare;
       worst = 0.0;
       // The small shares after the rest: they hold the first share's fit of this sweep. That
-      // share keeps its own fit below kSmallShareFitFrom, where the small shares hold it: smoothed
+      // share keeps its own fit below kRoundSmallShareFitFrom, where small shares hold it: smoothed
       // there, it moved the moment of the shares between them (h5's Mz 4.9 -> 5.7 % of the peak).
       for (int pass = 0; pass < 2; ++pass)
         for (std::size_t a = 0; a < nS; ++a)
@@ -883,7 +883,7 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
               CorrectionFit fit = before.at(s3).at({t, sign});
               refitTowards(o, exact, g, gridRay(s3, t, sign), cal,
                            small ? &byShare.at(*first).at({t, sign}) : nullptr, s3 / *first, target,
-                           o.smoothing, s3 == *first ? kSmallShareFitFrom : kLinearEnd, &fit);
+                           o.smoothing, s3 == *first ? kRoundSmallShareFitFrom : kLinearEnd, &fit);
               worst = std::max(worst, *std::max_element(fit.error.begin(), fit.error.end()));
               byShare[s3][{t, sign}] = fit;
               if (t >= 1.0) byShare[s3][{t, -1}] = fit;

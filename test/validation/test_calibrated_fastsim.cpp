@@ -160,16 +160,14 @@ TEST_F(CalibratedSteady, SmallSpinShareWithinTwoPercentOfMuFz) {
 
 TEST_F(CalibratedSteady, SmallSpinShareWithEtaAlongPhiWithinTwoPercentOfMuFz) {
   // h4 (0.5, 1, 0.25): spin 5 % of e^2 with eta phi > 0, held out of every choice of the
-  // calibration: measured 0.014 / 0.008 / 0.016 at a/b 0.2 / 1 / 5 (classic 0.029-0.121); at a/b 5
-  // 0.60 of classic's, 0.010 before linear theory's spin moment held for the rest of e^2, which
-  // took its Mz from 5.5-15 % of the peak to 2.9-6.2 % at a/b 0.5-5 (classic's); with the
-  // coupling held at small spin shares 5.0 / 4.0 / 7.2 / 2.7 % at a/b 0.5 / 1 / 2 / 5 (force 0.017
-  // / 0.008 / 0.016).
-  for (double ab : {0.2, 1.0}) expectWithinAndUnderHalfOfClassic(ab, "h4", 0.02);
-  const double cal = error(5.0, "h4", true).force;
-  EXPECT_LT(cal, 0.02);
-  EXPECT_LT(cal, 0.65 * error(5.0, "h4", false).force);
-  for (double ab : {0.5, 1.0, 2.0, 5.0}) EXPECT_LT(error(ab, "h4", true).moment, 0.075) << ab;
+  // calibration: measured 0.014 / 0.008 / 0.003 at a/b 0.2 / 1 / 5 (classic 0.029-0.121); at a/b 5
+  // 0.016, 0.60 of classic's, before the small shares' fit from e = 0.35 off the round patch, 0.010
+  // before linear theory's spin moment held for the rest of e^2, which took its Mz from 5.5-15 %
+  // of the peak to 2.9-6.2 % at a/b 0.5-5 (classic's); with the coupling held at small spin
+  // shares 5.0 / 4.0 / 7.2 / 2.7 % at a/b 0.5 / 1 / 2 / 5, with the fit from e = 0.35 off the
+  // round patch 4.4 / 2.6 / 4.0 / 3.0 / 1.7 % at a/b 0.2 / 0.5 / 1 / 2 / 5.
+  for (double ab : {0.2, 1.0, 5.0}) expectWithinAndUnderHalfOfClassic(ab, "h4", 0.02);
+  for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0}) EXPECT_LT(error(ab, "h4", true).moment, 0.05) << ab;
 }
 
 TEST_F(CalibratedSteady, SmallSpinSharesMomentFromEtaNearerTheExactCurve) {
@@ -179,8 +177,9 @@ TEST_F(CalibratedSteady, SmallSpinSharesMomentFromEtaNearerTheExactCurve) {
   // mean 5.2 % (6.0 %), worst 9.8 % (r1 at a/b 0.2); with the bound going towards Hertz's shape
   // from e = 1.5 there (fullSlipFrom) 9 of 30, mean 4.5 %, worst 8.1 %; with the blend's span and
   // the correction's fit from e = 0.35 on wide patches (a/b 0.2: five of those nine) 4 of 30, mean
-  // 3.9 %, worst 7.2 % (doc/calibrated_fastsim.md, "The coupling held at small spin shares", "The
-  // blend's start where the coupling is held", "The blend's span on wide patches").
+  // 3.9 %, worst 7.2 %, and with that fit on long patches too (all but a/b 1) 3 of 30, mean 3.7 %,
+  // worst 6.8 % (doc/calibrated_fastsim.md, "The coupling held at small spin shares", "The blend's
+  // start where the coupling is held", "Small spin shares on wide and long patches").
   int above = 0;
   double sum = 0.0, worst = 0.0;
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
@@ -190,9 +189,9 @@ TEST_F(CalibratedSteady, SmallSpinSharesMomentFromEtaNearerTheExactCurve) {
       sum += m;
       worst = std::max(worst, m);
     }
-  EXPECT_LE(above, 5);
-  EXPECT_LT(sum / 30.0, 0.041);
-  EXPECT_LT(worst, 0.075);
+  EXPECT_LE(above, 4);
+  EXPECT_LT(sum / 30.0, 0.039);
+  EXPECT_LT(worst, 0.072);
 }
 
 TEST_F(CalibratedSteady, SpinSharesBetweenTheSmallKnotsWithinTwoPercentOfMuFz) {
@@ -222,8 +221,8 @@ TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) 
   // before the blend's span on wide patches, which took the moment of r1, r2, r10 at a/b 0.2
   // within 5 %; 0.026 before the blend's earlier start where the coupling is held); under half of
   // classic's wherever classic misses the target. Mz within issue 19's 5 % of the peak, measured
-  // 0.2-4.5 %, but where the moment is mostly eta's (r1, r2, r10: up to 7.1 %, 9.9 % before) and
-  // r25 at a/b 5 (5.2 %, 3.7 % before linear theory's spin moment held for the rest of e^2).
+  // 0.2-4.5 %, but where the moment is mostly eta's (r1, r2, r10: up to 6.8 %, 9.9 % before) and
+  // r25 at a/b 5 (5.3 %, 3.7 % before linear theory's spin moment held for the rest of e^2).
   // doc/calibrated_fastsim.md, "A denser grid, fitted smooth", "Mz from eta in the core" and
   // "Linear theory's spin moment".
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
@@ -233,9 +232,11 @@ TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) 
       const double classic = error(ab, ray.c_str(), false).force;
       EXPECT_LT(cal.force, r == 10 ? 0.03 : 0.02) << ab << " " << ray;
       if (classic > 0.02) {
-        EXPECT_LT(cal.force, 0.5 * classic) << ab << " " << ray;
+        // r25 at a/b 5: 0.53 of classic's (0.43 before the small shares' fit from e = 0.35
+        // off the round patch).
+        EXPECT_LT(cal.force, (r == 25 && ab > 3.0 ? 0.6 : 0.5) * classic) << ab << " " << ray;
       }
-      EXPECT_LT(cal.moment, r == 1 || r == 2 || r == 10 ? 0.075
+      EXPECT_LT(cal.moment, r == 1 || r == 2 || r == 10 ? 0.072
                             : r == 25 && ab > 3.0       ? 0.055
                                                         : 0.05)
           << ab << " " << ray;
@@ -366,11 +367,11 @@ TEST(CalibratedSteadyAtOtherNu, TheTableIdentifiedAtNu028HoldsOverSteelsRange) {
   // solved at 0.25 and 0.30 (identify_steady --nu NU --exact
   // doc/data/steady_exact_curves_nuNU.csv; re-solved at two points here), every ray at a/b
   // 0.2-5: forces within issue 19's targets as at 0.28 (measured single creepages 0.0080 /
-  // 0.0091, combined 0.0196 / 0.0190), but r10 at a/b 0.2 (0.026 at 0.28; 0.026 / 0.029), and
-  // under half of classic's wherever classic misses the target (h4 at a/b 5: 0.61 / 0.58 of it,
-  // 0.60 at 0.28); pure spin's Mz within 5 % (2.6-2.9 %); eta's moment, which the lateral
-  // coupling carries (identified at 0.28), within 4.5 % at a/b 0.2-2 (measured up to 4.1 /
-  // 2.8 %; 0.7-1.8 % at 0.28).
+  // 0.0091, combined 0.0183 / 0.0178), but r10 at a/b 0.2 (0.027 at 0.28; 0.023 / 0.030), and
+  // under half of classic's wherever classic misses the target (r25 at a/b 5: 0.55 / 0.53 of it,
+  // 0.53 at 0.28, since the small shares' fit from e = 0.35 off the round patch); pure spin's Mz
+  // within 5 % (2.6-2.9 %); eta's moment, which the lateral coupling carries (identified at 0.28),
+  // within 4.5 % at a/b 0.2-2 (measured up to 4.1 / 2.8 %; 0.7-1.8 % at 0.28).
   const SteadyCalibration table = SteadyCalibration::shipped().forMesh(20);
   for (const double nu : {0.25, 0.30}) {
     char file[64];
@@ -389,7 +390,7 @@ TEST(CalibratedSteadyAtOtherNu, TheTableIdentifiedAtNu028HoldsOverSteelsRange) {
                                                       : 0.02)
           << nu << " " << ab << " " << ray;
       if (classic.force > 0.02) {
-        const double share = ray == "h4" && ab > 3.0 ? 0.65 : 0.5;  // as at 0.28
+        const double share = ray == "r25" && ab > 3.0 ? 0.6 : 0.5;  // as at 0.28
         EXPECT_LT(cal.force, share * classic.force) << nu << " " << ab << " " << ray;
       }
       if (ray == "23") {

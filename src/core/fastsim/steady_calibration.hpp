@@ -158,7 +158,7 @@ class FlexibilityCalibration {
   /// kNarrowFrom, linear in a/b between. On a patch five times as wide as long, spin turns the
   /// rigid slip over the patch's width (phi b) far more than its share of e (phi sqrt(ab)) says,
   /// and the full-slip shape has to take the small shares' moment over sooner: from e = 0.75 to
-  /// 3.5 there (doc/calibrated_fastsim.md, "The blend's span on wide patches").
+  /// 3.5 there (doc/calibrated_fastsim.md, "Small spin shares on wide and long patches").
   static double wideness(double aOverB) {
     return std::clamp((kNarrowFrom - aOverB) / (kNarrowFrom - kWideTo), 0.0, 1.0);
   }
