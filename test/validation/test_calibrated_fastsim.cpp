@@ -150,7 +150,7 @@ TEST_F(CalibratedSteady, SmallSpinShareWithinTwoPercentOfMuFz) {
   // patches; 0.012 / 0.010 / 0.015 before the blend's earlier start where the coupling is held;
   // 0.013 / 0.013 / 0.0200 with the lateral coupling before linear theory's spin moment held for
   // the rest of e^2; classic 0.039-0.144; 0.027 at a/b 0.2 before the bound went towards Hertz's in
-  // full slip, FlexibilityCalibration:: towardsFullSlip).
+  // full slip, towardsFullSlip).
   for (double ab : {0.2, 1.0, 5.0}) {
     const double cal = error(ab, "h3", true).force;
     EXPECT_LT(cal, 0.02) << ab;
