@@ -65,9 +65,10 @@ struct Options {
   // Spin's share 0.06 and xi's share 0.875: held-out rays h7 and h8 (spin 7 % of e^2, between
   // h4 and the share 0.1) were 0.024 and 0.025 mu fz off without them. Spin's shares 0.625, 0.825
   // and 0.95 and xi's 0.125 and 0.375: directions spread between the coarser grid's (r1-r16, eta
-  // phi < 0) were up to 0.055 off.
-  std::vector<double> spinShares = {0.06,  0.1,  0.175, 0.25, 0.375, 0.5,
-                                    0.625, 0.75, 0.825, 0.9,  0.95},
+  // phi < 0) were up to 0.055 off. Spin's share 0.03: r10 (4.5 %, in full slip at a/b 0.2) was
+  // 0.027 off with the correction interpolated from none up to 0.06.
+  std::vector<double> spinShares = {0.03, 0.06,  0.1,  0.175, 0.25, 0.375,
+                                    0.5,  0.625, 0.75, 0.825, 0.9,  0.95},
                       xiShares = {0, 0.125, 0.25, 0.375, 0.5, 0.75, 0.875, 1};
   // The smoothing sweeps' pull towards the neighbouring directions (identifyCorrection), in
   // mu fz per unit ln multiplier; 0: each direction fitted alone.
@@ -83,8 +84,8 @@ const char* const kUsage =
     "                       [--grid 20] [--nx 20[,...]] [--nu 0.28] [--ab 0.2,0.5,1,2,5]\n"
     "                       [--knots 0,0.1,...] [--points 0.05,0.15,...]\n"
     "                       [--correction-knots 0,0.1,...]\n"
-    "                       [--spin-shares 0.06,0.1,0.175,0.25,0.375,0.5,0.625,0.75,0.825,\n"
-    "                                      0.9,0.95]\n"
+    "                       [--spin-shares 0.03,0.06,0.1,0.175,0.25,0.375,0.5,0.625,0.75,\n"
+    "                                      0.825,0.9,0.95]\n"
     "                       [--xi-shares 0,0.125,0.25,0.375,0.5,0.75,0.875,1]\n"
     "                       [--smoothing 0.01] [--no-coupling] [--solve-grid [--grid-only]]\n"
     "                       [--moment-study]\n"

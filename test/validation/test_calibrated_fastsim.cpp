@@ -145,8 +145,9 @@ TEST_F(CalibratedSteady, CombinedWithSpinWithinTwoPercentOfMuFz) {
 
 TEST_F(CalibratedSteady, SmallSpinShareWithinTwoPercentOfMuFz) {
   // h3 (1, -1, 0.2): spin 2 % of e^2, between xi with eta (no correction) and the grid's smallest
-  // spin share (0.06), the weakest direction: issue 19's 0.02 for combined curves; measured
-  // 0.018 / 0.016 / 0.015 at a/b 0.2 / 1 / 5 (0.014 at a/b 0.2 before the blend's span on wide
+  // spin share (0.03; 0.06 before), the weakest direction: issue 19's 0.02 for combined curves;
+  // measured 0.012 / 0.010 / 0.009 at a/b 0.2 / 1 / 5 since the spin share 0.03 (0.018 / 0.016 /
+  // 0.015 before it; 0.014 at a/b 0.2 before the blend's span on wide
   // patches; 0.012 / 0.010 / 0.015 before the blend's earlier start where the coupling is held;
   // 0.013 / 0.013 / 0.0200 with the lateral coupling before linear theory's spin moment held for
   // the rest of e^2; classic 0.039-0.144; 0.027 at a/b 0.2 before the bound went towards Hertz's in
@@ -178,8 +179,9 @@ TEST_F(CalibratedSteady, SmallSpinSharesMomentFromEtaNearerTheExactCurve) {
   // from e = 1.5 there (fullSlipFrom) 9 of 30, mean 4.5 %, worst 8.1 %; with the blend's span and
   // the correction's fit from e = 0.35 on wide patches (a/b 0.2: five of those nine) 4 of 30, mean
   // 3.9 %, worst 7.2 %, and with that fit on long patches too (all but a/b 1) 3 of 30, mean 3.7 %,
-  // worst 6.8 % (doc/calibrated_fastsim.md, "The coupling held at small spin shares", "The blend's
-  // start where the coupling is held", "Small spin shares on wide and long patches").
+  // worst 6.8 %, and with the spin share 0.03 1 of 30, mean 3.0 %, worst 6.5 % (r10 at a/b 0.5)
+  // (doc/calibrated_fastsim.md, "The coupling held at small spin shares", "The blend's start where
+  // the coupling is held", "Small spin shares on wide and long patches").
   int above = 0;
   double sum = 0.0, worst = 0.0;
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
@@ -189,9 +191,9 @@ TEST_F(CalibratedSteady, SmallSpinSharesMomentFromEtaNearerTheExactCurve) {
       sum += m;
       worst = std::max(worst, m);
     }
-  EXPECT_LE(above, 4);
-  EXPECT_LT(sum / 30.0, 0.039);
-  EXPECT_LT(worst, 0.072);
+  EXPECT_LE(above, 2);
+  EXPECT_LT(sum / 30.0, 0.032);
+  EXPECT_LT(worst, 0.07);
 }
 
 TEST_F(CalibratedSteady, SpinSharesBetweenTheSmallKnotsWithinTwoPercentOfMuFz) {
@@ -215,13 +217,12 @@ TEST_F(CalibratedSteady, SpinSharesBelowTheFirstKnotWithinTwoPercentOfMuFz) {
 TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) {
   // r1-r40: held-out directions between the grid's (spin shares 0.03-0.97, xi shares 0-1, both
   // signs of eta phi): r1-r16 placed by hand, r17-r28 and r29-r40 drawn at random (r29-r40 after
-  // the grid and its smoothing were chosen). Issue 19's 0.02 on every one but r10 (spin 4.5 %
-  // of e^2, below the first spin share, in full slip at a/b 0.2), measured on 20x20 0.001-0.019
-  // (before the denser, smoothed grid up to 0.064; classic 0.011-0.214) and r10 0.027 (0.023
-  // before the blend's span on wide patches, which took the moment of r1, r2, r10 at a/b 0.2
-  // within 5 %; 0.026 before the blend's earlier start where the coupling is held); under half of
-  // classic's wherever classic misses the target. Mz within issue 19's 5 % of the peak, measured
-  // 0.2-4.5 %, but where the moment is mostly eta's (r1, r2, r10: up to 6.8 %, 9.9 % before) and
+  // the grid and its smoothing were chosen). Issue 19's 0.02 on every one, measured on 20x20
+  // 0.001-0.019 (before the denser, smoothed grid up to 0.064; classic 0.011-0.214); r10 (spin
+  // 4.5 % of e^2, in full slip at a/b 0.2) 0.0185 since the spin share 0.03 (0.027 before it,
+  // between no spin and the share 0.06; 0.023 before the blend's span on wide patches); under half
+  // of classic's wherever classic misses the target. Mz within issue 19's 5 % of the peak, measured
+  // 0.2-4.5 %, but where the moment is mostly eta's (r1, r2, r10: up to 6.5 %, 9.9 % before) and
   // r25 at a/b 5 (5.3 %, 3.7 % before linear theory's spin moment held for the rest of e^2).
   // doc/calibrated_fastsim.md, "A denser grid, fitted smooth", "Mz from eta in the core" and
   // "Linear theory's spin moment".
@@ -230,7 +231,7 @@ TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) 
       const std::string ray = "r" + std::to_string(r);
       const CurveError cal = error(ab, ray.c_str(), true);
       const double classic = error(ab, ray.c_str(), false).force;
-      EXPECT_LT(cal.force, r == 10 ? 0.03 : 0.02) << ab << " " << ray;
+      EXPECT_LT(cal.force, 0.02) << ab << " " << ray;
       if (classic > 0.02) {
         // r25 at a/b 5: 0.53 of classic's (0.43 before the small shares' fit from e = 0.35
         // off the round patch).
@@ -367,11 +368,11 @@ TEST(CalibratedSteadyAtOtherNu, TheTableIdentifiedAtNu028HoldsOverSteelsRange) {
   // solved at 0.25 and 0.30 (identify_steady --nu NU --exact
   // doc/data/steady_exact_curves_nuNU.csv; re-solved at two points here), every ray at a/b
   // 0.2-5: forces within issue 19's targets as at 0.28 (measured single creepages 0.0080 /
-  // 0.0091, combined 0.0183 / 0.0178), but r10 at a/b 0.2 (0.027 at 0.28; 0.023 / 0.030), and
-  // under half of classic's wherever classic misses the target (r25 at a/b 5: 0.55 / 0.53 of it,
-  // 0.53 at 0.28, since the small shares' fit from e = 0.35 off the round patch); pure spin's Mz
-  // within 5 % (2.6-2.9 %); eta's moment, which the lateral coupling carries (identified at 0.28),
-  // within 4.5 % at a/b 0.2-2 (measured up to 4.1 / 2.8 %; 0.7-1.8 % at 0.28).
+  // 0.0091, combined 0.0178 / 0.0168), but r10 at a/b 0.2 at 0.30 (0.0214; 0.0185 at 0.28, 0.0188
+  // at 0.25), and under half of classic's wherever classic misses the target (r25 at a/b 5: 0.55 /
+  // 0.53 of it, 0.53 at 0.28, since the small shares' fit from e = 0.35 off the round patch); pure
+  // spin's Mz within 5 % (2.6-2.9 %); eta's moment, which the lateral coupling carries (identified
+  // at 0.28), within 4.5 % at a/b 0.2-2 (measured up to 4.1 / 2.8 %; 0.7-1.8 % at 0.28).
   const SteadyCalibration table = SteadyCalibration::shipped().forMesh(20);
   for (const double nu : {0.25, 0.30}) {
     char file[64];
@@ -386,7 +387,7 @@ TEST(CalibratedSteadyAtOtherNu, TheTableIdentifiedAtNu028HoldsOverSteelsRange) {
       const CurveError classic = fastsimError(ab, curve, SteadyCalibration().at(ab), 20, nu);
       const bool single = ray == "11" || ray == "22" || ray == "23";
       EXPECT_LT(cal.force, single                     ? 0.01
-                           : ray == "r10" && ab < 0.3 ? 0.032
+                           : ray == "r10" && ab < 0.3 ? 0.025
                                                       : 0.02)
           << nu << " " << ab << " " << ray;
       if (classic.force > 0.02) {

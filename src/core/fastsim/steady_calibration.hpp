@@ -133,9 +133,9 @@ class FlexibilityCalibration {
   /// kSmallSpinShare with it).
   static double hertzShapeBlend(double shape, double e, double s3, double aOverB);
   /// Spin's share below which towardsFullSlip acts, whatever the table's spin-share knots. The
-  /// shipped table's knots below it (0.1, 0.175) are identified with towardsFullSlip in the fit
-  /// and, near linear theory, hold the correction interpolated between no spin and the first knot
-  /// from it on (identify_steady).
+  /// shipped table's knots below it (0.03, 0.06, 0.1, 0.175) are identified with towardsFullSlip in
+  /// the fit and, near linear theory, hold the correction interpolated between no spin and the
+  /// first knot from it on (identify_steady).
   static constexpr double kSmallSpinShare = 0.25;
   /// Normalised creepage from which towardsFullSlip moves the shape: kFullSlipFrom, and
   /// heldFullSlipFrom(aOverB) where the lateral coupling is held (heldShare): the held coupling's
