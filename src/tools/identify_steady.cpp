@@ -75,6 +75,7 @@ struct Options {
   double smoothing = 0.01;
   bool solveGrid = false, gridOnly = false, momentStudy = false;
   bool coupling = true;  // eta's lateral coupling (kind 22c) identified and used
+  bool etaSlope = true;  // with it, eta's drive's slope (kind 22b)
 };
 
 const char* const kUsage =
@@ -87,7 +88,8 @@ const char* const kUsage =
     "                       [--spin-shares 0.03,0.06,0.1,0.175,0.25,0.375,0.5,0.625,0.75,\n"
     "                                      0.825,0.9,0.95]\n"
     "                       [--xi-shares 0,0.125,0.25,0.375,0.5,0.75,0.875,1]\n"
-    "                       [--smoothing 0.01] [--no-coupling] [--solve-grid [--grid-only]]\n"
+    "                       [--smoothing 0.01] [--no-coupling] [--no-eta-slope]\n"
+    "                       [--solve-grid [--grid-only]]\n"
     "                       [--moment-study]\n"
     "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
     "          --table classic: no table)\n"
@@ -101,6 +103,7 @@ const char* const kUsage =
     "--smoothing: the pull of each direction's multipliers towards its neighbours' (mu fz per\n"
     "          unit ln multiplier; 0: each direction fitted alone)\n"
     "--no-coupling: no lateral coupling (kind 22c): eta's ratio fitted to the force alone\n"
+    "--no-eta-slope: no slope of eta's drive (kind 22b): uniform along the strip, as classic\n"
     "--solve-grid: only solve the exact points the table and curves need (a long job; the cache\n"
     "          is saved as it goes); --grid-only: the direction grid's points, not the rays'\n"
     "--moment-study: per ray and a/b at --points, FastSim's errors on the table (or --table) and\n"
@@ -142,6 +145,8 @@ void readOption(tools::Args& a, Options* o) {
     o->gridOnly = true;
   else if (a.is("--moment-study"))
     o->momentStudy = true;
+  else if (a.is("--no-eta-slope"))
+    o->etaSlope = false;
   else if (a.is("--no-coupling"))
     o->coupling = false;
   else
@@ -424,6 +429,9 @@ double spinError(const Point& p, const Point& x, double mzPeak) {
 // The pull of the lateral coupling towards the previous knot's, in mu fz per unit of c: the fit
 // along eta's curve has near-equal optima of c and L2's ratio where the curve saturates.
 constexpr double kCouplingPull = 2e-3;
+// Eta's drive's slope (kind 22b): its range, the window around the previous knot's, and the pull
+// (mu fz per unit) towards 0 and the previous knot's.
+constexpr double kEtaSlopeMax = 2.0, kEtaSlopeStep = 0.5, kEtaSlopePull = 2e-3;
 
 // Eta alone with the coupling: spinError, and the force error held below kLateralForceCap (a
 // steep penalty above it). Where Fy and Mz cannot both be fitted (a/b 5, from e = 0.35 to 1.25),
@@ -521,6 +529,69 @@ KindFit identifyLateral(const Options& o, ExactCache* exact, double g) {
   if (fit.couple.size() > 1) fit.couple[0] = fit.couple[1];
   fit.ratioX.assign(fit.ratio.size(), 1.0);
   return fit;
+}
+
+// Xi beside eta (ray xe): the slope beta of eta's drive (kind 22b) at each knot, on the single
+// kinds' table `cal` (11, 22 and 22c fitted): a scan near the previous knot's beta (one continuous
+// branch) and golden-section refinement, against Fx, Fy and Mz together (spinError's norm), pulled
+// towards 0 and the previous knot's. Knot 0 is 0: linear theory's
+// moment of xi with eta is the coupling's already. `error` gets each knot's fit error.
+std::vector<double> identifyEtaSlope(const Options& o, ExactCache* exact, double g,
+                                     const FlexibilityCalibration& cal,
+                                     std::vector<double>* error) {
+  const Ray& xe = kRays[3];
+  double mzPeak = 0.0;
+  for (double e : o.knots)
+    if (e > 0.0) mzPeak = std::max(mzPeak, std::abs(exact->at(g, xe, e).mz));
+  std::vector<double> beta;
+  error->clear();
+  double previous = 0.0;
+  for (double e : o.knots) {
+    if (e == 0.0) {
+      beta.push_back(0.0);
+      error->push_back(0.0);
+      continue;
+    }
+    const Point x = exact->at(g, xe, e);
+    const Setup s(o, g);
+    const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
+    TractionField f;
+    f.resize(mesh.size());
+    const Creepages c = s.creepages(xe, e);
+    const CalibratedStep step = cal.step(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
+    flattenedBound(mesh, s.a, s.b, s.fz, s.mu, step.boundShape, &f);
+    auto fit = [&](double b) {
+      Flexibilities L = step.L;
+      FlexibilityCalibration::setEtaSlope(b, s.a, &L);
+      const CreepForces y = steadyFastSim(mesh, L, c, &f);
+      return spinError(s.normalised(y.fx, y.fy, y.mz), x, mzPeak);
+    };
+    auto cost = [&](double b) {
+      return fit(b) + kEtaSlopePull * (std::abs(b) + std::abs(b - previous));
+    };
+    const double lo = std::max(-kEtaSlopeMax, previous - kEtaSlopeStep),
+                 hi = std::min(kEtaSlopeMax, previous + kEtaSlopeStep);
+    const int n = 50;
+    double best = previous, bestCost = cost(previous);
+    for (int i = 0; i <= n; ++i) {
+      const double b = lo + (hi - lo) * i / n, v = cost(b);
+      if (v < bestCost) bestCost = v, best = b;
+    }
+    double u = std::max(lo, best - (hi - lo) / n), w = std::min(hi, best + (hi - lo) / n);
+    const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int it = 0; it < 30; ++it) {
+      const double c1 = w - phi * (w - u), c2 = u + phi * (w - u);
+      if (cost(c1) < cost(c2))
+        w = c2;
+      else
+        u = c1;
+    }
+    if (cost(0.5 * (u + w)) < bestCost) best = 0.5 * (u + w);
+    previous = best;
+    beta.push_back(best);
+    error->push_back(fit(best));
+  }
+  return beta;
 }
 
 // Spin's pair (ratio of L3, ratio of L3x) at knot e: a grid over both logarithms near the previous
@@ -960,6 +1031,23 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
       char note[120];
       std::snprintf(note, sizeof note, "#   a/b %g kind %s: worst knot error %.4f\n", g,
                     kRays[kind].name.c_str(), worst);
+      *notes << note;
+    }
+    if (o.coupling && o.etaSlope) {  // on the single kinds' table at this a/b
+      std::stringstream single;
+      single << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n" << rows[g];
+      std::vector<double> error;
+      const std::vector<double> beta = identifyEtaSlope(
+          o, exact, g, SteadyCalibration::parse(single, "(single kinds)").at(g), &error);
+      for (std::size_t i = 0; i < beta.size(); ++i) {
+        char line[160];
+        std::snprintf(line, sizeof line, "%g,22b,%g,%.6f,%.5f,%d\n", g, o.knots[i], beta[i],
+                      error[i], o.nx);
+        rows[g] += line;
+      }
+      char note[120];
+      std::snprintf(note, sizeof note, "#   a/b %g kind 22b: worst knot error %.4f\n", g,
+                    *std::max_element(error.begin(), error.end()));
       *notes << note;
     }
   }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/fastsim/fastsim.hpp"
+#include "core/fastsim/steady_calibration.hpp"
 #include "core/models/steady_model.hpp"
 
 using namespace wheel_rail_contact;
@@ -61,6 +62,35 @@ TEST(SteadyFastSim, LateralCouplingAddsAMomentButNoForceInLinearTheory) {
   // The drive takes the upstream node's tau_y, one element behind: 2.5 % low at 60 nodes a strip.
   EXPECT_NEAR(coupled.mz - plain.mz, gain, 0.04 * std::abs(gain));
   EXPECT_GT(std::abs(gain), 0.1 * std::abs(plain.mz));  // a moment worth the name
+}
+
+TEST(SteadyFastSim, EtasDriveSlopeKeepsLinearTheorysForceAndMovesTheMoment) {
+  // Eta's drive (eta / L2)(1 - beta x / a) / (1 - 3 pi beta / 32) (Flexibilities::etaSlope,
+  // etaGain): in adhesion each strip's lateral force is 2 g a_j^2 (1 - (beta / 3) a_j / a), whose
+  // sum over the ellipse is the uniform drive's times 1 - 3 pi beta / 32; the gain restores it.
+  // The moment int x tau_y changes: the drive leans towards the trailing edge for beta > 0.
+  const Patch p;
+  const CreepCoefficients k = kalkerCoefficients(p.a / p.b, p.nu);
+  Flexibilities L = kalkerFlexibilities(p.a, p.b, p.G, k);
+  const PatchMesh mesh(60, 60, p.a, p.b);
+  TractionField f;
+  f.resize(mesh.size());
+  parabolicBound(mesh, p.a, p.b, p.fz, p.mu, &f);
+  const Creepages c{0, 1e-7, 0};
+  const CreepForces plain = steadyFastSim(mesh, L, c, &f);
+  for (double beta : {-1.0, 0.5, 2.0}) {
+    FlexibilityCalibration::setEtaSlope(beta, p.a, &L);
+    const CreepForces sloped = steadyFastSim(mesh, L, c, &f);
+    EXPECT_NEAR(sloped.fy, plain.fy, 0.01 * std::abs(plain.fy)) << beta;
+    EXPECT_EQ(sloped.fx, 0.0) << beta;
+    EXPECT_GT(std::abs(sloped.mz - plain.mz), 0.05 * std::abs(plain.mz)) << beta;
+  }
+  // None: the march's drive is Kalker's, bit for bit.
+  L.etaSlope = 0.0;
+  L.etaGain = 1.0;
+  const CreepForces none = steadyFastSim(mesh, L, c, &f);
+  EXPECT_EQ(none.fy, plain.fy);
+  EXPECT_EQ(none.mz, plain.mz);
 }
 
 TEST(SteadyFastSim, PatchSmallerThanTheMeshKeepsTheLinearCoefficient) {

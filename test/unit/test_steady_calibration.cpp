@@ -326,6 +326,52 @@ TEST(SteadyCalibration, LateralCouplingIsEtasCouplingFadingWithSpin) {
             std::string::npos);
 }
 
+TEST(SteadyCalibration, EtasDriveSlopeActsWhereXiIsBesideEta) {
+  // Kind 22b: the slope beta per a/b and knot, any sign, interpolated linearly in e; applied with
+  // the weight 4 t (1 - t), t xi's share of e1^2 + e2^2, falling with spin's share to 0 at the
+  // first spin-share knot, 0.03: full at xi = eta, none on eta alone or xi alone.
+  const std::string h = "a_over_b,kind,epsilon,ratio\n";
+  const std::string body = h +
+                           "1,11,0,1\n1,11,1,1\n1,22,0,1\n1,22,1,1\n1,23,0,1\n1,23,1,1\n"
+                           "1,22c,0,-0.5\n1,22c,1,-0.5\n1,22b,0,0\n1,22b,1,-0.4\n";
+  const FlexibilityCalibration c = SteadyCalibration::load(writeTable(body)).at(1.0);
+  EXPECT_DOUBLE_EQ(c.etaSlope(0.5), -0.2);
+  EXPECT_DOUBLE_EQ(c.etaSlope(3.0), -0.4);  // held
+  const double a = 6e-3, b = 6e-3, G = 8.2e10, muFz = 3e3;
+  const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
+  const double xi = 1e-4, eta = xi * k.c11 / k.c22;  // e1 = e2
+  const Creepages both{xi, eta, 0.0};
+  const double e = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, both);
+  ASSERT_LT(e, 1.0);
+  const Flexibilities L = c.step(a, b, G, k, muFz, both).L;
+  EXPECT_NEAR(L.etaSlope * a, c.etaSlope(e), 1e-12);
+  EXPECT_NEAR(L.etaGain, 1.0 / (1.0 - 3.0 * M_PI / 32.0 * c.etaSlope(e)), 1e-12);
+  for (const Creepages one : {Creepages{0.0, eta, 0.0}, Creepages{xi, 0.0, 0.0}}) {
+    EXPECT_EQ(c.step(a, b, G, k, muFz, one).L.etaSlope, 0.0);
+    EXPECT_EQ(c.step(a, b, G, k, muFz, one).L.etaGain, 1.0);
+  }
+  // xi's share 0.9: weight 4 (0.9)(0.1).
+  const Creepages mostlyXi{3.0 * xi, eta, 0.0};
+  const double em = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, mostlyXi);
+  EXPECT_NEAR(c.step(a, b, G, k, muFz, mostlyXi).L.etaSlope * a, 0.36 * c.etaSlope(em), 1e-12);
+  // Spin 1.5 % of e^2: half the weight; 3 % and more: none (the combined correction decides).
+  const double perSqrtAb = 1.0 / std::sqrt(a * b);
+  for (const auto& [s3, weight] : {std::pair{0.015, 0.5}, std::pair{0.03, 0.0}, {0.2, 0.0}}) {
+    // e3^2 = s3 / (1 - s3) (e1^2 + e2^2), e3 = G (ab)^1.5 C23 |phi| / (mu fz).
+    const double e3 = std::sqrt(s3 / (1.0 - s3)) * std::sqrt(2.0) * G * a * b * k.c11 * xi / muFz;
+    const Creepages spun{xi, eta, e3 * muFz / (G * a * b * k.c23) * perSqrtAb};
+    const double es = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, spun);
+    EXPECT_NEAR(c.step(a, b, G, k, muFz, spun).L.etaSlope * a, weight * c.etaSlope(es), 1e-9) << s3;
+  }
+  // Out of range, or in some a/b only: errors naming the line.
+  EXPECT_NE(message(h + "1,11,0,1\n1,22,0,1\n1,23,0,1\n1,22b,0,3\n").find(":5: eta's drive"),
+            std::string::npos);
+  EXPECT_NE(message(h + "1,11,0,1\n1,22,0,1\n1,23,0,1\n1,22b,0,0\n2,11,0,1\n2,22,0,1\n"
+                        "2,23,0,1\n")
+                .find("every a/b must hold every kind"),
+            std::string::npos);
+}
+
 TEST(SteadyCalibration, CouplingHeldAtSmallSpinSharesKeepsLinearTheorysSuperposition) {
   // In linear theory forces and moment add up over the creepages: eta with spin a small share
   // (3 % of e^2) must give eta's moment (its coupling) plus spin's (23x's knot 0). The coupling

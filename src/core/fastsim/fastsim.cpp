@@ -307,7 +307,8 @@ template <bool kCoupled>
 CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                         TractionField* f) {
   using Strip = SteadyStrip<kCoupled>;
-  const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, gphiX = c.phi / L.spinX();
+  const auto [gy, gphi] = lateralDrive(L, c);
+  const double gx = c.xi / L.L1, gphiX = c.phi / L.spinX();
   const FieldPointers out(f);
   const double* const xn = mesh.xNorms().data();
   const int nx = mesh.nx(), ny = mesh.ny();

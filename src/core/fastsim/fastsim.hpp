@@ -31,6 +31,13 @@ struct Flexibilities {
   /// direction, as the longitudinal displacement that lateral traction makes through Poisson's
   /// ratio does in exact theory. 0: Kalker's FastSim.
   double lateralCoupling = 0.0;
+  /// Eta's lateral drive varying along the rolling direction (the calibrated FastSim's,
+  /// steady_calibration.hpp): the drive eta / L2 becomes etaGain (eta / L2) (1 - etaSlope x), x [m]
+  /// from the patch's centre, leading edge at +a. With xi beside eta it turns the saturated
+  /// traction along the strip and carries the moment that exact theory keeps there. 0 and 1:
+  /// Kalker's FastSim.
+  double etaSlope = 0.0;  ///< [1/m]
+  double etaGain = 1.0;   ///< [-]
   double spinX() const { return L3x > 0.0 ? L3x : L3; }
 };
 Flexibilities kalkerFlexibilities(double a, double b, double G, const CreepCoefficients& c);
@@ -40,6 +47,17 @@ struct Creepages {
   double eta = 0.0;  ///< lateral [-]
   double phi = 0.0;  ///< spin [1/m]
 };
+
+/// The march's lateral drive gy + gphi x at x [m] from the patch's centre (gy [Pa/m] as eta / L2,
+/// gphi [Pa/m^2] as phi / L3): eta's (Flexibilities::etaSlope, etaGain) and spin's.
+struct LateralDrive {
+  double gy, gphi;
+};
+inline LateralDrive lateralDrive(const Flexibilities& L, const Creepages& c) {
+  const double gy = c.eta / L.L2, gphi = c.phi / L.L3;
+  if (L.etaSlope == 0.0) return {gy, gphi};
+  return {gy * L.etaGain, gphi - gy * L.etaGain * L.etaSlope};
+}
 
 /// Integrated result of one FastSim evaluation.
 struct CreepForces {

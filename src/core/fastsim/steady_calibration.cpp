@@ -164,6 +164,10 @@ double FlexibilityCalibration::coupling(double e) const {
   return logRatio(kCouplingKind, e);  // stored as it is, not as a logarithm
 }
 
+double FlexibilityCalibration::etaSlope(double e) const {
+  return logRatio(kEtaSlopeKind, e);  // stored as it is
+}
+
 double FlexibilityCalibration::ratio(int kind, double e) const {
   return std::exp(logRatio(kind, e));
 }
@@ -220,6 +224,13 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
     held = heldCoupling(e, share[2]);
     L.lateralCoupling =
         lateralCoupling(logRatioOf(kCouplingKind) * (q6 + (1.0 - q6) * held), a, b, k);
+    // Eta's drive's slope where xi is beside eta (etaSlopeWeight): in full slip it turns the
+    // traction along the strip, as exact theory's xi = eta curves do (doc/calibrated_fastsim.md,
+    // "Eta's drive's slope").
+    if (!eps_[kEtaSlopeKind].empty() && e2[0] > 0.0) {
+      const double w = etaSlopeWeight(e2[0], e2[1], share[2]);
+      if (w > 0.0) setEtaSlope(logRatioOf(kEtaSlopeKind) * w, a, &L);
+    }
   }
   // The combined correction's ln multipliers, of L1, L2, L3 and of the bound's shape, in one
   // lookup; each goes into the exp of the ratio it multiplies. None for one kind or xi with eta.
@@ -414,6 +425,7 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
                      : f[1] == "23x" ? 3
                      : f[1] == "23s" ? 4
                      : f[1] == "22c" ? 10
+                     : f[1] == "22b" ? 11
                      : f[1] == "c1"  ? 5
                      : f[1] == "c2"  ? 6
                      : f[1] == "c3"  ? 7
@@ -421,10 +433,11 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
                      : f[1] == "c3x" ? 9
                                      : -1;
     if (kind < 0)
-      fail(path, n,
-           "kind must be 11, 22, 23, 23x, 23s, 22c, c1, c2, c3, cs or c3x, got '" + f[1] + "'");
+      fail(
+          path, n,
+          "kind must be 11, 22, 23, 23x, 23s, 22c, 22b, c1, c2, c3, cs or c3x, got '" + f[1] + "'");
     if (!(ab > 0.0)) fail(path, n, "a_over_b must be > 0");
-    if (!(r > 0.0) && kind != 10) fail(path, n, "ratio must be > 0");
+    if (!(r > 0.0) && kind < 10) fail(path, n, "ratio must be > 0");
     const double logAB = std::log(ab);
     if (rows.empty() || rows.back().logAB != logAB) {
       if (!rows.empty() && !(logAB > rows.back().logAB))
@@ -450,10 +463,15 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
       continue;
     }
     Row& row = rows.back();
-    const int slot = kind == 10 ? FlexibilityCalibration::kCouplingKind : kind;
+    const int slot = kind == 10   ? FlexibilityCalibration::kCouplingKind
+                     : kind == 11 ? FlexibilityCalibration::kEtaSlopeKind
+                                  : kind;
     std::vector<double>& x = row.eps[slot];
     if (kind == 4 && !(r <= 1.0)) fail(path, n, "a bound shape (23s) must be in (0, 1]");
-    // 23s and 22c take any value at knot 0 (a shape, a coupling: not ratios to Kalker's), and
+    if (kind == 11 && !(std::abs(r) <= FlexibilityCalibration::kMaxEtaSlope))
+      fail(path, n, "eta's drive's slope (22b) must be in [-2.5, 2.5]");
+    // 23s, 22c and 22b take any value at knot 0 (a shape, a coupling, a slope: not ratios to
+    // Kalker's), and
     // 23x its linear value (L3x over L3 for exact theory's linear spin moment, C33).
     if (x.empty() ? (e != 0.0 || (kind < 3 && r != 1.0)) : !(e > x.back()))
       fail(path, n, "the knots of a kind start at epsilon 0, ratio 1 and increase");
@@ -467,7 +485,7 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
                                  ? " (fastsim_nx " + std::to_string(t.meshes_[m].nx) + ")"
                                  : std::string();
     for (const Row& row : rows)
-      for (int k = 0; k < 6; ++k)
+      for (int k = 0; k < FlexibilityCalibration::kKinds; ++k)
         if ((k < 3 && row.eps[k].empty()) || row.eps[k] != rows.front().eps[k])
           fail(path, n, "every a/b must hold every kind, with the same epsilon knots" + mesh);
     // The combined correction: a full grid (every multiplier, sign, spin share and xi share) with
@@ -526,7 +544,7 @@ bool SteadyCalibration::sameKnots(const std::vector<Row>& x, const std::vector<R
     if (p.logAB != q.logAB || p.corrS3 != q.corrS3 || p.corrT != q.corrT ||
         p.corrEps != q.corrEps || p.corr.size() != q.corr.size())
       return false;
-    for (int k = 0; k < 6; ++k)
+    for (int k = 0; k < FlexibilityCalibration::kKinds; ++k)
       if (p.eps[k] != q.eps[k] || p.ratio[k].size() != q.ratio[k].size()) return false;
   }
   return true;
@@ -552,9 +570,9 @@ SteadyCalibration SteadyCalibration::forMesh(int nx) const {
   for (std::size_t r = 0; r < m.rows.size(); ++r) {
     Row& row = m.rows[r];
     const Row& h = hi->rows[r];
-    for (int k = 0; k < 6; ++k)
+    for (int k = 0; k < FlexibilityCalibration::kKinds; ++k)
       for (std::size_t j = 0; j < row.ratio[k].size(); ++j)
-        row.ratio[k][j] = k == FlexibilityCalibration::kCouplingKind
+        row.ratio[k][j] = FlexibilityCalibration::heldAsIs(k)
                               ? row.ratio[k][j] + w * (h.ratio[k][j] - row.ratio[k][j])
                               : blend(row.ratio[k][j], h.ratio[k][j]);
     for (std::size_t j = 0; j < row.corr.size(); ++j) row.corr[j] = blend(row.corr[j], h.corr[j]);
@@ -589,17 +607,17 @@ void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
   const Row& hi = rows[std::min(i + 1, rows.size() - 1)];
   const double t =
       (&lo == &hi || !(x > lo.logAB)) ? 0.0 : std::min(1.0, (x - lo.logAB) / (hi.logAB - lo.logAB));
-  for (int k = 0; k < 6; ++k) {
+  for (int k = 0; k < FlexibilityCalibration::kKinds; ++k) {
     c->eps_[k] = lo.eps[k];  // every row has the same knots: the storage c holds is reused
     c->logRatio_[k].resize(lo.ratio[k].size());
     for (std::size_t j = 0; j < lo.ratio[k].size(); ++j) {
       const double v = lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]);
-      c->logRatio_[k][j] = k == FlexibilityCalibration::kCouplingKind ? v : std::log(v);
+      c->logRatio_[k][j] = FlexibilityCalibration::heldAsIs(k) ? v : std::log(v);
     }
     reciprocalWidths(c->eps_[k], &c->perWidth_[k]);
   }
   c->sharedKnots_ = true;
-  for (int k = 1; k < 6; ++k)
+  for (int k = 1; k < FlexibilityCalibration::kKinds; ++k)
     if (!c->eps_[k].empty() && c->eps_[k] != c->eps_[0]) c->sharedKnots_ = false;
   c->corrS3_ = lo.corrS3;
   c->corrT_ = lo.corrT;

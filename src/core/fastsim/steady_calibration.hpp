@@ -54,11 +54,22 @@
 /// (Flexibilities::lateralCoupling); identified with 22's ratio on eta alone against Fy and Mz.
 /// Odd in y, it leaves every force of linear theory as it was.
 ///
+/// The moment of xi with eta (kind 22b, optional: none is a uniform drive): with xi beside eta the
+/// exact moment on a wide patch (a/b 0.2) and a long one (a/b 5) runs on past FastSim's into the
+/// patch's saturation, where the coupling identified on eta alone leaves it 7-10 % of its peak
+/// off. The table's slope beta(e) (per a/b, interpolated linearly in e and a/b) makes eta's drive
+/// (eta / L2)(1 - beta x / a) / (1 - 3 pi beta / 32) (Flexibilities::etaSlope, etaGain; the same
+/// lateral force in linear theory): the saturated traction turns along the strip and carries a
+/// moment. Identified on xi = eta after 11, 22 and 22c, applied with etaSlopeWeight (full at
+/// xi = eta, none on one creepage). In the march it folds into spin's lateral drive, which is
+/// already linear in x: no work per node.
+///
 /// Table (CSV, '#' comment lines: command, Poisson ratio, grids, fit errors):
 ///   a_over_b,kind,epsilon,ratio[,...]   optional columns, named in the header, in any order:
 ///   fit_error, fastsim_nx, spin_share, xi_share, sign (an empty or missing field: not given)
-///   kind in {11, 22, 23, 23x, 23s, 22c, c1, c2, c3, cs, c3x}; c-kinds carry their direction (sign
-///   +1 or -1); 22c's "ratio" is the coupling c, any sign
+///   kind in {11, 22, 23, 23x, 23s, 22c, 22b, c1, c2, c3, cs, c3x}; c-kinds carry their direction
+///   (sign +1 or -1); 22c's "ratio" is the coupling c, any sign; 22b's the slope beta, in
+///   [-2.5, 2.5]
 /// fastsim_nx: the FastSim mesh's nodes per strip the row was identified on (FastSim's own
 /// discretisation error differs per mesh, the exact curves do not); each mesh's rows in one block.
 /// A table without the column is one mesh that serves every nx.
@@ -173,6 +184,35 @@ class FlexibilityCalibration {
   /// Kind 5: the table's coupling c at normalised creepage e (22c; 0 where the table has none).
   double coupling(double e) const;
   static constexpr int kCouplingKind = 5;
+  /// Kind 6: the table's slope beta of eta's drive at normalised creepage e (22b; 0 where the
+  /// table has none).
+  double etaSlope(double e) const;
+  static constexpr int kEtaSlopeKind = 6;
+  /// Whether kind k's table values are held as they are (22c, 22b) rather than as ratios (in ln).
+  static constexpr bool heldAsIs(int k) { return k == kCouplingKind || k == kEtaSlopeKind; }
+  /// The weight of 22b's slope on creepages with squares e1^2, e2^2 and spin's share s3 of e^2:
+  /// 4 t (1 - t), t xi's share of e1^2 + e2^2 (identified on xi = eta, t = 1/2; on eta alone the
+  /// coupling carries the moment, and without eta the drive is zero), falling linearly with spin's
+  /// share to 0 at kEtaSlopeSpinTo, the shipped table's first spin-share knot: from there on the
+  /// combined correction, identified without the slope, decides.
+  static double etaSlopeWeight(double e1Sq, double e2Sq, double s3) {
+    const double rest = e1Sq + e2Sq;
+    return rest > 0.0
+               ? 4.0 * e1Sq * e2Sq / (rest * rest) * std::max(0.0, 1.0 - s3 / kEtaSlopeSpinTo)
+               : 0.0;
+  }
+  static constexpr double kEtaSlopeSpinTo = 0.03;
+  /// Flexibilities::etaSlope [1/m] and etaGain of slope beta on a patch of semi-axis a [m]: the
+  /// drive (1 - beta x / a) / (1 - 3 pi beta / 32), whose linear-theory lateral force over the
+  /// elliptic patch is the uniform drive's (the strips' sum of 2 a_j^2 (1 - (beta / 3) a_j / a)).
+  /// beta is clamped to [-kMaxEtaSlope, kMaxEtaSlope] (the gain stays finite and positive).
+  static void setEtaSlope(double beta, double a, Flexibilities* L) {
+    beta = std::clamp(beta, -kMaxEtaSlope, kMaxEtaSlope);
+    L->etaSlope = beta / a;
+    L->etaGain = 1.0 / (1.0 - kEtaSlopeForce * beta);
+  }
+  static constexpr double kEtaSlopeForce = 3.0 * M_PI / 32.0;
+  static constexpr double kMaxEtaSlope = 2.5;
   /// Flexibilities::lateralCoupling [1/m^2] of coupling c at patch (a, b): c / (G b L1,Kalker) =
   /// 3 C11 c / (8 a b).
   static double lateralCoupling(double c, double a, double b, const CreepCoefficients& k) {
@@ -217,12 +257,13 @@ class FlexibilityCalibration {
 
  private:
   friend class SteadyCalibration;
-  // Per kind (0-4: 11, 22, 23, 23x, 23s; 5: 22c) its knots and ln ratio at them (22c: the
-  // coupling itself).
-  std::vector<double> eps_[6], logRatio_[6];
+  static constexpr int kKinds = 7;
+  // Per kind (0-4: 11, 22, 23, 23x, 23s; 5: 22c; 6: 22b) its knots and ln ratio at them (22c, 22b:
+  // the value itself).
+  std::vector<double> eps_[kKinds], logRatio_[kKinds];
   // 1 / (eps_[k][i] - eps_[k][i - 1]) at i (index 0 unused): a knot cell's weight without a
   // division.
-  std::vector<double> perWidth_[6];
+  std::vector<double> perWidth_[kKinds];
   // Where every kind present holds kind 11's knots (the shipped table), one search of e serves
   // them all; set by SteadyCalibration::at.
   bool sharedKnots_ = false;
@@ -287,7 +328,8 @@ class SteadyCalibration {
  private:
   struct Row {
     double logAB;
-    std::vector<double> eps[6], ratio[6];  // FlexibilityCalibration's kinds (22c: c itself)
+    std::vector<double> eps[FlexibilityCalibration::kKinds],
+        ratio[FlexibilityCalibration::kKinds];  // FlexibilityCalibration's kinds (22c, 22b as is)
     std::vector<double> corrS3, corrT, corrEps, corr;  // as FlexibilityCalibration's, ratios
   };
   struct Mesh {

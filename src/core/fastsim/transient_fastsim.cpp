@@ -748,8 +748,8 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const StateUpdate<kSecond> update(X, Y, zx, zy, dt, r, st);
   history.writesTo(*st);
   const Pair beta(X.beta, Y.beta);
-  const double gx = c.xi / L.L1, gy = c.eta / L.L2, gphi = c.phi / L.L3, gphiX = c.phi / L.spinX(),
-               a = mesh.a();
+  const auto [gy, gphi] = lateralDrive(L, c);
+  const double gx = c.xi / L.L1, gphiX = c.phi / L.spinX(), a = mesh.a();
   const double* const xn = mesh.xNorms().data();
   const FieldPointers out(f);
   const int nx = mesh.nx(), ny = mesh.ny();
