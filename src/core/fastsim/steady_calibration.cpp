@@ -471,8 +471,7 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
     if (kind == 11 && !(std::abs(r) <= FlexibilityCalibration::kMaxEtaSlope))
       fail(path, n, "eta's drive's slope (22b) must be in [-2.5, 2.5]");
     // 23s, 22c and 22b take any value at knot 0 (a shape, a coupling, a slope: not ratios to
-    // Kalker's), and
-    // 23x its linear value (L3x over L3 for exact theory's linear spin moment, C33).
+    // Kalker's), and 23x its linear value (L3x over L3 for exact theory's linear spin moment, C33).
     if (x.empty() ? (e != 0.0 || (kind < 3 && r != 1.0)) : !(e > x.back()))
       fail(path, n, "the knots of a kind start at epsilon 0, ratio 1 and increase");
     x.push_back(e);

@@ -54,10 +54,10 @@
 /// (Flexibilities::lateralCoupling); identified with 22's ratio on eta alone against Fy and Mz.
 /// Odd in y, it leaves every force of linear theory as it was.
 ///
-/// The moment of xi with eta (kind 22b, optional: none is a uniform drive): with xi beside eta the
-/// exact moment on a wide patch (a/b 0.2) and a long one (a/b 5) runs on past FastSim's into the
-/// patch's saturation, where the coupling identified on eta alone leaves it 7-10 % of its peak
-/// off. The table's slope beta(e) (per a/b, interpolated linearly in e and a/b) makes eta's drive
+/// The moment of xi with eta (kind 22b, optional: none is a uniform drive): with xi beside eta,
+/// on a wide patch (a/b 0.2) and a long one (a/b 5), the exact moment falls off otherwise than
+/// FastSim's as the patch saturates, which the coupling identified on eta alone cannot follow. The
+/// table's slope beta(e) (per a/b, interpolated linearly in e and a/b) makes eta's drive
 /// (eta / L2)(1 - beta x / a) / (1 - 3 pi beta / 32) (Flexibilities::etaSlope, etaGain; the same
 /// lateral force in linear theory): the saturated traction turns along the strip and carries a
 /// moment. Identified on xi = eta after 11, 22 and 22c, applied with etaSlopeWeight (full at
