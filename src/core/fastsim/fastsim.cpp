@@ -307,8 +307,8 @@ template <bool kCoupled>
 CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                         TractionField* f) {
   using Strip = SteadyStrip<kCoupled>;
-  const auto [gy, gphi] = lateralDrive(L, c);
-  const double gx = c.xi / L.L1, gphiX = c.phi / L.spinX();
+  const LateralDrive drive = lateralDrive(L, c);  // plain names: lambdas below capture them
+  const double gx = c.xi / L.L1, gy = drive.gy, gphi = drive.gphi, gphiX = c.phi / L.spinX();
   const FieldPointers out(f);
   const double* const xn = mesh.xNorms().data();
   const int nx = mesh.nx(), ny = mesh.ny();

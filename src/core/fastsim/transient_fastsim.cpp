@@ -748,8 +748,9 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   const StateUpdate<kSecond> update(X, Y, zx, zy, dt, r, st);
   history.writesTo(*st);
   const Pair beta(X.beta, Y.beta);
-  const auto [gy, gphi] = lateralDrive(L, c);
-  const double gx = c.xi / L.L1, gphiX = c.phi / L.spinX(), a = mesh.a();
+  const LateralDrive drive = lateralDrive(L, c);  // plain names: lambdas below capture them
+  const double gx = c.xi / L.L1, gy = drive.gy, gphi = drive.gphi, gphiX = c.phi / L.spinX(),
+               a = mesh.a();
   const double* const xn = mesh.xNorms().data();
   const FieldPointers out(f);
   const int nx = mesh.nx(), ny = mesh.ny();
