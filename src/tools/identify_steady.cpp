@@ -481,6 +481,30 @@ void refinePair(const Cost& cost, double h, PairSearch* best) {
     }
 }
 
+// A minimum of cost over [lo, hi]: the best of `start` (a point and its cost) and n + 1 points
+// evenly spaced, then `iterations` golden-section steps within a grid step either side of it (kept
+// inside [lo, hi] where `clamp`); the section's midpoint where it does better.
+template <class Cost>
+double scanThenRefine(const Cost& cost, double lo, double hi, int n, int iterations,
+                      std::pair<double, double> start, bool clamp) {
+  auto [best, bestCost] = start;
+  for (int i = 0; i <= n; ++i) {
+    const double x = lo + (hi - lo) * i / n, c = cost(x);
+    if (c < bestCost) bestCost = c, best = x;
+  }
+  double a = best - (hi - lo) / n, b = best + (hi - lo) / n;
+  if (clamp) a = std::max(lo, a), b = std::min(hi, b);
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int it = 0; it < iterations; ++it) {
+    const double c1 = b - phi * (b - a), c2 = a + phi * (b - a);
+    if (cost(c1) < cost(c2))
+      b = c2;
+    else
+      a = c1;
+  }
+  return cost(0.5 * (a + b)) < bestCost ? 0.5 * (a + b) : best;
+}
+
 struct KindFit {
   std::vector<double> ratio, ratioX, error;
   std::vector<double> couple;  // eta: the lateral coupling (22c), per knot
@@ -571,22 +595,7 @@ std::vector<double> identifyEtaSlope(const Options& o, ExactCache* exact, double
     };
     const double lo = std::max(-kEtaSlopeMax, previous - kEtaSlopeStep),
                  hi = std::min(kEtaSlopeMax, previous + kEtaSlopeStep);
-    const int n = 50;
-    double best = previous, bestCost = cost(previous);
-    for (int i = 0; i <= n; ++i) {
-      const double b = lo + (hi - lo) * i / n, v = cost(b);
-      if (v < bestCost) bestCost = v, best = b;
-    }
-    double u = std::max(lo, best - (hi - lo) / n), w = std::min(hi, best + (hi - lo) / n);
-    const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
-    for (int it = 0; it < 30; ++it) {
-      const double c1 = w - phi * (w - u), c2 = u + phi * (w - u);
-      if (cost(c1) < cost(c2))
-        w = c2;
-      else
-        u = c1;
-    }
-    if (cost(0.5 * (u + w)) < bestCost) best = 0.5 * (u + w);
+    const double best = scanThenRefine(cost, lo, hi, 50, 30, {previous, cost(previous)}, true);
     previous = best;
     beta.push_back(best);
     error->push_back(fit(best));
@@ -657,22 +666,7 @@ KindFit identifyKind(const Options& o, ExactCache* exact, double g, int kind, do
     // other branch of a creep curve that rises and falls (spin).
     const double lo = std::max(std::log(0.05), std::log(previous) - 0.6),
                  hi = std::min(std::log(50.0), std::log(previous) + 0.6);
-    const int n = 400;
-    double best = 0.0, bestCost = 1e300;
-    for (int i = 0; i <= n; ++i) {
-      const double lr = lo + (hi - lo) * i / n, c = cost(lr);
-      if (c < bestCost) bestCost = c, best = lr;
-    }
-    double a = best - (hi - lo) / n, b = best + (hi - lo) / n;
-    const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
-    for (int it = 0; it < 40; ++it) {
-      const double c1 = b - phi * (b - a), c2 = a + phi * (b - a);
-      if (cost(c1) < cost(c2))
-        b = c2;
-      else
-        a = c1;
-    }
-    const double lr = cost(0.5 * (a + b)) < bestCost ? 0.5 * (a + b) : best;
+    const double lr = scanThenRefine(cost, lo, hi, 400, 40, {0.0, 1e300}, false);
     previous = std::exp(lr);
     fit.ratio.push_back(previous);
     fit.ratioX.push_back(1.0);
