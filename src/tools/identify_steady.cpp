@@ -74,8 +74,9 @@ struct Options {
   // mu fz per unit ln multiplier; 0: each direction fitted alone.
   double smoothing = 0.01;
   bool solveGrid = false, gridOnly = false, momentStudy = false;
-  bool coupling = true;  // eta's lateral coupling (kind 22c) identified and used
-  bool etaSlope = true;  // with it, eta's drive's slope (kind 22b)
+  bool coupling = true;   // eta's lateral coupling (kind 22c) identified and used
+  bool etaSlope = true;   // with it, eta's drive's slope (kind 22b)
+  bool etaNoSpin = true;  // with both, eta without spin (kinds 22n, 22cn, 22s; 22b refitted)
 };
 
 const char* const kUsage =
@@ -89,6 +90,7 @@ const char* const kUsage =
     "                                      0.825,0.9,0.95]\n"
     "                       [--xi-shares 0,0.125,0.25,0.375,0.5,0.75,0.875,1]\n"
     "                       [--smoothing 0.01] [--no-coupling] [--no-eta-slope]\n"
+    "                       [--no-eta-without-spin]\n"
     "                       [--solve-grid [--grid-only]]\n"
     "                       [--moment-study]\n"
     "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
@@ -104,6 +106,8 @@ const char* const kUsage =
     "          unit ln multiplier; 0: each direction fitted alone)\n"
     "--no-coupling: no lateral coupling (kind 22c): eta's ratio fitted to the force alone\n"
     "--no-eta-slope: no slope of eta's drive (kind 22b): uniform along the strip, as classic\n"
+    "--no-eta-without-spin: no set of eta's own without spin (kinds 22n, 22cn, 22s): the pair\n"
+    "          fitted on eta alone holds at every share of spin, 22b fitted on it\n"
     "--solve-grid: only solve the exact points the table and curves need (a long job; the cache\n"
     "          is saved as it goes); --grid-only: the direction grid's points, not the rays'\n"
     "--moment-study: per ray and a/b at --points, FastSim's errors on the table (or --table) and\n"
@@ -147,6 +151,8 @@ void readOption(tools::Args& a, Options* o) {
     o->momentStudy = true;
   else if (a.is("--no-eta-slope"))
     o->etaSlope = false;
+  else if (a.is("--no-eta-without-spin"))
+    o->etaNoSpin = false;
   else if (a.is("--no-coupling"))
     o->coupling = false;
   else
@@ -758,6 +764,141 @@ void coordinateSearch(double* x, int dims, const Cost& cost, const Allowed& allo
     }
 }
 
+// Eta without spin (kinds 22n, 22cn, 22s, with 22b): at each knot e, ln ratio of L2, coupling c,
+// eta's bound shape and the slope beta fitted together against eta alone's error (lateralError)
+// and xi = eta's (spinError), their sum plus the larger (the larger alone gave eta's own moment
+// away for xi = eta's on wide patches, where xi = eta had little to gain, and more so at other
+// nu), both through the core's step on a table of this knot and the previous one beside the
+// single kinds' `cal` (11, 22, 22c, 22b fitted), at the knot and at the cached points since the
+// previous knot (fitted at the knots alone, the curves overshot between them). Coordinate search
+// from the pair's own (22, 22c, shape 0, 22b) and from the previous knot's four, pulled towards the
+// pair's (kEtaNoSpinPairPull) and the previous knot's (one continuous branch: unpulled, the search
+// left it where the curves saturate).
+// Knot 0: ratio 1, beta 0, and the first knot's coupling and shape (linear theory's moment is the
+// coupling's; the bound does not act there).
+struct EtaNoSpinFit {
+  std::vector<double> ratio, couple, shape, beta, error;
+};
+constexpr double kEtaNoSpinPull = 2e-3;
+// The pull towards the pair's own (22, 22c, shape 0, 22b), in the cost's units per unit: the set
+// leaves the pair only where the steady curves gain by it. Pulled by continuity alone it wandered
+// from the pair through the end of partial slip on the round patch, where the steady curves gained
+// little and nss marched the paper's combined3 (eta's large swings) worse than classic.
+constexpr double kEtaNoSpinPairPull = 0.02;
+// xi = eta's error held below this (a steep penalty above it, as kLateralForceCap for eta alone):
+// the sum traded xi = eta's moment at a knot on the wide patch (a/b 0.2) past the 5 % of
+// the peak for eta's own.
+constexpr double kXiEtaCap = 0.009;
+EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double g,
+                                    const FlexibilityCalibration& cal) {
+  const Ray &eta = kRays[1], &xe = kRays[3];
+  double peakEta = 0.0, peakXe = 0.0;
+  for (double e : o.knots) {
+    if (e == 0.0) continue;
+    peakEta = std::max(peakEta, std::abs(exact->at(g, eta, e).mz));
+    peakXe = std::max(peakXe, std::abs(exact->at(g, xe, e).mz));
+  }
+  EtaNoSpinFit fit;
+  double previous[4] = {0.0, 0.0, 0.0, 0.0};  // ln ratio, c, shape, beta
+  double ePrevious = 0.0;
+  bool first = true;
+  for (double e : o.knots) {
+    if (e == 0.0) {
+      for (auto* v : {&fit.ratio, &fit.couple, &fit.shape, &fit.beta, &fit.error})
+        v->push_back(0.0);
+      fit.ratio.back() = 1.0;
+      continue;
+    }
+    // Where the fit is costed: the knot, and the cached points since the previous knot (the
+    // table is interpolated there between the previous knot's four and these).
+    std::vector<double> at = {e};
+    if (!first)
+      for (double p : o.points)
+        if (p > ePrevious && p < e) at.push_back(p);
+    std::vector<Point> xEta, xXe;
+    for (double p : at) xEta.push_back(exact->at(g, eta, p)), xXe.push_back(exact->at(g, xe, p));
+    // The single kinds at the knots 0, the previous knot's e (but on the first) and e, and the
+    // candidate as the no-spin kinds and 22b.
+    std::string fixed = "a_over_b,kind,epsilon,ratio\n";
+    auto row = [&](std::string* t, const char* kind, double knot, double value) {
+      char line[128];
+      std::snprintf(line, sizeof line, "%.17g,%s,%.17g,%.17g\n", g, kind, knot, value);
+      *t += line;
+    };
+    std::vector<double> knots = {0.0};
+    if (!first) knots.push_back(ePrevious);
+    knots.push_back(e);
+    for (double k : knots) {
+      row(&fixed, "11", k, cal.ratio(0, k));
+      row(&fixed, "22", k, cal.ratio(1, k));
+      row(&fixed, "23", k, 1.0);
+      row(&fixed, "22c", k, cal.coupling(k));
+    }
+    // The larger of eta alone's error and xi = eta's over the knot's cell, and the fit's cost: at
+    // each place their sum and the larger.
+    auto errors = [&](const double* v, double* larger) {
+      std::string t = fixed;
+      for (double k : knots) {
+        const bool here = k == e, before = k > 0.0 && !here;
+        const double* w = here ? v : before ? previous : nullptr;
+        row(&t, "22b", k, w ? w[3] : 0.0);
+        row(&t, "22n", k, w ? std::exp(w[0]) : 1.0);
+        row(&t, "22cn", k, w ? w[1] : 0.0);
+        row(&t, "22s", k, w ? w[2] : 0.0);
+      }
+      std::istringstream text(t);
+      const FlexibilityCalibration one = SteadyCalibration::parse(text, "(knot cell)").at(g);
+      double sum = 0.0;
+      *larger = 0.0;
+      for (std::size_t i = 0; i < at.size(); ++i) {
+        const double alone = lateralError(fastsimAt(o, g, eta, at[i], one), xEta[i], peakEta),
+                     withXi = spinError(fastsimAt(o, g, xe, at[i], one), xXe[i], peakXe);
+        sum += std::max(alone, withXi) + alone + withXi + 100.0 * std::max(0.0, withXi - kXiEtaCap);
+        *larger = std::max(*larger, std::max(alone, withXi));
+      }
+      return sum;
+    };
+    auto error = [&](const double* v) {
+      double larger;
+      return errors(v, &larger);
+    };
+    const double pair[4] = {std::log(cal.ratio(1, e)), cal.coupling(e), 0.0, cal.etaSlope(e)};
+    auto cost = [&](const double* v) {
+      double pull = 0.0;
+      if (!first)
+        for (int i = 0; i < 4; ++i) pull += std::abs(v[i] - previous[i]);
+      double toPair = 0.0;
+      for (int i = 0; i < 4; ++i) toPair += std::abs(v[i] - pair[i]);
+      return error(v) + kEtaNoSpinPull * pull + kEtaNoSpinPairPull * toPair;
+    };
+    auto allowed = [](const double* v) {
+      return v[0] > std::log(0.05) && v[0] < std::log(50.0) &&
+             v[2] >= FlexibilityCalibration::kMinEtaShape &&
+             v[2] <= FlexibilityCalibration::kMaxBoundShape && std::abs(v[3]) <= kEtaSlopeMax;
+    };
+    double best[4] = {pair[0], pair[1], pair[2], pair[3]};
+    coordinateSearch(best, 4, cost, allowed, 20);
+    if (!first) {
+      double fromPrevious[4];
+      std::copy(previous, previous + 4, fromPrevious);
+      coordinateSearch(fromPrevious, 4, cost, allowed, 20);
+      if (cost(fromPrevious) < cost(best)) std::copy(fromPrevious, fromPrevious + 4, best);
+    }
+    double larger;
+    errors(best, &larger);
+    fit.error.push_back(larger);
+    std::copy(best, best + 4, previous);
+    ePrevious = e;
+    first = false;
+    fit.ratio.push_back(std::exp(best[0]));
+    fit.couple.push_back(best[1]);
+    fit.shape.push_back(best[2]);
+    fit.beta.push_back(best[3]);
+  }
+  if (fit.couple.size() > 1) fit.couple[0] = fit.couple[1], fit.shape[0] = fit.shape[1];
+  return fit;
+}
+
 // The combined correction's search cost at a knot: a smooth norm of the errors spinError takes the
 // larger of (a coordinate search stalls on the ridges of a maximum), with a small pull of the ln
 // multipliers `l` towards 1 (kSpinDrivePull on L3x's).
@@ -1031,16 +1172,33 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
       std::stringstream single;
       single << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n" << rows[g];
       std::vector<double> error;
-      const std::vector<double> beta = identifyEtaSlope(
+      std::vector<double> beta = identifyEtaSlope(
           o, exact, g, SteadyCalibration::parse(single, "(single kinds)").at(g), &error);
-      for (std::size_t i = 0; i < beta.size(); ++i) {
-        char line[160];
-        std::snprintf(line, sizeof line, "%g,22b,%g,%.6f,%.5f,%d\n", g, o.knots[i], beta[i],
-                      error[i], o.nx);
-        rows[g] += line;
+      auto write = [&](const char* kind, const std::vector<double>& v) {
+        for (std::size_t i = 0; i < v.size(); ++i) {
+          char line[160];
+          std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, kind, o.knots[i], v[i],
+                        error[i], o.nx);
+          rows[g] += line;
+        }
+      };
+      if (o.etaNoSpin) {  // on the single kinds' table with that slope as its start
+        std::stringstream withSlope;
+        withSlope << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n" << rows[g];
+        for (std::size_t i = 0; i < beta.size(); ++i)
+          withSlope << g << ",22b," << o.knots[i] << "," << beta[i] << ",0," << o.nx << "\n";
+        const EtaNoSpinFit fit = identifyEtaWithoutSpin(
+            o, exact, g, SteadyCalibration::parse(withSlope, "(single kinds)").at(g));
+        beta = fit.beta;
+        error = fit.error;
+        write("22n", fit.ratio);
+        write("22cn", fit.couple);
+        write("22s", fit.shape);
       }
+      write("22b", beta);
       char note[120];
-      std::snprintf(note, sizeof note, "#   a/b %g kind 22b: worst knot error %.4f\n", g,
+      std::snprintf(note, sizeof note, "#   a/b %g kind%s: worst knot error %.4f\n", g,
+                    o.etaNoSpin ? "s 22n, 22cn, 22s, 22b (together)" : " 22b",
                     *std::max_element(error.begin(), error.end()));
       *notes << note;
     }

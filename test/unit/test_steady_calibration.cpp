@@ -372,6 +372,60 @@ TEST(SteadyCalibration, EtasDriveSlopeActsWhereXiIsBesideEta) {
             std::string::npos);
 }
 
+TEST(SteadyCalibration, EtaWithoutSpinReplacesThePairWhereSpinIsNoShare) {
+  // Kinds 22n, 22cn, 22s: eta's ratio, coupling and bound shape where spin has no share, in
+  // place of 22 and 22c, fading linearly with spin's share to the pair at 0.03 (noSpinWeight).
+  const std::string h = "a_over_b,kind,epsilon,ratio\n";
+  const std::string pair = h +
+                           "1,11,0,1\n1,11,1,1.1\n1,22,0,1\n1,22,1,1.2\n1,23,0,1\n1,23,1,0.9\n"
+                           "1,22c,0,-0.5\n1,22c,1,-0.5\n";
+  const std::string own =
+      "1,22n,0,1\n1,22n,1,0.8\n1,22cn,0,-0.3\n1,22cn,1,-0.3\n"
+      "1,22s,0,0.6\n1,22s,1,0.6\n";
+  const FlexibilityCalibration withPair = SteadyCalibration::load(writeTable(pair)).at(1.0);
+  const FlexibilityCalibration c = SteadyCalibration::load(writeTable(pair + own)).at(1.0);
+  const double a = 6e-3, b = 6e-3, G = 8.2e10, muFz = 3e3;
+  const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
+  const Flexibilities kalker = kalkerFlexibilities(a, b, G, k);
+  // Eta alone, e = 0.5: L2 by 22n's ratio (ln interpolated), 22cn's coupling, 22s's shape.
+  const double eta = 0.5 * muFz / (G * a * b * k.c22);
+  const CalibratedStep alone = c.step(a, b, G, k, muFz, {0.0, eta, 0.0});
+  EXPECT_NEAR(alone.L.L2, kalker.L2 * std::sqrt(0.8), 1e-12 * kalker.L2);
+  EXPECT_NEAR(alone.L.lateralCoupling, FlexibilityCalibration::lateralCoupling(-0.3, a, b, k),
+              1e-12 * std::abs(alone.L.lateralCoupling));
+  EXPECT_DOUBLE_EQ(alone.boundShape, 0.6);
+  EXPECT_EQ(withPair.step(a, b, G, k, muFz, {0.0, eta, 0.0}).boundShape, 0.0);
+  // With spin's share s3 of e^2 (eta and spin): half of the way at 1.5 %, the pair's own step
+  // bit for bit from 3 % on.
+  for (const double s3 : {0.015, 0.03, 0.2, 1.0}) {
+    const double e3 = 0.5 * std::sqrt(s3), e2 = 0.5 * std::sqrt(1.0 - s3);
+    const Creepages cr{0.0, e2 * muFz / (G * a * b * k.c22),
+                       e3 * muFz / (G * std::pow(a * b, 1.5) * k.c23)};
+    const CalibratedStep x = c.step(a, b, G, k, muFz, cr), y = withPair.step(a, b, G, k, muFz, cr);
+    if (s3 < 0.03) {
+      EXPECT_NEAR(x.L.lateralCoupling / y.L.lateralCoupling, 0.8, 1e-12);  // -0.4 against -0.5
+      EXPECT_NEAR(x.boundShape, 0.5 * (1.0 - s3) * 0.6, 1e-12);
+      // ln ratio half of the way from 22's to 22n's (at e = 0.5: half of each knot's ln), times
+      // eta's share of e^2 in the step's one ratio.
+      EXPECT_NEAR(x.L.L2 / y.L.L2, std::exp((1.0 - s3) * 0.5 * 0.5 * std::log(0.8 / 1.2)), 1e-12);
+      continue;
+    }
+    EXPECT_EQ(x.L.L1, y.L.L1) << s3;
+    EXPECT_EQ(x.L.L2, y.L.L2) << s3;
+    EXPECT_EQ(x.L.L3, y.L.L3) << s3;
+    EXPECT_EQ(x.L.spinX(), y.L.spinX()) << s3;
+    EXPECT_EQ(x.L.lateralCoupling, y.L.lateralCoupling) << s3;
+    EXPECT_EQ(x.boundShape, y.boundShape) << s3;
+  }
+  // The three together and with 22c; 22n a ratio, 1 at knot 0; 22s in [-1, 2].
+  EXPECT_NE(message(pair + "1,22n,0,1\n1,22n,1,0.8\n").find(":11: 22n, 22cn and 22s come together"),
+            std::string::npos);
+  EXPECT_NE(message(pair + "1,22n,0,1.1\n").find(":10: the knots of a kind start"),
+            std::string::npos);
+  EXPECT_NE(message(pair + "1,22s,0,2.5\n").find(":10: eta's bound shape (22s)"),
+            std::string::npos);
+}
+
 TEST(SteadyCalibration, CouplingHeldAtSmallSpinSharesKeepsLinearTheorysSuperposition) {
   // In linear theory forces and moment add up over the creepages: eta with spin a small share
   // (3 % of e^2) must give eta's moment (its coupling) plus spin's (23x's knot 0). The coupling

@@ -211,19 +211,27 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
     // A subnormal sum (creepages near 1e-155): its reciprocal would overflow to infinity.
     for (int i = 0; i < 3; ++i) share[i] = e2[i] / squares;
   }
+  // Eta's own ratio, coupling and bound shape without spin (22n, 22cn, 22s), fading into the pair
+  // 22, 22c as spin's share goes to kNoSpinTo (noSpinWeight).
+  const double noSpin =
+      finite && !eps_[kEtaNoSpinKind].empty() && e2[1] > 0.0 ? noSpinWeight(share[2]) : 0.0;
+  auto towardsNoSpin = [&](double withSpin, int kind) {
+    return noSpin > 0.0 ? withSpin + noSpin * (logRatioOf(kind) - withSpin) : withSpin;
+  };
   // The lateral coupling, times eta's share of the lateral creepages' e2^2 + e3^2 to the sixth:
   // spin's own parameters (23, 23x, 23s) are fitted without it, and on spin's lateral traction it
   // put a moment that those parameters already carry (doc/calibrated_fastsim.md, "Mz from eta in
   // the core"). Where spin is a small share the rest of it is held (heldCoupling), its moment on
-  // spin's traction taken back through L3x below. Without eta it is 0; without spin, c itself;
-  // without friction (e infinite, the squares inf or NaN) none: every node slips with zero
+  // spin's traction taken back through L3x below. Without eta it is 0; without spin, c itself
+  // (c_n); without friction (e infinite, the squares inf or NaN) none: every node slips with zero
   // traction.
   double held = 0.0;
   if (finite && !eps_[kCouplingKind].empty() && e2[1] > 0.0) {
     const double q = e2[1] / (e2[1] + e2[2]), q2 = q * q, q6 = q2 * q2 * q2;
     held = heldCoupling(e, share[2]);
-    L.lateralCoupling =
-        lateralCoupling(logRatioOf(kCouplingKind) * (q6 + (1.0 - q6) * held), a, b, k);
+    L.lateralCoupling = lateralCoupling(
+        towardsNoSpin(logRatioOf(kCouplingKind), kCouplingNoSpinKind) * (q6 + (1.0 - q6) * held), a,
+        b, k);
     // Eta's drive's slope where xi is beside eta (etaSlopeWeight): in full slip it turns the
     // traction along the strip, as exact theory's xi = eta curves do (doc/calibrated_fastsim.md,
     // "Eta's drive's slope").
@@ -242,9 +250,10 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
   // curves better than the arithmetic one (identify_steady's combined rays,
   // doc/calibrated_fastsim.md).
-  const double logRho =
-      finite ? share[0] * logRatioOf(0) + share[1] * logRatioOf(1) + share[2] * logRatioOf(2)
-             : logRatioOf(0);
+  const double logRho = finite ? share[0] * logRatioOf(0) +
+                                     share[1] * towardsNoSpin(logRatioOf(1), kEtaNoSpinKind) +
+                                     share[2] * logRatioOf(2)
+                               : logRatioOf(0);
   // Towards full slip the flexibilities blend into one, L_crss (Vollebregt and Voltr 2023,
   // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
   // theory, not along (xi / L1, eta / L2). A single creepage has L_crss = its own L, unchanged.
@@ -285,12 +294,16 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
         1.0 / L.spinX() - held * spinCouplingCompensation(L.lateralCoupling, a, L.L3);
     if (perL3x > 0.0) L.L3x = 1.0 / perL3x;
   }
-  // The bound's shape: shape_23s(e) times spin's share of e^2 (no friction: parabolic).
+  // The bound's shape: shape_23s(e) times spin's share of e^2 and shape_22s(e) times eta's where
+  // spin's is small (no friction: parabolic).
+  const double etaShape = noSpin > 0.0 ? noSpin * share[1] * logRatioOf(kEtaShapeKind) : 0.0;
   if (spin && !eps_[4].empty())
     s.boundShape = towardsFullSlip(
         std::min(kMaxBoundShape,
-                 stepExp(logRatioOf(4) + (corrected ? lm[3] : 0.0), table) * share[2]),
+                 stepExp(logRatioOf(4) + (corrected ? lm[3] : 0.0), table) * share[2] + etaShape),
         e, share[2], a / b);
+  else
+    s.boundShape = etaShape;
   return s;
 }
 
@@ -419,25 +432,29 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
     }
     std::vector<Row>& rows = t.meshes_.back().rows;
     const double ab = number(path, n, f[0]), e = number(path, n, f[2]), r = number(path, n, f[3]);
-    const int kind = f[1] == "11"    ? 0
-                     : f[1] == "22"  ? 1
-                     : f[1] == "23"  ? 2
-                     : f[1] == "23x" ? 3
-                     : f[1] == "23s" ? 4
-                     : f[1] == "22c" ? 10
-                     : f[1] == "22b" ? 11
-                     : f[1] == "c1"  ? 5
-                     : f[1] == "c2"  ? 6
-                     : f[1] == "c3"  ? 7
-                     : f[1] == "cs"  ? 8
-                     : f[1] == "c3x" ? 9
-                                     : -1;
+    const int kind = f[1] == "11"     ? 0
+                     : f[1] == "22"   ? 1
+                     : f[1] == "23"   ? 2
+                     : f[1] == "23x"  ? 3
+                     : f[1] == "23s"  ? 4
+                     : f[1] == "22c"  ? 10
+                     : f[1] == "22b"  ? 11
+                     : f[1] == "22n"  ? 12
+                     : f[1] == "22cn" ? 13
+                     : f[1] == "22s"  ? 14
+                     : f[1] == "c1"   ? 5
+                     : f[1] == "c2"   ? 6
+                     : f[1] == "c3"   ? 7
+                     : f[1] == "cs"   ? 8
+                     : f[1] == "c3x"  ? 9
+                                      : -1;
     if (kind < 0)
-      fail(
-          path, n,
-          "kind must be 11, 22, 23, 23x, 23s, 22c, 22b, c1, c2, c3, cs or c3x, got '" + f[1] + "'");
+      fail(path, n,
+           "kind must be 11, 22, 23, 23x, 23s, 22c, 22b, 22n, 22cn, 22s, c1, c2, c3, cs or c3x, "
+           "got '" +
+               f[1] + "'");
     if (!(ab > 0.0)) fail(path, n, "a_over_b must be > 0");
-    if (!(r > 0.0) && kind < 10) fail(path, n, "ratio must be > 0");
+    if (!(r > 0.0) && (kind < 10 || kind == 12)) fail(path, n, "ratio must be > 0");
     const double logAB = std::log(ab);
     if (rows.empty() || rows.back().logAB != logAB) {
       if (!rows.empty() && !(logAB > rows.back().logAB))
@@ -465,14 +482,21 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
     Row& row = rows.back();
     const int slot = kind == 10   ? FlexibilityCalibration::kCouplingKind
                      : kind == 11 ? FlexibilityCalibration::kEtaSlopeKind
+                     : kind == 12 ? FlexibilityCalibration::kEtaNoSpinKind
+                     : kind == 13 ? FlexibilityCalibration::kCouplingNoSpinKind
+                     : kind == 14 ? FlexibilityCalibration::kEtaShapeKind
                                   : kind;
     std::vector<double>& x = row.eps[slot];
     if (kind == 4 && !(r <= 1.0)) fail(path, n, "a bound shape (23s) must be in (0, 1]");
     if (kind == 11 && !(std::abs(r) <= FlexibilityCalibration::kMaxEtaSlope))
       fail(path, n, "eta's drive's slope (22b) must be in [-2.5, 2.5]");
-    // 23s, 22c and 22b take any value at knot 0 (a shape, a coupling, a slope: not ratios to
-    // Kalker's), and 23x its linear value (L3x over L3 for exact theory's linear spin moment, C33).
-    if (x.empty() ? (e != 0.0 || (kind < 3 && r != 1.0)) : !(e > x.back()))
+    if (kind == 14 &&
+        !(r >= FlexibilityCalibration::kMinEtaShape && r <= FlexibilityCalibration::kMaxBoundShape))
+      fail(path, n, "eta's bound shape (22s) must be in [-1, 2]");
+    // 23s, 22c, 22b, 22cn and 22s take any value at knot 0 (a shape, a coupling, a slope: not
+    // ratios to Kalker's), and 23x its linear value (L3x over L3 for exact theory's linear spin
+    // moment, C33).
+    if (x.empty() ? (e != 0.0 || ((kind < 3 || kind == 12) && r != 1.0)) : !(e > x.back()))
       fail(path, n, "the knots of a kind start at epsilon 0, ratio 1 and increase");
     x.push_back(e);
     row.ratio[slot].push_back(r);
@@ -487,6 +511,17 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
       for (int k = 0; k < FlexibilityCalibration::kKinds; ++k)
         if ((k < 3 && row.eps[k].empty()) || row.eps[k] != rows.front().eps[k])
           fail(path, n, "every a/b must hold every kind, with the same epsilon knots" + mesh);
+    // Eta without spin replaces the pair 22, 22c: its three kinds together, and with 22c.
+    {
+      using F = FlexibilityCalibration;
+      const Row& row = rows.front();
+      const bool any = !row.eps[F::kEtaNoSpinKind].empty() ||
+                       !row.eps[F::kCouplingNoSpinKind].empty() ||
+                       !row.eps[F::kEtaShapeKind].empty();
+      if (any && (row.eps[F::kEtaNoSpinKind].empty() || row.eps[F::kCouplingNoSpinKind].empty() ||
+                  row.eps[F::kEtaShapeKind].empty() || row.eps[F::kCouplingKind].empty()))
+        fail(path, n, "22n, 22cn and 22s come together, with 22c" + mesh);
+    }
     // The combined correction: a full grid (every multiplier, sign, spin share and xi share) with
     // the same knots in every a/b, or none.
     // c3x (the multiplier of L3x alone) is optional: in every direction or in none (then 1).

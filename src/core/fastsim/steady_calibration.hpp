@@ -60,16 +60,26 @@
 /// table's slope beta(e) (per a/b, interpolated linearly in e and a/b) makes eta's drive
 /// (eta / L2)(1 - beta x / a) / (1 - 3 pi beta / 32) (Flexibilities::etaSlope, etaGain; the same
 /// lateral force in linear theory): the saturated traction turns along the strip and carries a
-/// moment. Identified on xi = eta after 11, 22 and 22c, applied with etaSlopeWeight (full at
-/// xi = eta, none on one creepage). In the march it folds into spin's lateral drive, which is
+/// moment. Identified on xi = eta after 11, 22 and 22c (and again with eta's set without spin,
+/// below, where the table has it), applied with etaSlopeWeight (full at xi = eta, none on one
+/// creepage). In the march it folds into spin's lateral drive, which is
 /// already linear in x: no work per node.
+///
+/// Eta without spin (kinds 22n, 22cn, 22s, optional): on a long patch (a/b 5) eta's ratio and
+/// coupling cannot fit Fy and Mz together, nor then xi = eta's moment. Where spin has no share they
+/// are replaced by eta's own set, fitted with a bound shape for eta (22s, applied times eta's share
+/// of e^2) and 22b's slope against eta alone and xi = eta together: ratio_22n (a ratio, 1 at knot
+/// 0) and coupling c_n. The step takes ln ratio_22 + n (ln ratio_22n - ln ratio_22) and
+/// c + n (c_n - c), n = noSpinWeight(s3), 1 without spin falling linearly to 0 at kNoSpinTo: from
+/// there on (and on spin alone, whose parameters were fitted on c) the pair fitted on eta alone,
+/// on which the combined correction is identified, holds as it was.
 ///
 /// Table (CSV, '#' comment lines: command, Poisson ratio, grids, fit errors):
 ///   a_over_b,kind,epsilon,ratio[,...]   optional columns, named in the header, in any order:
 ///   fit_error, fastsim_nx, spin_share, xi_share, sign (an empty or missing field: not given)
-///   kind in {11, 22, 23, 23x, 23s, 22c, 22b, c1, c2, c3, cs, c3x}; c-kinds carry their direction
-///   (sign +1 or -1); 22c's "ratio" is the coupling c, any sign; 22b's the slope beta, in
-///   [-2.5, 2.5]
+///   kind in {11, 22, 23, 23x, 23s, 22c, 22b, 22n, 22cn, 22s, c1, c2, c3, cs, c3x}; c-kinds carry
+///   their direction (sign +1 or -1); 22c's and 22cn's "ratio" is the coupling c, any sign; 22b's
+///   the slope beta, in [-2.5, 2.5]; 22s's the shape, in [kMinEtaShape, kMaxBoundShape]
 /// fastsim_nx: the FastSim mesh's nodes per strip the row was identified on (FastSim's own
 /// discretisation error differs per mesh, the exact curves do not); each mesh's rows in one block.
 /// A table without the column is one mesh that serves every nx.
@@ -119,7 +129,8 @@ class FlexibilityCalibration {
   Flexibilities flexibilities(double a, double b, double G, const CreepCoefficients& k, double muFz,
                               const Creepages& c) const;
   /// The bound's shape for this step (flattenedBound): shape_23s(e) times spin's share
-  /// of e^2, e3^2 / e^2, where the table has it, else 0 (parabolic, as classic).
+  /// of e^2, e3^2 / e^2, and shape_22s(e) times eta's where spin's is small (noSpinWeight), where
+  /// the table has them, else 0 (parabolic, as classic).
   double boundShape(double a, double b, double G, const CreepCoefficients& k, double muFz,
                     const Creepages& c) const;
   /// The combined correction's multipliers m[first..last) (0-2: of L1, L2, L3; 3: of the bound's
@@ -188,20 +199,32 @@ class FlexibilityCalibration {
   /// table has none).
   double etaSlope(double e) const;
   static constexpr int kEtaSlopeKind = 6;
-  /// Whether kind k's table values are held as they are (22c, 22b) rather than as ratios (in ln).
-  static constexpr bool heldAsIs(int k) { return k == kCouplingKind || k == kEtaSlopeKind; }
+  /// Kinds 7-9: eta without spin, its ratio (22n), coupling (22cn) and bound shape (22s); absent,
+  /// the pair 22, 22c holds at every share of spin.
+  static constexpr int kEtaNoSpinKind = 7, kCouplingNoSpinKind = 8, kEtaShapeKind = 9;
+  /// Whether kind k's table values are held as they are (22c, 22b, 22cn, 22s) rather than as
+  /// ratios (in ln).
+  static constexpr bool heldAsIs(int k) {
+    return k == kCouplingKind || k == kEtaSlopeKind || k == kCouplingNoSpinKind ||
+           k == kEtaShapeKind;
+  }
+  /// The weight of the no-spin kinds (22n, 22cn, 22s) and of 22b's slope at spin's share s3 of
+  /// e^2: 1 without spin, falling linearly to 0 at kNoSpinTo, the shipped table's first spin-share
+  /// knot: from there on the combined correction, identified on the pair 22, 22c without the
+  /// slope, decides.
+  static double noSpinWeight(double s3) { return std::max(0.0, 1.0 - s3 / kNoSpinTo); }
+  static constexpr double kNoSpinTo = 0.03;
+  /// 22s's range: flattenedBound stays positive above -2; below kMinEtaShape eta's bound would
+  /// peak sharper than any fit asks for.
+  static constexpr double kMinEtaShape = -1.0;
   /// The weight of 22b's slope on creepages with squares e1^2, e2^2 and spin's share s3 of e^2:
   /// 4 t (1 - t), t xi's share of e1^2 + e2^2 (identified on xi = eta, t = 1/2; on eta alone the
   /// coupling carries the moment, and without eta the drive is zero), falling linearly with spin's
-  /// share to 0 at kEtaSlopeSpinTo, the shipped table's first spin-share knot: from there on the
-  /// combined correction, identified without the slope, decides.
+  /// share as noSpinWeight.
   static double etaSlopeWeight(double e1Sq, double e2Sq, double s3) {
     const double rest = e1Sq + e2Sq;
-    return rest > 0.0
-               ? 4.0 * e1Sq * e2Sq / (rest * rest) * std::max(0.0, 1.0 - s3 / kEtaSlopeSpinTo)
-               : 0.0;
+    return rest > 0.0 ? 4.0 * e1Sq * e2Sq / (rest * rest) * noSpinWeight(s3) : 0.0;
   }
-  static constexpr double kEtaSlopeSpinTo = 0.03;
   /// Flexibilities::etaSlope [1/m] and etaGain of slope beta on a patch of semi-axis a [m]: the
   /// drive (1 - beta x / a) / (1 - 3 pi beta / 32), whose linear-theory lateral force over the
   /// elliptic patch is the uniform drive's (the strips' sum of 2 a_j^2 (1 - (beta / 3) a_j / a)).
@@ -257,9 +280,9 @@ class FlexibilityCalibration {
 
  private:
   friend class SteadyCalibration;
-  static constexpr int kKinds = 7;
-  // Per kind (0-4: 11, 22, 23, 23x, 23s; 5: 22c; 6: 22b) its knots and ln ratio at them (22c, 22b:
-  // the value itself).
+  static constexpr int kKinds = 10;
+  // Per kind (0-4: 11, 22, 23, 23x, 23s; 5: 22c; 6: 22b; 7-9: 22n, 22cn, 22s) its knots and ln
+  // ratio at them (heldAsIs: the value itself).
   std::vector<double> eps_[kKinds], logRatio_[kKinds];
   // 1 / (eps_[k][i] - eps_[k][i - 1]) at i (index 0 unused): a knot cell's weight without a
   // division.
@@ -329,7 +352,7 @@ class SteadyCalibration {
   struct Row {
     double logAB;
     std::vector<double> eps[FlexibilityCalibration::kKinds],
-        ratio[FlexibilityCalibration::kKinds];  // FlexibilityCalibration's kinds (22c, 22b as is)
+        ratio[FlexibilityCalibration::kKinds];  // FlexibilityCalibration's kinds (heldAsIs as is)
     std::vector<double> corrS3, corrT, corrEps, corr;  // as FlexibilityCalibration's, ratios
   };
   struct Mesh {
