@@ -18,6 +18,9 @@
 // Combined creepages with spin: on a grid of directions (gridRay) and at each knot, multipliers
 // of L1, L2, L3, of the bound's shape and of L3x on top of the single kinds' table (kinds c1, c2,
 // c3, cs, c3x).
+// Eta: its ratio with the lateral coupling (22, 22c) on eta alone; without spin its own ratio,
+// coupling and bound shape with eta's drive's slope (22n, 22cn, 22s, 22b) on eta alone and
+// xi = eta together.
 // Per FastSim mesh (--nx 5,10,20,30,40): FastSim's own discretisation error differs per mesh, the
 // exact curves do not, so one cache serves every mesh; each mesh's rows carry its fastsim_nx.
 // Options: identify_steady --help.
