@@ -423,6 +423,15 @@ Point fastsimScaled(const Options& o, double g, int kind, double e, double ratio
   return s.normalised(x.fx, x.fy, x.mz);
 }
 
+// The exact curve's peak |Mz| along ray r over the normalised creepages `at` (e = 0, no moment,
+// is not looked up: it need not be in the cache).
+double peakMoment(ExactCache* exact, double g, const Ray& r, const std::vector<double>& at) {
+  double peak = 0.0;
+  for (double e : at)
+    if (e > 0.0) peak = std::max(peak, std::abs(exact->at(g, r, e).mz));
+  return peak;
+}
+
 double pointError(const Point& p, const Point& x, double mzPeak) {
   const double f = std::max(std::abs(p.fx - x.fx), std::abs(p.fy - x.fy));
   return mzPeak > 0.0 ? f + 0.2 * std::abs(p.mz - x.mz) / mzPeak : f;
@@ -526,9 +535,7 @@ struct KindFit {
 // towards the previous knot's: of near-equal optima the one that continues the curve. Knot 0 takes
 // the first fitted knot's coupling (linear theory's moment: the coupling's only work there).
 KindFit identifyLateral(const Options& o, ExactCache* exact, double g) {
-  double mzPeak = 0.0;
-  for (double e : o.knots)
-    if (e > 0.0) mzPeak = std::max(mzPeak, std::abs(exact->at(g, kRays[1], e).mz));
+  const double mzPeak = peakMoment(exact, g, kRays[1], o.knots);
   KindFit fit;
   double lr = 0.0, couple = 0.0;
   bool first = true;
@@ -573,9 +580,7 @@ std::vector<double> identifyEtaSlope(const Options& o, ExactCache* exact, double
                                      const FlexibilityCalibration& cal,
                                      std::vector<double>* error) {
   const Ray& xe = kRays[3];
-  double mzPeak = 0.0;
-  for (double e : o.knots)
-    if (e > 0.0) mzPeak = std::max(mzPeak, std::abs(exact->at(g, xe, e).mz));
+  const double mzPeak = peakMoment(exact, g, xe, o.knots);
   std::vector<double> beta;
   error->clear();
   double previous = 0.0;
@@ -639,9 +644,7 @@ std::pair<double, double> identifySpinPair(const Options& o, double g, double e,
 // Kind `kind` alone (spin: on the lateral coupling `couple` per knot, empty: none).
 KindFit identifyKind(const Options& o, ExactCache* exact, double g, int kind, double shape = 0.0,
                      const std::vector<double>& couple = {}) {
-  double mzPeak = 0.0;
-  if (kind == 2)
-    for (double e : o.knots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, kRays[2], e).mz));
+  const double mzPeak = kind == 2 ? peakMoment(exact, g, kRays[2], o.knots) : 0.0;
   KindFit fit;
   fit.shape = shape;
   double previous = 1.0, previousX = 1.0;
@@ -795,16 +798,11 @@ constexpr double kXiEtaCap = 0.009;
 EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double g,
                                     const FlexibilityCalibration& cal) {
   const Ray &eta = kRays[1], &xe = kRays[3];
-  double peakEta = 0.0, peakXe = 0.0;
-  for (double e : o.knots) {
-    if (e == 0.0) continue;
-    peakEta = std::max(peakEta, std::abs(exact->at(g, eta, e).mz));
-    peakXe = std::max(peakXe, std::abs(exact->at(g, xe, e).mz));
-  }
+  const double peakEta = peakMoment(exact, g, eta, o.knots),
+               peakXe = peakMoment(exact, g, xe, o.knots);
   EtaNoSpinFit fit;
   double previous[4] = {0.0, 0.0, 0.0, 0.0};  // ln ratio, c, shape, beta
-  double ePrevious = 0.0;
-  bool first = true;
+  double ePrevious = 0.0;                     // 0: the first knot after 0 (no previous knot's four)
   for (double e : o.knots) {
     if (e == 0.0) {
       for (auto* v : {&fit.ratio, &fit.couple, &fit.shape, &fit.beta, &fit.error})
@@ -812,6 +810,7 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
       fit.ratio.back() = 1.0;
       continue;
     }
+    const bool first = ePrevious == 0.0;
     // Where the fit is costed: the knot, and the cached points since the previous knot (the
     // table is interpolated there between the previous knot's four and these).
     std::vector<double> at = {e};
@@ -839,7 +838,7 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
     }
     // The larger of eta alone's error and xi = eta's over the knot's cell, and the fit's cost: at
     // each place their sum and the larger.
-    auto errors = [&](const double* v, double* larger) {
+    auto errors = [&](const double* v, double* larger = nullptr) {
       std::string t = fixed;
       for (double k : knots) {
         const bool here = k == e, before = k > 0.0 && !here;
@@ -851,19 +850,15 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
       }
       std::istringstream text(t);
       const FlexibilityCalibration one = SteadyCalibration::parse(text, "(knot cell)").at(g);
-      double sum = 0.0;
-      *larger = 0.0;
+      double sum = 0.0, worst = 0.0;
       for (std::size_t i = 0; i < at.size(); ++i) {
         const double alone = lateralError(fastsimAt(o, g, eta, at[i], one), xEta[i], peakEta),
                      withXi = spinError(fastsimAt(o, g, xe, at[i], one), xXe[i], peakXe);
         sum += std::max(alone, withXi) + alone + withXi + 100.0 * std::max(0.0, withXi - kXiEtaCap);
-        *larger = std::max(*larger, std::max(alone, withXi));
+        worst = std::max(worst, std::max(alone, withXi));
       }
+      if (larger) *larger = worst;
       return sum;
-    };
-    auto error = [&](const double* v) {
-      double larger;
-      return errors(v, &larger);
     };
     const double pair[4] = {std::log(cal.ratio(1, e)), cal.coupling(e), 0.0, cal.etaSlope(e)};
     auto cost = [&](const double* v) {
@@ -872,7 +867,7 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
         for (int i = 0; i < 4; ++i) pull += std::abs(v[i] - previous[i]);
       double toPair = 0.0;
       for (int i = 0; i < 4; ++i) toPair += std::abs(v[i] - pair[i]);
-      return error(v) + kEtaNoSpinPull * pull + kEtaNoSpinPairPull * toPair;
+      return errors(v) + kEtaNoSpinPull * pull + kEtaNoSpinPairPull * toPair;
     };
     auto allowed = [](const double* v) {
       return v[0] > std::log(0.05) && v[0] < std::log(50.0) &&
@@ -892,7 +887,6 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
     fit.error.push_back(larger);
     std::copy(best, best + 4, previous);
     ePrevious = e;
-    first = false;
     fit.ratio.push_back(std::exp(best[0]));
     fit.couple.push_back(best[1]);
     fit.shape.push_back(best[2]);
@@ -928,8 +922,7 @@ void heldKnot(const CorrectionFit& held, double heldPower, std::size_t i, double
 CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, const Ray& r,
                                 const FlexibilityCalibration& base,
                                 const CorrectionFit* held = nullptr, double heldPower = 0.0) {
-  double mzPeak = 0.0;
-  for (double e : o.corrKnots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, r, e).mz));
+  const double mzPeak = peakMoment(exact, g, r, o.corrKnots);
   CorrectionFit fit;
   double lm[kMultipliers] = {};
   for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
@@ -983,8 +976,7 @@ void refitTowards(const Options& o, ExactCache* exact, double g, const Ray& r,
                   const FlexibilityCalibration& base, const CorrectionFit* held, double heldPower,
                   const std::vector<Multipliers>& target, double weight, double refitFrom,
                   CorrectionFit* fit) {
-  double mzPeak = 0.0;
-  for (double e : o.corrKnots) mzPeak = std::max(mzPeak, std::abs(exact->at(g, r, e).mz));
+  const double mzPeak = peakMoment(exact, g, r, o.corrKnots);
   for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
     const double e = o.corrKnots[i];
     if (e <= kLinearEnd || (!held && e < refitFrom)) continue;
@@ -1427,11 +1419,7 @@ void momentStudy(const Options& o, ExactCache* exact, const SteadyCalibration& m
               o.nx, o.nx);
   for (double g : o.ratios) {
     const FlexibilityCalibration cal = table.at(g);
-    auto peakOf = [&](const Ray& r) {
-      double peak = 0.0;
-      for (double e : o.points) peak = std::max(peak, std::abs(exact->at(g, r, e).mz));
-      return peak;
-    };
+    auto peakOf = [&](const Ray& r) { return peakMoment(exact, g, r, o.points); };
     // The couplings of ray 22 at the points, and how far the study's march is from the core's.
     const double peak22 = peakOf(kRays[1]);
     std::vector<double> couple;
