@@ -179,9 +179,11 @@ TEST_F(CalibratedSteady, SmallSpinSharesMomentFromEtaNearerTheExactCurve) {
   // from e = 1.5 there (fullSlipFrom) 9 of 30, mean 4.5 %, worst 8.1 %; with the blend's span and
   // the correction's fit from e = 0.35 on wide patches (a/b 0.2: five of those nine) 4 of 30, mean
   // 3.9 %, worst 7.2 %, and with that fit on long patches too (all but a/b 1) 3 of 30, mean 3.7 %,
-  // worst 6.8 %, and with the spin share 0.03 1 of 30, mean 3.0 %, worst 6.5 % (r10 at a/b 0.5)
+  // worst 6.8 %, and with the spin share 0.03 1 of 30, mean 3.0 %, worst 6.5 % (r10 at a/b 0.5),
+  // and with the shares 0.045 and 0.9375 none, mean 2.5 %, worst 4.8 % (h4 at a/b 0.2)
   // (doc/calibrated_fastsim.md, "The coupling held at small spin shares", "The blend's start where
-  // the coupling is held", "Small spin shares on wide and long patches").
+  // the coupling is held", "Small spin shares on wide and long patches", "Spin's share 0.045 and
+  // xi's share 0.9375").
   int above = 0;
   double sum = 0.0, worst = 0.0;
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
@@ -191,9 +193,9 @@ TEST_F(CalibratedSteady, SmallSpinSharesMomentFromEtaNearerTheExactCurve) {
       sum += m;
       worst = std::max(worst, m);
     }
-  EXPECT_LE(above, 2);
-  EXPECT_LT(sum / 30.0, 0.032);
-  EXPECT_LT(worst, 0.07);
+  EXPECT_EQ(above, 0);
+  EXPECT_LT(sum / 30.0, 0.028);
+  EXPECT_LT(worst, 0.05);
 }
 
 TEST_F(CalibratedSteady, SpinSharesBetweenTheSmallKnotsWithinTwoPercentOfMuFz) {
@@ -215,32 +217,29 @@ TEST_F(CalibratedSteady, SpinSharesBelowTheFirstKnotWithinTwoPercentOfMuFz) {
 }
 
 TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) {
-  // r1-r40: held-out directions between the grid's (spin shares 0.03-0.97, xi shares 0-1, both
-  // signs of eta phi): r1-r16 placed by hand, r17-r28 and r29-r40 drawn at random (r29-r40 after
-  // the grid and its smoothing were chosen). Issue 19's 0.02 on every one, measured on 20x20
-  // 0.001-0.019 (before the denser, smoothed grid up to 0.064; classic 0.011-0.214); r10 (spin
-  // 4.5 % of e^2, in full slip at a/b 0.2) 0.0185 since the spin share 0.03 (0.027 before it,
-  // between no spin and the share 0.06; 0.023 before the blend's span on wide patches); under half
-  // of classic's wherever classic misses the target. Mz within issue 19's 5 % of the peak, measured
-  // 0.2-4.5 %, but where the moment is mostly eta's (r1, r2, r10: up to 6.5 %, 9.9 % before) and
-  // r25 at a/b 5 (5.3 %, 3.7 % before linear theory's spin moment held for the rest of e^2).
-  // doc/calibrated_fastsim.md, "A denser grid, fitted smooth", "Mz from eta in the core" and
-  // "Linear theory's spin moment".
+  // r1-r46: held-out directions between the grid's (spin shares 0.03-0.97, xi shares 0-1, both
+  // signs of eta phi): r1-r16 placed by hand, r17-r28, r29-r40 and r41-r46 (spin shares
+  // 0.03-0.1) drawn at random (r29-r40 after the grid and its smoothing were chosen, r41-r46
+  // after spin's share 0.045 and xi's 0.9375). Issue 19's 0.02 on every one, measured on 20x20
+  // 0.001-0.017 (before the denser, smoothed grid up to 0.064; classic 0.011-0.214); r10 (spin
+  // 4.5 % of e^2, in full slip at a/b 0.2) 0.006 since the shares 0.045 and 0.9375 (0.0185
+  // before them, 0.027 before the share 0.03); under half of classic's wherever classic misses
+  // the target. Mz within issue 19's 5 % of the peak, measured 0.2-4.7 %, but r25 at a/b 5 (5.3 %,
+  // 3.7 % before linear theory's spin moment held for the rest of e^2) and r46 at a/b 0.5 (5.0 %,
+  // spin 8.5 % of e^2; 5.4 % before the shares 0.045 and 0.9375); r10's 3.1 % (6.5 % before them).
+  // doc/calibrated_fastsim.md, "A denser grid, fitted smooth", "Linear theory's spin moment" and
+  // "Spin's share 0.045 and xi's share 0.9375".
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
-    for (int r = 1; r <= 40; ++r) {
+    for (int r = 1; r <= 46; ++r) {
       const std::string ray = "r" + std::to_string(r);
       const CurveError cal = error(ab, ray.c_str(), true);
       const double classic = error(ab, ray.c_str(), false).force;
       EXPECT_LT(cal.force, 0.02) << ab << " " << ray;
       if (classic > 0.02) {
-        // r25 at a/b 5: 0.53 of classic's (0.43 before the small shares' fit from e = 0.35
-        // off the round patch).
-        EXPECT_LT(cal.force, (r == 25 && ab > 3.0 ? 0.6 : 0.5) * classic) << ab << " " << ray;
+        EXPECT_LT(cal.force, 0.5 * classic) << ab << " " << ray;
       }
-      EXPECT_LT(cal.moment, r == 1 || r == 2 || r == 10 ? 0.072
-                            : r == 25 && ab > 3.0       ? 0.055
-                                                        : 0.05)
-          << ab << " " << ray;
+      const bool knownMiss = (r == 25 && ab > 3.0) || (r == 46 && ab == 0.5);
+      EXPECT_LT(cal.moment, knownMiss ? 0.055 : 0.05) << ab << " " << ray;
     }
 }
 
@@ -332,6 +331,16 @@ TEST_F(CalibratedSteady, EachMeshsTableMeetsTheSingleCreepageTargetOnItsOwnMesh)
         EXPECT_LT(fastsimError(ab, it->second, t.at(ab), nx).force, bound)
             << nx << "x" << nx << " " << ab << " " << ray;
       }
+    // Eta's moment, which the lateral coupling and eta's own set without spin carry, within
+    // issue 19's 5 % of the peak on every mesh, xi with eta too: measured eta 0.4-3.4 %, xi = eta
+    // 1.4-4.5 % (eta on 10x10 at a/b 5 7.1 % while the set's pull towards the pair kept the pair).
+    for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
+      for (const char* ray : {"22", "xe"}) {
+        const auto it = curves_.find({ab, ray});
+        ASSERT_NE(it, curves_.end()) << ab << " " << ray;
+        const double m = fastsimError(ab, it->second, t.at(ab), nx).moment;
+        EXPECT_LT(m, 0.05) << nx << "x" << nx << " " << ab << " " << ray;
+      }
   }
 }
 
@@ -339,9 +348,9 @@ TEST_F(CalibratedSteady, MeshesBetweenTheTablesAreNearerTheExactCurvesInterpolat
   // A mesh between two identified ones takes their ratios interpolated in 1/nx (forMesh), not the
   // nearest mesh's. On every cached curve (the rays and the correction's grid directions, a/b
   // 0.2-5) at 12x12 and 13x13 (nearest: 10x10), measured: single creepages at most 0.027 / 0.054
-  // mu fz on the nearest table, 0.017 / 0.026 interpolated; curves above 0.02 mu fz 103 / 383
-  // against 32 / 119 (doc/calibrated_fastsim.md, "Per-mesh tables"). Neither meets issue 19's
-  // targets for spin there: an identified mesh does.
+  // mu fz on the nearest table, 0.017 / 0.026 interpolated; curves above 0.02 mu fz 116 / 428
+  // against 35 / 123 of 1410 (doc/calibrated_fastsim.md, "Per-mesh tables"). Neither meets issue
+  // 19's targets for spin there: an identified mesh does.
   const SteadyCalibration shipped = SteadyCalibration::shipped();
   for (const int nx : {12, 13}) {
     const SteadyCalibration between = shipped.forMesh(nx), nearest = shipped.forMesh(10);
@@ -369,34 +378,30 @@ TEST(CalibratedSteadyAtOtherNu, TheTableIdentifiedAtNu028HoldsOverSteelsRange) {
   // coefficients (doc/calibrated_fastsim.md, "Other Poisson's ratios"). Against the exact curves
   // solved at 0.25 and 0.30 (identify_steady --nu NU --exact
   // doc/data/steady_exact_curves_nuNU.csv; re-solved at two points here), every ray at a/b
-  // 0.2-5: forces within issue 19's targets as at 0.28 (measured single creepages 0.0080 /
-  // 0.0091, combined 0.0178 / 0.0168), but r10 at a/b 0.2 at 0.30 (0.0214; 0.0185 at 0.28, 0.0188
-  // at 0.25), and under half of classic's wherever classic misses the target (r25 at a/b 5: 0.55 /
-  // 0.53 of it, 0.53 at 0.28, since the small shares' fit from e = 0.35 off the round patch); pure
-  // spin's Mz within 5 % (2.6-2.9 %); eta's moment, which the lateral coupling and eta's set
-  // without spin carry (identified at 0.28), within 4.5 % at a/b 0.5-5 and 5.5 % at a/b 0.2
-  // (measured 5.1 / 4.0 % there, up to 2.6 % elsewhere), and xi = eta's, which the slope of eta's
-  // drive carries besides, within 5.5 % (measured up to 5.0 / 2.9 %, at a/b 0.2).
+  // 0.2-5: forces within issue 19's targets as at 0.28 (measured single creepages 0.0071 /
+  // 0.0091, combined 0.018 / 0.017; r10 at a/b 0.2 0.0188 / 0.0214 before spin's share 0.045 and
+  // xi's 0.9375, 0.004 / 0.009 since), and under half of classic's wherever classic misses the
+  // target (r25 at a/b 5: 0.49 / 0.47 of it); pure spin's Mz within 5 % (2.6-2.9 %); eta's moment,
+  // which the lateral coupling and eta's set without spin carry (identified at 0.28), within
+  // 4.5 % at a/b 0.5-5 and 5.5 % at a/b 0.2 (measured 5.0 / 3.4 % there, up to 2.7 % elsewhere),
+  // and xi = eta's, which the slope of eta's drive carries besides, within 5.5 % (measured up to
+  // 4.9 / 2.8 %, at a/b 0.2).
   const SteadyCalibration table = SteadyCalibration::shipped().forMesh(20);
   for (const double nu : {0.25, 0.30}) {
     char file[64];
     std::snprintf(file, sizeof file, "steady_exact_curves_nu%.2f.csv", nu);
     const Curves curves = readExact(file);
     expectTheSolversOwn(curves, nu);
-    ASSERT_EQ(curves.size(), 5u * 55u) << file;
+    ASSERT_EQ(curves.size(), 5u * 61u) << file;
     for (const auto& [key, curve] : curves) {
       const auto& [ab, ray] = key;
       EXPECT_EQ(curve.size(), 12u) << nu << " " << ab << " " << ray;
       const CurveError cal = fastsimError(ab, curve, table.at(ab), 20, nu);
       const CurveError classic = fastsimError(ab, curve, SteadyCalibration().at(ab), 20, nu);
       const bool single = ray == "11" || ray == "22" || ray == "23";
-      EXPECT_LT(cal.force, single                     ? 0.01
-                           : ray == "r10" && ab < 0.3 ? 0.025
-                                                      : 0.02)
-          << nu << " " << ab << " " << ray;
+      EXPECT_LT(cal.force, single ? 0.01 : 0.02) << nu << " " << ab << " " << ray;
       if (classic.force > 0.02) {
-        const double share = ray == "r25" && ab > 3.0 ? 0.6 : 0.5;  // as at 0.28
-        EXPECT_LT(cal.force, share * classic.force) << nu << " " << ab << " " << ray;
+        EXPECT_LT(cal.force, 0.5 * classic.force) << nu << " " << ab << " " << ray;
       }
       if (ray == "23") {
         EXPECT_LT(cal.moment, 0.05) << nu << " " << ab;
