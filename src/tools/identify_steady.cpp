@@ -62,9 +62,11 @@ struct Options {
   std::vector<double> knots = {0,    0.1, 0.2, 0.35, 0.5, 0.6, 0.75, 0.9, 1,
                                1.25, 1.5, 2,   3,    4.5, 7,   10,   15};
   std::vector<double> points = {0.05, 0.15, 0.3, 0.6, 0.9, 1.25, 1.75, 2.5, 4, 6, 9, 13};
-  // The combined correction's knots: denser where creep curves with spin turn (e 1.5 to 2.5).
-  std::vector<double> corrKnots = {0,   0.1,  0.2,  0.35, 0.5,  0.6, 0.75, 0.9, 1,  1.25,
-                                   1.5, 1.65, 1.85, 2,    2.25, 3,   4.5,  7,   10, 15};
+  // The combined correction's knots: denser where creep curves with spin turn (e 1.5 to 2.5), and
+  // 3.75 and 5.5 in full slip, where h5 (a/b 1) and r25 (a/b 5) missed the moment by 5.1 and
+  // 5.3 % of the peak at their worst, between the knots 4.5 and 7 and between 3 and 4.5.
+  std::vector<double> corrKnots = {0,    0.1,  0.2, 0.35, 0.5, 0.6,  0.75, 0.9, 1, 1.25, 1.5,
+                                   1.65, 1.85, 2,   2.25, 3,   3.75, 4.5,  5.5, 7, 10,   15};
   // Spin's share 0.06 and xi's share 0.875: held-out rays h7 and h8 (spin 7 % of e^2, between
   // h4 and the share 0.1) were 0.024 and 0.025 mu fz off without them. Spin's shares 0.625, 0.825
   // and 0.95 and xi's 0.125 and 0.375: directions spread between the coarser grid's (r1-r16, eta
