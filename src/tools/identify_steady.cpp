@@ -235,7 +235,8 @@ const Ray kRays[] = {{"11", {1, 0, 0}},
                      {"r39", {0.6818, 0.3486, 0.6431}},
                      {"r40", {0.2944, 0.5954, -0.7476}},
                      // r41-r46: drawn as r17-r28 but with s3 in 0.03-0.1 (seed 41) after spin's
-                     // share 0.045 and xi's 0.9375 were chosen, and looked at once.
+                     // share 0.045 and xi's 0.9375 were chosen, and looked at once (r46 again
+                     // when the correction's knots 3.75 and 5.5 were).
                      {"r41", {0.4665, 0.8519, 0.2381}},
                      {"r42", {0.9358, 0.2874, -0.2040}},
                      {"r43", {0.8009, 0.5367, 0.2654}},
