@@ -383,7 +383,7 @@ TEST(CalibratedSteadyAtOtherNu, TheTableIdentifiedAtNu028HoldsOverSteelsRange) {
   // doc/data/steady_exact_curves_nuNU.csv; re-solved at two points here), every ray at a/b
   // 0.2-5: forces within issue 19's targets as at 0.28 (measured single creepages 0.0071 /
   // 0.0091, combined 0.019 / 0.017; r10 at a/b 0.2 0.0188 / 0.0214 before spin's share 0.045 and
-  // xi's 0.9375, 0.004 / 0.009 since), and under half of classic's wherever classic misses the
+  // xi's 0.9375, 0.004 / 0.003 now), and under half of classic's wherever classic misses the
   // target (r25 at a/b 5: 0.49 / 0.47 of it); pure spin's Mz within 5 % (2.6-2.9 %); eta's moment,
   // which the lateral coupling and eta's set without spin carry (identified at 0.28), within
   // 4.5 % at a/b 0.5-5 and 5.5 % at a/b 0.2 (measured 5.0 / 3.4 % there, up to 2.7 % elsewhere),
