@@ -227,8 +227,9 @@ TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) 
   // 0.03-0.1) drawn at random (r29-r40 after the grid and its smoothing were chosen, r41-r46
   // after spin's share 0.045 and xi's 0.9375). Issue 19's 0.02 on every one, measured on 20x20
   // 0.001-0.017 (before the denser, smoothed grid up to 0.064; classic 0.011-0.214); r10 (spin
-  // 4.5 % of e^2, in full slip at a/b 0.2) 0.006 since the shares 0.045 and 0.9375 (0.0185
-  // before them, 0.027 before the share 0.03); under half of classic's wherever classic misses
+  // 4.5 % of e^2, in full slip at a/b 0.2) 0.003 since the correction's knots 3.75 and 5.5
+  // (0.006 with the shares 0.045 and 0.9375 alone, 0.0185 before them, 0.027 before the share
+  // 0.03); under half of classic's wherever classic misses
   // the target. Mz within issue 19's 5 % of the peak, measured 0.2-4.6 % since the correction's
   // knots 3.75 and 5.5 (r25 at a/b 5 5.3 % and r46 at a/b 0.5 5.0 % before them; r10 at a/b 0.5
   // 6.5 % before the shares 0.045 and 0.9375). doc/calibrated_fastsim.md, "A denser grid, fitted
