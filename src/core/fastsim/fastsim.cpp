@@ -4,6 +4,9 @@
 #include <cmath>
 #include <type_traits>
 
+// The coupled march's four strips in AVX lanes (chosen at run time); elsewhere two at a time.
+#include "core/fastsim/avx_lanes.hpp"
+
 namespace wheel_rail_contact {
 
 Flexibilities kalkerFlexibilities(double a, double b, double G, const CreepCoefficients& c) {
@@ -303,9 +306,90 @@ struct SteadyStrip {
   }
 };
 
+#ifdef WRC_FOUR_STRIP_LANES
+// Four strips of the coupled march at once, one in each lane of AVX registers: SteadyStrip<true>'s
+// node, operation for operation, so each strip's traction, flags and sums are those of one strip
+// at a time, bit for bit. Lane q marches nodes from[q] + i of strip S[q], i < n, all steps of a
+// whole element (the strips' first nodes, half an element from the leading edge, go one strip at
+// a time). Returns the nodes marched: n, or fewer where a lane met StripSums::node's tiny path
+// (avx::outsideLanes), which the caller then takes one strip at a time; S and from follow.
+[[gnu::target("avx"), gnu::noinline]] int coupledLanes(SteadyStrip<true>* S, int* from, int n,
+                                                       const double* xn,
+                                                       const FieldPointers& field) {
+  using namespace avx;
+  const FieldPointers out = field;
+  const V dx = _mm256_set_pd(S[3].dx, S[2].dx, S[1].dx, S[0].dx),
+          aj = _mm256_set_pd(S[3].aj, S[2].aj, S[1].aj, S[0].aj);
+  const V dxSx = mul(dx, _mm256_set_pd(S[3].sx, S[2].sx, S[1].sx, S[0].sx)),
+          dxPerTy = mul(dx, _mm256_set_pd(S[3].perTy, S[2].perTy, S[1].perTy, S[0].perTy));
+  const V halfDx = mul(_mm256_set1_pd(0.5), dx), gy = _mm256_set1_pd(S[0].gy),
+          gphi = _mm256_set1_pd(S[0].gphi), one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+  V tx = _mm256_set_pd(S[3].tx, S[2].tx, S[1].tx, S[0].tx),
+    ty = _mm256_set_pd(S[3].ty, S[2].ty, S[1].ty, S[0].ty);
+  // The strips' sums go on from where they are, in node order, as one strip at a time.
+  V sumX = _mm256_set_pd(S[3].sums.tx, S[2].sums.tx, S[1].sums.tx, S[0].sums.tx),
+    sumY = _mm256_set_pd(S[3].sums.ty, S[2].sums.ty, S[1].sums.ty, S[0].sums.ty),
+    sumXnY = _mm256_set_pd(S[3].sums.xnTy, S[2].sums.xnTy, S[1].sums.xnTy, S[0].sums.xnTy),
+    loaded = zero, stuck = zero;
+  // (i + 0.5) per lane, exact in doubles as UpstreamStep's.
+  V iMid = _mm256_set_pd(from[3] + 0.5, from[2] + 0.5, from[1] + 0.5, from[0] + 0.5);
+  const int k0[4] = {S[0].k0 + from[0], S[1].k0 + from[1], S[2].k0 + from[2], S[3].k0 + from[3]};
+  int i = 0;
+  for (; i < n; ++i) {
+    const int k[4] = {k0[0] + i, k0[1] + i, k0[2] + i, k0[3] + i};
+    const V xMid = add(sub(aj, mul(iMid, dx)), halfDx);
+    V nx = sub(sub(tx, dxSx), mul(dxPerTy, ty));
+    V ny = sub(ty, mul(dx, add(gy, mul(gphi, xMid))));
+    const V g = at(out.bound, k), g2 = mul(g, g);
+    const V t2 = add(mul(nx, nx), mul(ny, ny));
+    if (_mm256_movemask_pd(outsideLanes(t2, g2)) != 0) break;
+    const V slips = greater(t2, g2);
+    const int slipping = _mm256_movemask_pd(slips);
+    if (slipping != 0) {  // a branch: in adhesion the square root and division stay off the chain
+      const V scale = _mm256_div_pd(g, _mm256_sqrt_pd(t2));
+      nx = select(slips, mul(nx, scale), nx);
+      ny = select(slips, mul(ny, scale), ny);
+    }
+    tx = nx;
+    ty = ny;
+    iMid = add(iMid, one);
+    // StripSums::add.
+    scatter(tx, out.tx, k);
+    scatter(ty, out.ty, k);
+    storeFlags(slipping, out.slip, k);
+    sumX = add(sumX, tx);
+    sumY = add(sumY, ty);
+    sumXnY = add(sumXnY, mul(at(xn, k), ty));
+    const V pressed = greater(g, zero);
+    loaded = add(loaded, _mm256_and_pd(pressed, one));
+    stuck = add(stuck, _mm256_and_pd(_mm256_andnot_pd(slips, pressed), one));
+  }
+  alignas(32) double v[7][4];
+  store(v[0], tx);
+  store(v[1], ty);
+  store(v[2], sumX);
+  store(v[3], sumY);
+  store(v[4], sumXnY);
+  store(v[5], loaded);
+  store(v[6], stuck);
+  for (int q = 0; q < 4; ++q) {
+    SteadyStrip<true>& s = S[q];
+    s.tx = v[0][q];
+    s.ty = v[1][q];
+    s.sums.tx = v[2][q];
+    s.sums.ty = v[3][q];
+    s.sums.xnTy = v[4][q];
+    s.sums.loaded += static_cast<int>(v[5][q]);
+    s.sums.stuck += static_cast<int>(v[6][q]);
+    from[q] += i;
+  }
+  return i;
+}
+#endif
+
 template <bool kCoupled>
 CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
-                        TractionField* f) {
+                        TractionField* f, bool inLanes) {
   using Strip = SteadyStrip<kCoupled>;
   const LateralDrive drive = lateralDrive(L, c);  // plain names: lambdas below capture them
   const double gx = c.xi / L.L1, gy = drive.gy, gphi = drive.gphi, gphiX = c.phi / L.spinX();
@@ -328,12 +412,31 @@ CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Cre
     for (int i = std::max(nx - e.first, e.first); i < nx; ++i) out.unloaded(s.k0 + i);
     sums.addStrip(mesh, j, s.sums, e, out.tx, out.ty);
   };
+  // Nodes at[m] + s, s < n, of the four strips S, in step; at follows.
+  auto together = [&](Strip * S, int* at, int n) __attribute__((always_inline)) {
+#ifdef WRC_FOUR_STRIP_LANES
+    if constexpr (kCoupled) {
+      while (n > 0) {
+        const int done = coupledLanes(S, at, n, xn, out);
+        n -= done;
+        if (n == 0) break;
+        for (int m = 0; m < 4; ++m) S[m].node(at[m]++, S[m].dx, xn, out);  // the tiny path
+        --n;
+      }
+      return;
+    }
+#endif
+    for (int s = 0; s < n; ++s)
+      for (int m = 0; m < 4; ++m) S[m].node(at[m] + s, S[m].dx, xn, out);
+    for (int m = 0; m < 4; ++m) at[m] += n;
+  };
   int j = 0;
   // Four strips at a time: their marches are independent chains, so each fills the others'
   // latency (a saturated node's square root and division sit on its strip's chain). Each strip's
-  // nodes still go in order: the result is that of one strip at a time. The coupled march goes two
-  // at a time: with its extra running operand four strips spilled registers and ran slower.
-  for (; !kCoupled && j + 3 < ny; j += 4) {
+  // nodes still go in order: the result is that of one strip at a time. The coupled march takes
+  // them in AVX lanes (coupledLanes) where the CPU has them; as scalars, with its extra running
+  // operand, four strips spilled registers and ran slower than two.
+  for (; (!kCoupled || inLanes) && j + 3 < ny; j += 4) {
     Strip S[4] = {strip(j), strip(j + 1), strip(j + 2), strip(j + 3)};
     int at[4], end[4];
     for (int m = 0; m < 4; ++m) {
@@ -342,12 +445,11 @@ CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Cre
       end[m] = nx - e.first;
       if (at[m] < end[m]) S[m].node(at[m]++, e.h, xn, out);
     }
-    const int n =
-        std::max(0, std::min({end[0] - at[0], end[1] - at[1], end[2] - at[2], end[3] - at[3]}));
-    for (int s = 0; s < n; ++s)
-      for (int m = 0; m < 4; ++m) S[m].node(at[m] + s, S[m].dx, xn, out);
+    together(
+        S, at,
+        std::max(0, std::min({end[0] - at[0], end[1] - at[1], end[2] - at[2], end[3] - at[3]})));
     for (int m = 0; m < 4; ++m) {
-      for (int i = at[m] + n; i < end[m]; ++i) S[m].node(i, S[m].dx, xn, out);
+      for (int i = at[m]; i < end[m]; ++i) S[m].node(i, S[m].dx, xn, out);
       finish(j + m, S[m]);
     }
   }
@@ -383,9 +485,20 @@ CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Cre
 }  // namespace
 
 CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
-                          TractionField* f) {
-  if (L.lateralCoupling != 0.0) return steadyMarch<true>(mesh, L, c, f);
-  return steadyMarch<false>(mesh, L, c, f);
+                          TractionField* f, FourStripLanes lanes) {
+  if (L.lateralCoupling != 0.0)
+    return steadyMarch<true>(mesh, L, c, f,
+                             lanes != FourStripLanes::kOff && fourStripLanesAvailable());
+  return steadyMarch<false>(mesh, L, c, f, false);
+}
+
+bool fourStripLanesAvailable() {
+#ifdef WRC_FOUR_STRIP_LANES
+  static const bool avx = __builtin_cpu_supports("avx");  // asked once
+  return avx;
+#else
+  return false;
+#endif
 }
 
 }  // namespace wheel_rail_contact

@@ -1,16 +1,11 @@
 #include "core/fastsim/transient_fastsim.hpp"
 
-// The four-strip march needs x86's AVX (chosen at run time); elsewhere only the two-strip march.
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define WRC_FOUR_STRIP_LANES 1
-#include <immintrin.h>
-#endif
-
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
+
+// The four-strip march needs x86's AVX (chosen at run time); elsewhere only the two-strip march.
+#include "core/fastsim/avx_lanes.hpp"
 
 namespace wheel_rail_contact {
 
@@ -395,34 +390,8 @@ struct StripMarch {
 // goes two strips at a time.
 namespace quad {
 
-#define WRC_AVX_INLINE [[gnu::target("avx"), gnu::always_inline]] inline
-using V = __m256d;
-WRC_AVX_INLINE V load(const double* p) {
-  return _mm256_load_pd(p);
-}
-WRC_AVX_INLINE void store(double* p, V v) {
-  _mm256_store_pd(p, v);
-}
-WRC_AVX_INLINE V at(const double* v, const int* k) {
-  return _mm256_set_pd(v[k[3]], v[k[2]], v[k[1]], v[k[0]]);
-}
-WRC_AVX_INLINE V add(V a, V b) {
-  return _mm256_add_pd(a, b);
-}
-WRC_AVX_INLINE V sub(V a, V b) {
-  return _mm256_sub_pd(a, b);
-}
-WRC_AVX_INLINE V mul(V a, V b) {
-  return _mm256_mul_pd(a, b);
-}
-WRC_AVX_INLINE V greater(V a, V b) {
-  return _mm256_cmp_pd(a, b, _CMP_GT_OQ);
-}  // a > b
-// mask ? yes : no per lane, mask all ones or all zeros (a comparison's). Not blendv: GCC turns
-// blendv on a comparison's mask into four scalar branches.
-WRC_AVX_INLINE V select(V mask, V yes, V no) {
-  return _mm256_or_pd(_mm256_and_pd(mask, yes), _mm256_andnot_pd(mask, no));
-}
+using namespace avx;
+
 // The x and the y lanes of the four (x, y) pairs at p[q] + offset.
 WRC_AVX_INLINE void split(const double* const* p, int offset, V* x, V* y) {
   const V ac = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(p[0] + offset)),
@@ -495,20 +464,6 @@ WRC_AVX_INLINE void join(V x, V y, double* const* p, int offset) {
   _mm_store_pd(p[2] + offset, _mm256_extractf128_pd(ac, 1));
   _mm_store_pd(p[3] + offset, _mm256_extractf128_pd(bd, 1));
 }
-// v's lanes into v0[k[q]].
-WRC_AVX_INLINE void scatter(V v, double* v0, const int* k) {
-  const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1);
-  _mm_storel_pd(v0 + k[0], lo);
-  _mm_storeh_pd(v0 + k[1], lo);
-  _mm_storel_pd(v0 + k[2], hi);
-  _mm_storeh_pd(v0 + k[3], hi);
-}
-
-// Byte q of kSlipBytes[m] is bit q of m: four slip flags from one comparison's mask.
-constexpr std::uint32_t kSlipBytes[16] = {
-    0x00000000, 0x00000001, 0x00000100, 0x00000101, 0x00010000, 0x00010001, 0x00010100, 0x00010101,
-    0x01000000, 0x01000001, 0x01000100, 0x01000101, 0x01010000, 0x01010001, 0x01010100, 0x01010101};
-
 // The lanes' strips: per lane q its strip's constants (PackedStep for its full step) and running
 // state (StripMarch's tx, ty, oldUpstream, sums), as rows of four, and its next node.
 template <class Strip>
@@ -635,13 +590,7 @@ template <bool kSecond, class Strip, class Reader>
     const V t2 = add(mul(nx, nx), mul(ny, ny));
     const V slips = greater(t2, g2);
     const int slipping = _mm256_movemask_pd(slips);
-    // StripSums::node's tiny path (t2 not above 1e-300, or NaN) measures |t| by hypot: where the
-    // bound is far above that (g2 > 1e-290) it keeps the traction, as the lanes do; elsewhere the
-    // lanes stop.
-    const V tiny = _mm256_cmp_pd(t2, _mm256_set1_pd(1e-300), _CMP_NGT_UQ);
-    const V keeps = _mm256_and_pd(_mm256_cmp_pd(t2, _mm256_set1_pd(1e-300), _CMP_LE_OQ),
-                                  greater(g2, _mm256_set1_pd(1e-290)));
-    V stop = _mm256_andnot_pd(keeps, tiny);
+    V stop = outsideLanes(t2, g2);  // StripSums::node's tiny path: the lanes stop
     if (slipping == 0) {
       // All four in adhesion: the traction is the guess. A branch, not a select: the slip
       // return's square root and division would otherwise sit on the running traction's chain.
@@ -670,11 +619,7 @@ template <bool kSecond, class Strip, class Reader>
     // StripSums::add.
     scatter(tx, out.tx, node);
     scatter(ty, out.ty, node);
-    const std::uint32_t flags = kSlipBytes[slipping];
-    for (int q = 0; q < 4; ++q) {
-      const auto flag = static_cast<std::uint8_t>(flags >> (8 * q));
-      std::memcpy(out.slip + node[q], &flag, 1);  // a bool's byte, 0 or 1
-    }
+    storeFlags(slipping, out.slip, node);
     sumX = add(sumX, tx);
     sumY = add(sumY, ty);
     sumXnY = add(sumXnY, mul(x, ty));
@@ -707,7 +652,6 @@ template <bool kSecond, class Strip, class Reader>
   for (int q = 0; q < 4; ++q) lanes->next[q] += i;
   return i;
 }
-#undef WRC_AVX_INLINE
 
 }  // namespace quad
 #endif  // WRC_FOUR_STRIP_LANES
@@ -993,15 +937,6 @@ bool TransientState::marchesFourStrips(int nx) const {
       break;
   }
   return nx >= kFourStripLanesFromNodes && fourStripLanesAvailable();
-}
-
-bool fourStripLanesAvailable() {
-#ifdef WRC_FOUR_STRIP_LANES
-  static const bool avx = __builtin_cpu_supports("avx");  // asked once
-  return avx;
-#else
-  return false;
-#endif
 }
 
 CreepForces transientFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,

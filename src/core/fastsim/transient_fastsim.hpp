@@ -39,10 +39,9 @@ class TransientState {
   void setSaturation(Saturation s) { saturation_ = s; }
   Saturation saturation() const { return saturation_; }
   /// Under kResidualAlongTraction the march can take four strips at a time in the lanes of AVX
-  /// registers (where the CPU has them: fourStripLanesAvailable) instead of two; the results are
-  /// the same bit for bit. kAuto: on meshes of at least kFourStripLanesFromNodes nodes a strip,
-  /// where the lanes' per-strip bookkeeping pays; kOff, kOn: never, always (tests, comparisons).
-  enum class FourStripLanes { kAuto, kOff, kOn };
+  /// registers instead of two (FourStripLanes, fastsim.hpp). kAuto: on meshes of at least
+  /// kFourStripLanesFromNodes nodes a strip, where the lanes' per-strip bookkeeping pays.
+  using FourStripLanes = wheel_rail_contact::FourStripLanes;
   static constexpr int kFourStripLanesFromNodes = 16;
   void setFourStripLanes(FourStripLanes use) { fourStripLanes_ = use; }
   /// Whether a march on strips of nx nodes takes four strips at a time.
@@ -98,9 +97,6 @@ class TransientState {
   Saturation saturation_ = Saturation::kAlongGuess;
   FourStripLanes fourStripLanes_ = FourStripLanes::kAuto;
 };
-
-/// Whether this CPU runs the four-strip march (TransientState::setFourStripLanes): it has AVX.
-bool fourStripLanesAvailable();
 
 /// One step of length dt > 0 at speed V > 0. Marches each strip from the patch's leading edge
 /// solving the discretised slip equation with s = 0 for the adhesion guess, saturates at
