@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# The 96-run comparison: a change that must not alter any force (renames, layout, build flags)
+# The 108-run comparison: a change that must not alter any force (renames, layout, build flags)
 # is checked by recording contact_cli's outputs before it and comparing them byte for byte after.
 #   scripts/compare_runs.sh record DIR    writes DIR/<scene>_<config>_<model>_<mesh>.csv
 #   scripts/compare_runs.sh compare DIR   re-runs the same runs and compares them with DIR
 # Runs: scenes/*.csv (3) x config {default, paper} x model {steady, shen-li, nss, exact, auto}
 # x mesh {fixed, adaptive} (60), each in its default FastSim variant; nss and auto once more with
-# fastsim classic (24); and model auto at tolerance 0.01 and 0.2 with config paper (12).
+# fastsim classic (24); steady with fastsim calibrated (12); and model auto at tolerance 0.01 and
+# 0.2 with config paper (12).
 # Env: WRC_CLI (default build/devel/lib/wheel_rail_contact/contact_cli).
 set -eo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -55,6 +56,12 @@ for scene in scenes/*.csv; do
         run "${s}_${config}_${model}-classic_${mesh}" --scenario "$scene" \
           --config "config/$config.yaml" --model "$model" --mesh "$mesh" --fastsim classic
       done
+    done
+  done
+  for config in default paper; do
+    for mesh in fixed adaptive; do
+      run "${s}_${config}_steady-calibrated_${mesh}" --scenario "$scene" \
+        --config "config/$config.yaml" --model steady --mesh "$mesh" --fastsim calibrated
     done
   done
   for tol in 0.01 0.2; do
