@@ -72,6 +72,9 @@ double least(const std::vector<double>& v) {
 void SteadyCalibrated(benchmark::State& s) {
   run(s, "steady-calibrated", "fitted", true);
 }
+void SteadyFixedMeshCalibrated(benchmark::State& s) {
+  run(s, "steady-calibrated", "fixed", true);
+}
 void NssFixedCalibrated(benchmark::State& s) {
   run(s, "nss-calibrated", "fixed", true, true);
 }
@@ -89,6 +92,7 @@ BENCHMARK(NssFixedShipped)->MESHES;
 BENCHMARK(NssAdaptiveShipped)->MESHES;
 BENCHMARK(NssAdaptiveConstantLoadShipped)->MESHES;
 BENCHMARK(SteadyCalibrated)->MESHES;
+BENCHMARK(SteadyFixedMeshCalibrated)->MESHES;
 BENCHMARK(NssFixedCalibrated)->MESHES;
 BENCHMARK(NssAdaptiveCalibrated)->MESHES;
 BENCHMARK_MAIN();
