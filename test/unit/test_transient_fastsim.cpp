@@ -260,15 +260,15 @@ TEST(TransientFastSim, OutsideStatesHeldDecayedEqualTheFullUpdate) {
 }
 
 TEST(TransientFastSim, FourStripLanesMarchBitForBitAsTwoStrips) {
-  // The residual-along-traction march takes four strips at a time in AVX's lanes (a lane taking
-  // the next strip when its own ends, repeating another once none is left) and stops for the
-  // nodes its guards send one strip at a time. Each strip must come out exactly as from the
-  // two-strip march: tractions, slip flags, filter states and forces equal bit for bit, on a fixed
-  // mesh larger than a patch whose load varies (strips of different lengths, edges moving), on
-  // carried steps (the adaptive mesh's path), first- and second-order filters, x and y on
-  // different filters, with spin, with the lateral coupling and without, with a history scale,
-  // through zero creepage (the tiny path) and
-  // a bound next to zero (the lanes' stop).
+  // The residual-along-traction march takes four strips at a time in AVX's lanes (groups of four
+  // in centre-out order, a lane repeating another once its strip ends, one or two strips left
+  // over two at a time) and stops for the nodes its guards send one strip at a time. Each strip
+  // must come out exactly as from the two-strip march: tractions, slip flags, filter states and
+  // forces equal bit for bit, on a fixed mesh larger than a patch whose load varies (strips of
+  // different lengths, edges moving), on carried steps (the adaptive mesh's path), first- and
+  // second-order filters, x and y on different filters, with spin, with the lateral coupling and
+  // without, with a history scale, through zero creepage (the tiny path) and a bound next to zero
+  // (the lanes' stop).
   if (!fourStripLanesAvailable()) GTEST_SKIP() << "this CPU has no AVX: only the two-strip march";
   const double a0 = 6e-3, b0 = 4e-3, fz0 = 8e4, V = 20.0, dt = 5e-5;
   const Flexibilities L0 = kalkerFlexibilities(a0, b0, 8.2e10, kalkerCoefficients(a0 / b0, 0.28));
@@ -382,7 +382,7 @@ TEST(TransientFastSim, CoupledMarchSettlesOnCoupledSteadyFastSim) {
     }
 }
 
-TEST(TransientFastSim, FourStripLanesByDefaultFromSixteenNodesAStrip) {
+TEST(TransientFastSim, FourStripLanesByDefaultFromFourNodesAStrip) {
   TransientState s;
   const bool avx = fourStripLanesAvailable();
   EXPECT_FALSE(s.marchesFourStrips(TransientState::kFourStripLanesFromNodes - 1));

@@ -383,9 +383,10 @@ struct StripMarch {
 // StripMarch::step's arithmetic, operation for operation (no fused multiply-add), so each strip's
 // result is that of one strip at a time, bit for bit. The lanes are strips, not the (x, y) pair of
 // one node: one instruction then does four strips' work at a node, the slip return and the
-// running traction's chain included. A lane whose strip ends takes the next strip (strips of a
-// fixed mesh differ in length). A node where a lane meets a tiny traction or a slip return out of
-// range (slipsAlongTheResidual's guards) stops the lanes; the caller takes it one strip at a time.
+// running traction's chain included. The strips go in groups of four of about the same length
+// (strips of a fixed mesh differ in length); a lane whose strip ends repeats one still marching. A
+// node where a lane meets a tiny traction or a slip return out of range (slipsAlongTheResidual's
+// guards) stops the lanes; the caller takes it one strip at a time.
 // Compiled for AVX, called only where the CPU has it (fourStripLanesAvailable); elsewhere the march
 // goes two strips at a time.
 namespace quad {
@@ -464,9 +465,10 @@ WRC_AVX_INLINE void join(V x, V y, double* const* p, int offset) {
   _mm_store_pd(p[2] + offset, _mm256_extractf128_pd(ac, 1));
   _mm_store_pd(p[3] + offset, _mm256_extractf128_pd(bd, 1));
 }
-// The lanes' strips: per lane q its strip's constants (PackedStep for its full step) and running
-// state (StripMarch's tx, ty, oldUpstream, sums), as rows of four, and its next node.
-template <class Strip>
+// The lanes' strips: per lane q its strip (index, node 0, history, end), next node and running
+// state (StripMarch's tx, ty, oldUpstream, sums) as rows of four, and the PackedStep constants of
+// its two steps (entry: from the patch's leading edge to its first loaded node; full: between
+// nodes) as rows of four.
 struct Lanes {
   enum Constant {
     kMemX,
@@ -485,66 +487,119 @@ struct Lanes {
     kConstants
   };
   enum Running { kTx, kTy, kUpX, kUpY, kSumX, kSumY, kSumXnY, kLoaded, kStuck, kRunning };
-  alignas(32) double c[kConstants][4];
+  using Constants = double[kConstants][4];
+  alignas(32) Constants entry, full;
   alignas(32) double v[kRunning][4];
-  Strip* strip[4];
-  int next[4];
-  // Strip s's constants and state into lane q, from its node k.
-  void take(int q, Strip* s, int k) {
-    const PackedStep& m = s->full;
-    const double cq[kConstants] = {m.memory(0),
-                                   m.memory(1),
-                                   m.lag(0),
-                                   m.lag(1),
-                                   m.push(0),
-                                   m.push(1),
-                                   m.decayX,
-                                   m.decayY,
-                                   m.pushPerXn,
-                                   m.scaledInverseDecay(0),
-                                   m.scaledInverseDecay(1),
-                                   m.squaredScale,
-                                   m.coupleX};
-    for (int r = 0; r < kConstants; ++r) c[r][q] = cq[r];
-    const double vq[kRunning] = {s->tx,      s->ty,      s->oldUpstream(0), s->oldUpstream(1),
-                                 s->sums.tx, s->sums.ty, s->sums.xnTy,      0.0,
-                                 0.0};
+  const double* history[4];  // Source::strip
+  int strip[4], first[4], leave[4], next[4];
+  StripSums sums(int q) const {
+    StripSums s;
+    s.tx = v[kSumX][q];
+    s.ty = v[kSumY][q];
+    s.xnTy = v[kSumXnY][q];
+    s.stuck = static_cast<int>(v[kStuck][q]);
+    s.loaded = static_cast<int>(v[kLoaded][q]);
+    return s;
+  }
+  // Lane q's running state into strip s, and back.
+  template <class Strip>
+  void give(int q, Strip* s) const {
+    s->tx = v[kTx][q];
+    s->ty = v[kTy][q];
+    s->oldUpstream = Pair(v[kUpX][q], v[kUpY][q]);
+    s->sums = sums(q);
+  }
+  template <class Strip>
+  void take(int q, const Strip& s) {
+    const double vq[kRunning] = {
+        s.tx,      s.ty,        s.oldUpstream(0),      s.oldUpstream(1),    s.sums.tx,
+        s.sums.ty, s.sums.xnTy, double(s.sums.loaded), double(s.sums.stuck)};
     for (int r = 0; r < kRunning; ++r) v[r][q] = vq[r];
-    strip[q] = s;
-    next[q] = k;
-  }
-  // Lane q repeats lane p: the same strip, node and state.
-  void repeat(int p, int q) {
-    for (auto& row : c) row[q] = row[p];
-    for (auto& row : v) row[q] = row[p];
-    strip[q] = strip[p];
-    next[q] = next[p];
-  }
-  // Lane q's state back into its strip.
-  void give(int q) {
-    Strip& s = *strip[q];
-    s.tx = v[kTx][q];
-    s.ty = v[kTy][q];
-    s.oldUpstream = Pair(v[kUpX][q], v[kUpY][q]);
-    s.sums.tx = v[kSumX][q];
-    s.sums.ty = v[kSumY][q];
-    s.sums.xnTy = v[kSumXnY][q];
-    s.sums.loaded += static_cast<int>(v[kLoaded][q]);
-    s.sums.stuck += static_cast<int>(v[kStuck][q]);
-    v[kLoaded][q] = v[kStuck][q] = 0.0;
   }
 };
 
-// Nodes next[q] + i of the lanes' strips, i < n; read(i, h) gives their histories h[0..3]. Returns
-// the number of nodes marched: n, or where the guards stopped the lanes; next advances by it.
-template <bool kSecond, class Strip, class Reader>
-[[gnu::target("avx"), gnu::noinline]] int march(Lanes<Strip>* lanes, int n, const Reader& reader,
-                                                const double* xn, const FieldPointers& field,
+// PackedStep's constants for four strips into c, lane q's for a step H[q], x drive driveX[q] and
+// lateral coupling perTy[q]: PackedStep's arithmetic, operation for operation, so each lane holds
+// its strip's PackedStep bit for bit.
+WRC_AVX_INLINE void pack(V H, V driveX, V perTy, const Pair& beta, double lagPerLength, double r,
+                         double gy, double gphi, double a, Lanes::Constants& c) {
+  using L = Lanes;
+  const V one = _mm256_set1_pd(1.0), R = _mm256_set1_pd(r);
+  const V hbX = mul(H, _mm256_set1_pd(beta(0))), hbY = mul(H, _mm256_set1_pd(beta(1)));
+  const V decayX = _mm256_div_pd(one, add(one, hbX)), decayY = _mm256_div_pd(one, add(one, hbY));
+  store(c[L::kMemX], mul(mul(hbX, R), decayX));
+  store(c[L::kMemY], mul(mul(hbY, R), decayY));
+  store(c[L::kInverseX], mul(R, add(one, hbX)));
+  store(c[L::kInverseY], mul(R, add(one, hbY)));
+  store(c[L::kScale2], _mm256_set1_pd(r * r));
+  const V lag = mul(H, _mm256_set1_pd(lagPerLength));
+  store(c[L::kLagX], mul(lag, decayX));
+  store(c[L::kLagY], mul(lag, decayY));
+  store(c[L::kPushX], mul(mul(H, driveX), decayX));
+  const V gphiV = _mm256_set1_pd(gphi);
+  store(c[L::kPushY],
+        mul(mul(H, add(_mm256_set1_pd(gy), mul(mul(_mm256_set1_pd(0.5), H), gphiV))), decayY));
+  store(c[L::kDecayX], decayX);
+  store(c[L::kDecayY], decayY);
+  store(c[L::kPushPerXn], mul(mul(mul(H, gphiV), _mm256_set1_pd(a)), decayY));
+  store(c[L::kCoupleX], mul(mul(mul(R, H), perTy), decayX));
+}
+
+// A group's start: lane q takes strip lanes->strip[q] of `mesh`, entering at entry[strip].h:
+// both steps' constants (pack; the x drive and lateral coupling from the strip's y as the
+// two-strip march takes them), the running state zero. The per-strip values go into the lanes
+// from registers and every row is written whole, so no load waits on stores of parts of it.
+[[gnu::target("avx")]] void start(const PatchMesh& mesh, const StripEntry* entry, double gx,
+                                  double gphiX, double coupling, const Pair& beta,
+                                  double lagPerLength, double r, double gy, double gphi, double a,
+                                  Lanes* lanes) {
+  double h[4], step[4], driveX[4], perTy[4];
+  for (int q = 0; q < 4; ++q) {
+    const int j = lanes->strip[q];
+    const double y = mesh.stripY(j);
+    h[q] = entry[j].h;
+    step[q] = mesh.stripStep(j);
+    driveX[q] = gx - gphiX * y;
+    perTy[q] = coupling * y;
+  }
+  const V dx = _mm256_set_pd(driveX[3], driveX[2], driveX[1], driveX[0]),
+          ty = _mm256_set_pd(perTy[3], perTy[2], perTy[1], perTy[0]);
+  pack(_mm256_set_pd(h[3], h[2], h[1], h[0]), dx, ty, beta, lagPerLength, r, gy, gphi, a,
+       lanes->entry);
+  pack(_mm256_set_pd(step[3], step[2], step[1], step[0]), dx, ty, beta, lagPerLength, r, gy, gphi,
+       a, lanes->full);
+  for (auto& row : lanes->v) store(row, _mm256_setzero_pd());
+}
+
+// Every lane q not live[q] repeats lane p: the same strip, node, state and constants (rows
+// written whole, as in start).
+[[gnu::target("avx")]] void repeat(int p, const bool* live, Lanes* lanes) {
+  const V dead = _mm256_castsi256_pd(
+      _mm256_set_epi64x(live[3] ? 0 : -1, live[2] ? 0 : -1, live[1] ? 0 : -1, live[0] ? 0 : -1));
+  for (auto& row : lanes->entry) store(row, select(dead, _mm256_broadcast_sd(row + p), load(row)));
+  for (auto& row : lanes->full) store(row, select(dead, _mm256_broadcast_sd(row + p), load(row)));
+  for (auto& row : lanes->v) store(row, select(dead, _mm256_broadcast_sd(row + p), load(row)));
+  for (int q = 0; q < 4; ++q) {
+    if (live[q]) continue;
+    lanes->history[q] = lanes->history[p];
+    lanes->strip[q] = lanes->strip[p];
+    lanes->first[q] = lanes->first[p];
+    lanes->leave[q] = lanes->leave[p];
+    lanes->next[q] = lanes->next[p];
+  }
+}
+
+// Nodes next[q] + i of the lanes' strips, i < n, each step's constants c (Lanes::entry or full);
+// read(i, h) gives their histories h[0..3]. Returns the number of nodes marched: n, or where the
+// guards stopped the lanes; next advances by it.
+template <bool kSecond, class Reader>
+[[gnu::target("avx"), gnu::noinline]] int march(Lanes* lanes, const Lanes::Constants& c, int n,
+                                                const Reader& reader, const double* xn,
+                                                const FieldPointers& field,
                                                 const StateUpdate<kSecond>& update) {
-  using L = Lanes<Strip>;
+  using L = Lanes;
   const FieldPointers out = field;
   double* const written = update.written;
-  const auto& c = lanes->c;
   const V memX = load(c[L::kMemX]), memY = load(c[L::kMemY]), lagX = load(c[L::kLagX]),
           lagY = load(c[L::kLagY]), pushX = load(c[L::kPushX]), pushY = load(c[L::kPushY]),
           decayX = load(c[L::kDecayX]), decayY = load(c[L::kDecayY]),
@@ -719,104 +774,9 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   auto finish = [&](int j, const Strip& s) {
     sums.addStrip(mesh, j, s.sums, f->entry[j], out.tx, out.ty);
   };
-  int j = 0;
-#ifdef WRC_FOUR_STRIP_LANES
-  if constexpr (kResidualAlongTraction) {
-    if (st->marchesFourStrips(nx) && ny >= 4) {
-      // Four strips at a time in AVX's lanes (quad::march), each lane taking the next strip when
-      // its own ends, and, once no strip is left for it, repeating a lane that still marches (the
-      // same values to the same nodes; its sums unused). Strips end out of order: their sums are
-      // added in strip order at the end.
-      StripSums* const stripSums = TransientStorage::stripSums(ny, st);
-      quad::Lanes<Strip> lanes;
-      Strip S[4] = {strip(0), strip(0), strip(0), strip(0)};
-      int next = 0;
-      int stripOf[4];  // lane q's own strip; -1: the lane repeats another
-      // Lane q takes the next strip with nodes left after its entry node; false if none is left.
-      auto refill = [&](int q) {
-        for (; next < ny; ++next) {
-          S[q] = strip(next);
-          int k = S[q].enter;
-          // The first loaded node steps from the patch's leading edge, where the traction is zero.
-          if (k < S[q].leave) S[q].node(k++, S[q].entry, history, xn, out, update);
-          if (k < S[q].leave) {
-            lanes.take(q, &S[q], k);
-            stripOf[q] = next++;
-            return true;
-          }
-          stripSums[next] = S[q].sums;
-        }
-        stripOf[q] = -1;
-        return false;
-      };
-      int live = 0;
-      for (int q = 0; q < 4; ++q) live += refill(q);
-      while (live > 0) {
-        int n = std::numeric_limits<int>::max(), own = 0;
-        for (int q = 0; q < 4; ++q) {
-          if (stripOf[q] < 0) continue;
-          n = std::min(n, S[q].leave - lanes.next[q]);
-          own = q;
-        }
-        for (int q = 0; q < 4; ++q)
-          if (stripOf[q] < 0) lanes.repeat(own, q);
-        const int at0 = lanes.next[0] - lanes.strip[0]->first;
-        bool aligned = Source::kMapped;  // the four march the same nodes of their strips
-        for (int q = 1; q < 4; ++q)
-          aligned = aligned && lanes.next[q] - lanes.strip[q]->first == at0;
-        const Strip* const of[4] = {lanes.strip[0], lanes.strip[1], lanes.strip[2], lanes.strip[3]};
-        int done = 0;
-        while (done < n) {
-          if constexpr (Source::kMapped) {
-            if (aligned) {
-              const quad::CarriedReader reader{
-                  history.offsets,
-                  history.weights,
-                  {of[0]->history, of[1]->history, of[2]->history, of[3]->history},
-                  at0 + done};
-              done += quad::march<kSecond>(&lanes, n - done, reader, xn, out, update);
-            } else {
-              int from[4];
-              for (int q = 0; q < 4; ++q) from[q] = lanes.next[q] - of[q]->first;
-              auto read = [&](int i, History* h) __attribute__((always_inline)) {
-                for (int q = 0; q < 4; ++q)
-                  h[q] = history.template at<kSecond>(of[q]->history, from[q] + i);
-              };
-              done += quad::march<kSecond>(
-                  &lanes, n - done, quad::HistoryReader<decltype(read)>{read}, xn, out, update);
-            }
-          } else {
-            done += quad::march<kSecond>(&lanes, n - done, quad::InPlaceReader{}, xn, out, update);
-          }
-          if (done == n) break;
-          // The node the guards stopped at, one strip at a time.
-          for (int q = 0; q < 4; ++q) {
-            if (stripOf[q] < 0) continue;
-            lanes.give(q);
-            S[q].node(lanes.next[q], S[q].full, history, xn, out, update);
-            lanes.take(q, &S[q], lanes.next[q] + 1);
-          }
-          for (int q = 0; q < 4; ++q)
-            if (stripOf[q] < 0) lanes.repeat(own, q);
-          ++done;
-        }
-        for (int q = 0; q < 4; ++q) {
-          if (stripOf[q] < 0 || lanes.next[q] < S[q].leave) continue;
-          lanes.give(q);
-          stripSums[stripOf[q]] = S[q].sums;
-          live -= !refill(q);
-        }
-      }
-      for (int jj = 0; jj < ny; ++jj)
-        sums.addStrip(mesh, jj, stripSums[jj], f->entry[jj], out.tx, out.ty);
-      return sums.forces();
-    }
-  }
-#endif
   // Two strips at a time: their marches are independent serial chains, so each fills the other's
   // latency. Each strip's nodes still go in order: the result is that of one strip at a time.
-  for (; j + 1 < ny; j += 2) {
-    Strip A = strip(j), B = strip(j + 1);
+  auto marchTwo = [&](Strip & A, Strip & B) __attribute__((always_inline)) {
     int ka = A.enter, kb = B.enter;
     // The first loaded node steps from the patch's leading edge, where the traction is zero.
     if (ka < A.leave) A.node(ka++, A.entry, history, xn, out, update);
@@ -839,13 +799,151 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
     }
     for (ka += n; ka < A.leave; ++ka) A.node(ka, A.full, history, xn, out, update);
     for (kb += n; kb < B.leave; ++kb) B.node(kb, B.full, history, xn, out, update);
+  };
+  auto marchOne = [&](Strip & A) __attribute__((always_inline)) {
+    if (A.enter < A.leave) A.node(A.enter, A.entry, history, xn, out, update);
+    for (int k = A.enter + 1; k < A.leave; ++k) A.node(k, A.full, history, xn, out, update);
+  };
+  int j = 0;
+#ifdef WRC_FOUR_STRIP_LANES
+  if constexpr (kResidualAlongTraction) {
+    if (st->marchesFourStrips(nx) && ny >= 4) {
+      // Four strips at a time in AVX's lanes (quad::march). The strips go in groups of four in
+      // centre-out order: on a fixed mesh a strip's loaded length falls with |y|, so a group's
+      // strips are about as long, and on the adaptive mesh all are. A group's constants are set
+      // up in the lanes (quad::start), its first loaded nodes marched in them; a lane whose strip
+      // ends repeats one that still marches (the same values to the same nodes; its sums unused).
+      // One or two strips left over go two at a time. The strips' sums are added in strip order
+      // at the end.
+      StripSums* const stripSums = TransientStorage::stripSums(ny, st);
+      quad::Lanes lanes;
+      const int half = ny / 2;
+      auto centreOut = [&](int k) {
+        if (ny % 2 == 0) return k % 2 == 0 ? half - 1 - k / 2 : half + k / 2;
+        return k == 0 ? half : (k % 2 == 1 ? half - (k + 1) / 2 : half + k / 2);
+      };
+      bool live[4];
+      // n nodes of every lane on constants `steps` (entry: the strips' entry steps), the nodes the
+      // guards stop at one strip at a time.
+      auto marchLanes = [&](const quad::Lanes::Constants& steps, int n, bool entry, int own) {
+        int done = 0;
+        while (done < n) {
+          if constexpr (Source::kMapped) {
+            const int at0 = lanes.next[0] - lanes.first[0];
+            bool aligned = true;  // the four march the same nodes of their strips
+            for (int q = 1; q < 4; ++q) aligned = aligned && lanes.next[q] - lanes.first[q] == at0;
+            if (aligned) {
+              const quad::CarriedReader reader{
+                  history.offsets,
+                  history.weights,
+                  {lanes.history[0], lanes.history[1], lanes.history[2], lanes.history[3]},
+                  at0};
+              done += quad::march<kSecond>(&lanes, steps, n - done, reader, xn, out, update);
+            } else {
+              int from[4];
+              for (int q = 0; q < 4; ++q) from[q] = lanes.next[q] - lanes.first[q];
+              auto read = [&](int i, History* h) __attribute__((always_inline)) {
+                for (int q = 0; q < 4; ++q)
+                  h[q] = history.template at<kSecond>(lanes.history[q], from[q] + i);
+              };
+              done +=
+                  quad::march<kSecond>(&lanes, steps, n - done,
+                                       quad::HistoryReader<decltype(read)>{read}, xn, out, update);
+            }
+          } else {
+            done += quad::march<kSecond>(&lanes, steps, n - done, quad::InPlaceReader{}, xn, out,
+                                         update);
+          }
+          if (done == n) break;
+          // The node the guards stopped at, one strip at a time (its constants as the lanes',
+          // bit for bit).
+          for (int q = 0; q < 4; ++q) {
+            if (!live[q]) continue;
+            Strip s = strip(lanes.strip[q]);
+            lanes.give(q, &s);
+            s.node(lanes.next[q], entry ? s.entry : s.full, history, xn, out, update);
+            lanes.take(q, s);
+            ++lanes.next[q];
+          }
+          quad::repeat(own, live, &lanes);
+          ++done;
+        }
+      };
+      for (int k = 0; k < ny;) {
+        int count = 0;
+        for (; k < ny && count < 4; ++k) {
+          const int jk = centreOut(k), e = f->entry[jk].first;
+          if (e >= nx - e) {  // nothing loaded
+            stripSums[jk] = StripSums{};
+            continue;
+          }
+          lanes.strip[count] = jk;
+          lanes.first[count] = mesh.index(0, jk);
+          lanes.next[count] = lanes.first[count] + e;
+          lanes.leave[count] = lanes.first[count] + nx - e;
+          lanes.history[count] = history.strip(jk, nx);
+          live[count] = true;
+          ++count;
+        }
+        if (count == 0) break;
+        if (count <= 2) {  // the last, outermost strips: the lanes would idle half or more
+          Strip A = strip(lanes.strip[0]);
+          if (count == 2) {
+            Strip B = strip(lanes.strip[1]);
+            marchTwo(A, B);
+            stripSums[lanes.strip[1]] = B.sums;
+          } else {
+            marchOne(A);
+          }
+          stripSums[lanes.strip[0]] = A.sums;
+          break;
+        }
+        for (int q = count; q < 4; ++q) {  // the group's last lanes repeat its first
+          lanes.strip[q] = lanes.strip[0];
+          lanes.first[q] = lanes.first[0];
+          lanes.next[q] = lanes.next[0];
+          lanes.leave[q] = lanes.leave[0];
+          lanes.history[q] = lanes.history[0];
+          live[q] = false;
+        }
+        quad::start(mesh, f->entry.data(), gx, gphiX, L.lateralCoupling, beta, X.lagPerLength, r,
+                    gy, gphi, a, &lanes);
+        // The first loaded node steps from the patch's leading edge, where the traction is zero.
+        marchLanes(lanes.entry, 1, true, 0);
+        while (true) {
+          int n = std::numeric_limits<int>::max(), own = -1;
+          bool ended = false;  // a lane's strip ended: the lanes repeating it must move on
+          for (int q = 0; q < 4; ++q) {
+            if (!live[q]) continue;
+            if (lanes.next[q] == lanes.leave[q]) {
+              stripSums[lanes.strip[q]] = lanes.sums(q);
+              live[q] = false;
+              ended = true;
+            } else {
+              n = std::min(n, lanes.leave[q] - lanes.next[q]);
+              own = q;
+            }
+          }
+          if (own < 0) break;
+          if (ended) quad::repeat(own, live, &lanes);
+          marchLanes(lanes.full, n, false, own);
+        }
+      }
+      for (int jj = 0; jj < ny; ++jj)
+        sums.addStrip(mesh, jj, stripSums[jj], f->entry[jj], out.tx, out.ty);
+      return sums.forces();
+    }
+  }
+#endif
+  for (; j + 1 < ny; j += 2) {
+    Strip A = strip(j), B = strip(j + 1);
+    marchTwo(A, B);
     finish(j, A);
     finish(j + 1, B);
   }
   for (; j < ny; ++j) {
     Strip A = strip(j);
-    if (A.enter < A.leave) A.node(A.enter, A.entry, history, xn, out, update);
-    for (int k = A.enter + 1; k < A.leave; ++k) A.node(k, A.full, history, xn, out, update);
+    marchOne(A);
     finish(j, A);
   }
   return sums.forces();

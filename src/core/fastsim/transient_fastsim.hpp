@@ -40,9 +40,10 @@ class TransientState {
   Saturation saturation() const { return saturation_; }
   /// Under kResidualAlongTraction the march can take four strips at a time in the lanes of AVX
   /// registers instead of two (FourStripLanes, fastsim.hpp). kAuto: on meshes of at least
-  /// kFourStripLanesFromNodes nodes a strip, where the lanes' per-strip bookkeeping pays.
+  /// kFourStripLanesFromNodes nodes a strip (a strip's set-up in the lanes costs about what its
+  /// first node does).
   using FourStripLanes = wheel_rail_contact::FourStripLanes;
-  static constexpr int kFourStripLanesFromNodes = 16;
+  static constexpr int kFourStripLanesFromNodes = 4;
   void setFourStripLanes(FourStripLanes use) { fourStripLanes_ = use; }
   /// Whether a march on strips of nx nodes takes four strips at a time.
   bool marchesFourStrips(int nx) const;
