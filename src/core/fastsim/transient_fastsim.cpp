@@ -431,15 +431,31 @@ struct CarriedReader {
     const std::ptrdiff_t o = offsets[at + i];
     const V w0 = _mm256_set1_pd(weights[4 * (at + i)]),
             w1 = _mm256_set1_pd(weights[4 * (at + i) + 2]);
-    const double* const p0[4] = {strip[0] + o, strip[1] + o, strip[2] + o, strip[3] + o};
-    const double* const p1[4] = {p0[0] + kPerNode, p0[1] + kPerNode, p0[2] + kPerNode,
-                                 p0[3] + kPerNode};
-    for (int m = 0; m < (kSecond ? 3 : 2); ++m) {
-      V x0, y0, x1, y1;
-      split(p0, 2 * m, &x0, &y0);
-      split(p1, 2 * m, &x1, &y1);
-      h[2 * m] = add(mul(w0, x0), mul(w1, x1));
-      h[2 * m + 1] = add(mul(w0, y0), mul(w1, y1));
+    // Per lane the node's traction and filter state together, (tx, ty, sx, sy), carried as one
+    // register, then turned into the lanes' tx, ty, sx, sy; s2 as a pair per lane.
+    V r[4];
+    for (int q = 0; q < 4; ++q) {
+      const double* const p = strip[q] + o;
+      r[q] = add(mul(w0, _mm256_loadu_pd(p)), mul(w1, _mm256_loadu_pd(p + kPerNode)));
+    }
+    const V a = _mm256_unpacklo_pd(r[0], r[1]), b = _mm256_unpackhi_pd(r[0], r[1]),
+            c = _mm256_unpacklo_pd(r[2], r[3]), d = _mm256_unpackhi_pd(r[2], r[3]);
+    h[0] = _mm256_permute2f128_pd(a, c, 0x20);
+    h[1] = _mm256_permute2f128_pd(b, d, 0x20);
+    h[2] = _mm256_permute2f128_pd(a, c, 0x31);
+    h[3] = _mm256_permute2f128_pd(b, d, 0x31);
+    if constexpr (kSecond) {
+      const __m128d v0 = _mm256_castpd256_pd128(w0), v1 = _mm256_castpd256_pd128(w1);
+      __m128d e[4];
+      for (int q = 0; q < 4; ++q) {
+        const double* const p = strip[q] + o + kSecondState;
+        e[q] =
+            _mm_add_pd(_mm_mul_pd(v0, _mm_load_pd(p)), _mm_mul_pd(v1, _mm_load_pd(p + kPerNode)));
+      }
+      const V ac = _mm256_insertf128_pd(_mm256_castpd128_pd256(e[0]), e[2], 1),
+              bd = _mm256_insertf128_pd(_mm256_castpd128_pd256(e[1]), e[3], 1);
+      h[4] = _mm256_unpacklo_pd(ac, bd);
+      h[5] = _mm256_unpackhi_pd(ac, bd);
     }
   }
 };
