@@ -152,26 +152,24 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
   const double ka = mesh.a() / a, kb = mesh.b() / b;
   double* const out = bound->data();
   double sum = 0.0, shapeSum = 0.0, shapeSquareSum = 0.0;
+  // kFlat: the node sums of the shape, Sum shape and Sum shape^2 times a_j / a, in closed form per
+  // strip: the interior nodes' shape is ry - c^2 u^2 (stripEntry), their moments the mesh's; the
+  // end nodes at their parked shape, clipped at zero as the bound is, and weighted as the force's
+  // quadrature weights them (stripShapeSum). Unweighted, the flattened bound's quadrature could
+  // exceed mu fz where the patch covers few nodes of a fixed mesh (found by fuzzing).
+  const double perU2 = (ka / nx) * (ka / nx);
   for (int j = 0; j < ny; ++j) {
     const double yn = mesh.yNorm(j) * kb, ry = 1.0 - yn * yn, c = ka * mesh.halfNorm(j) / nx;
     entry[j] = stripEntry(nx, ry, c, mesh.stripStep(j));
     double endShape;
     sum += stripShapeSum(nx, ry, c, entry[j], &endShape) * mesh.nodeArea(j);
     out[mesh.index(0, j)] = endShape;  // parked until the scale is known
-  }
-  if constexpr (kFlat) {
-    // The node sums of the shape, Sum shape and Sum shape^2 times a_j / a, in closed form per
-    // strip: the interior nodes' shape is ry - c^2 u^2 (stripEntry), their moments the mesh's; the
-    // end nodes at their parked shape, clipped at zero as the bound is, and weighted as the
-    // force's quadrature weights them (stripShapeSum). Unweighted, the flattened bound's quadrature
-    // could exceed mu fz where the patch covers few nodes of a fixed mesh (found by fuzzing).
-    const double perU2 = (ka / nx) * (ka / nx);
-    for (int j = 0; j < ny; ++j) {
+    if constexpr (kFlat) {
       const int first = entry[j].first;
       if (first >= nx) continue;
       const PatchMesh::InteriorMoments& m = mesh.interiorMoments(first);
-      const double h = mesh.halfNorm(j), yn = mesh.yNorm(j) * kb, ry = 1.0 - yn * yn;
-      const double c2 = perU2 * h * h, c2u2 = c2 * m.u2, end = std::max(out[mesh.index(0, j)], 0.0);
+      const double h = mesh.halfNorm(j);
+      const double c2 = perU2 * h * h, c2u2 = c2 * m.u2, end = std::max(endShape, 0.0);
       // One loaded node (weight 1 + 2w), or two ends (1 + w each).
       const double ends = (2 * first == nx - 1 ? 1.0 : 2.0) + 2.0 * entry[j].w;
       shapeSum += h * (m.count * ry - c2u2 + ends * end);
