@@ -261,8 +261,8 @@ TEST(TransientFastSim, OutsideStatesHeldDecayedEqualTheFullUpdate) {
 
 TEST(TransientFastSim, FourStripLanesMarchBitForBitAsTwoStrips) {
   // The residual-along-traction march takes four strips at a time in AVX's lanes (groups of four
-  // in centre-out order, a lane repeating another once its strip ends, one or two strips left
-  // over two at a time) and stops for the nodes its guards send one strip at a time. Each strip
+  // in centre-out order, a lane repeating another once its strip ends, a strip left over alone
+  // as a scalar) and stops for the nodes its guards send one strip at a time. Each strip
   // must come out exactly as from the two-strip march: tractions, slip flags, filter states and
   // forces equal bit for bit, on a fixed mesh larger than a patch whose load varies (strips of
   // different lengths, edges moving), on carried steps (the adaptive mesh's path), first- and

@@ -829,8 +829,8 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       // strips are about as long, and on the adaptive mesh all are. A group's constants are set
       // up in the lanes (quad::start), its first loaded nodes marched in them; a lane whose strip
       // ends repeats one that still marches (the same values to the same nodes; its sums unused).
-      // One or two strips left over go two at a time. The strips' sums are added in strip order
-      // at the end.
+      // A strip left over alone goes as a scalar. The strips' sums are added in strip order at the
+      // end.
       StripSums* const stripSums = TransientStorage::stripSums(ny, st);
       quad::Lanes lanes;
       const int half = ny / 2;
@@ -902,15 +902,9 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
           ++count;
         }
         if (count == 0) break;
-        if (count <= 2) {  // the last, outermost strips: the lanes would idle half or more
+        if (count == 1) {  // the last, outermost strip: the lanes would idle three quarters
           Strip A = strip(lanes.strip[0]);
-          if (count == 2) {
-            Strip B = strip(lanes.strip[1]);
-            marchTwo(A, B);
-            stripSums[lanes.strip[1]] = B.sums;
-          } else {
-            marchOne(A);
-          }
+          marchOne(A);
           stripSums[lanes.strip[0]] = A.sums;
           break;
         }
