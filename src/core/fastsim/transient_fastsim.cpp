@@ -129,6 +129,14 @@ struct TimeTerm {
 // history's part of the guess, the filter state's update) is computed for both directions at once.
 using Pair = Eigen::Array2d;
 
+// Strip j's x drive (gx less spin's part at the strip's y) and its lateral coupling times y:
+// PackedStep's arguments that differ by strip, taken alike by the two-strip march and the lanes.
+struct StripDrives {
+  double x, perTy;
+  StripDrives(const PatchMesh& mesh, int j, double gx, double gphiX, double coupling)
+      : x(gx - gphiX * mesh.stripY(j)), perTy(coupling * mesh.stripY(j)) {}
+};
+
 // Both directions' adhesion guesses for a step of length h along a strip, every factor that does
 // not change along the strip folded in, as (x, y) pairs:  tau = history + decay tau_up, with
 // history = memory tau_old - lag s_old - push (push: the rigid slip over L, times h). Spin drives y
@@ -562,9 +570,9 @@ WRC_AVX_INLINE void pack(V H, V driveX, V perTy, const Pair& beta, double lagPer
 }
 
 // A group's start: lane q takes strip lanes->strip[q] of `mesh`, entering at entry[strip].h:
-// both steps' constants (pack; the x drive and lateral coupling from the strip's y as the
-// two-strip march takes them), the running state zero. The per-strip values go into the lanes
-// from registers and every row is written whole, so no load waits on stores of parts of it.
+// both steps' constants (pack, on the strip's StripDrives), the running state zero. The per-strip
+// values go into the lanes from registers and every row is written whole, so no load waits on
+// stores of parts of it.
 [[gnu::target("avx")]] void start(const PatchMesh& mesh, const StripEntry* entry, double gx,
                                   double gphiX, double coupling, const Pair& beta,
                                   double lagPerLength, double r, double gy, double gphi, double a,
@@ -572,11 +580,11 @@ WRC_AVX_INLINE void pack(V H, V driveX, V perTy, const Pair& beta, double lagPer
   double h[4], step[4], driveX[4], perTy[4];
   for (int q = 0; q < 4; ++q) {
     const int j = lanes->strip[q];
-    const double y = mesh.stripY(j);
+    const StripDrives drives(mesh, j, gx, gphiX, coupling);
     h[q] = entry[j].h;
     step[q] = mesh.stripStep(j);
-    driveX[q] = gx - gphiX * y;
-    perTy[q] = coupling * y;
+    driveX[q] = drives.x;
+    perTy[q] = drives.perTy;
   }
   const V dx = _mm256_set_pd(driveX[3], driveX[2], driveX[1], driveX[0]),
           ty = _mm256_set_pd(perTy[3], perTy[2], perTy[1], perTy[0]);
@@ -776,13 +784,13 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
   unloadedNodes(mesh, f->entry, TransientStorage::outsideFrom(*st), history, out, update);
   // Strip j's march.
   auto strip = [&](int j) __attribute__((always_inline)) {
-    const double driveX = gx - gphiX * mesh.stripY(j), perTy = L.lateralCoupling * mesh.stripY(j);
+    const StripDrives d(mesh, j, gx, gphiX, L.lateralCoupling);
     const StripEntry e = f->entry[j];
     const int first = mesh.index(0, j), enter = first + e.first, leave = first + nx - e.first;
     const double* const stripHistory = history.strip(j, nx);
     return Strip{stripHistory,
-                 PackedStep(beta, X.lagPerLength, r, e.h, driveX, gy, gphi, a, perTy),
-                 PackedStep(beta, X.lagPerLength, r, mesh.stripStep(j), driveX, gy, gphi, a, perTy),
+                 PackedStep(beta, X.lagPerLength, r, e.h, d.x, gy, gphi, a, d.perTy),
+                 PackedStep(beta, X.lagPerLength, r, mesh.stripStep(j), d.x, gy, gphi, a, d.perTy),
                  first,
                  enter,
                  leave};

@@ -40,8 +40,7 @@ class TransientState {
   Saturation saturation() const { return saturation_; }
   /// Under kResidualAlongTraction the march can take four strips at a time in the lanes of AVX
   /// registers instead of two (FourStripLanes, fastsim.hpp). kAuto: on meshes of at least
-  /// kFourStripLanesFromNodes nodes a strip (a strip's set-up in the lanes costs about what its
-  /// first node does).
+  /// kFourStripLanesFromNodes nodes a strip.
   using FourStripLanes = wheel_rail_contact::FourStripLanes;
   static constexpr int kFourStripLanesFromNodes = 4;
   void setFourStripLanes(FourStripLanes use) { fourStripLanes_ = use; }
