@@ -45,13 +45,17 @@ WRC_AVX_INLINE V greater(V a, V b) {  // a > b
 WRC_AVX_INLINE V select(V mask, V yes, V no) {
   return _mm256_or_pd(_mm256_and_pd(mask, yes), _mm256_andnot_pd(mask, no));
 }
-/// v's lanes into v0[k[q]].
+/// v's first kLive lanes into v0[k[q]].
+template <int kLive = 4>
 WRC_AVX_INLINE void scatter(V v, double* v0, const int* k) {
-  const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1);
+  const __m128d lo = _mm256_castpd256_pd128(v);
   _mm_storel_pd(v0 + k[0], lo);
-  _mm_storeh_pd(v0 + k[1], lo);
-  _mm_storel_pd(v0 + k[2], hi);
-  _mm_storeh_pd(v0 + k[3], hi);
+  if constexpr (kLive > 1) _mm_storeh_pd(v0 + k[1], lo);
+  if constexpr (kLive > 2) {
+    const __m128d hi = _mm256_extractf128_pd(v, 1);
+    _mm_storel_pd(v0 + k[2], hi);
+    if constexpr (kLive > 3) _mm_storeh_pd(v0 + k[3], hi);
+  }
 }
 /// Where StripSums::node's tiny path (|t|^2 = t2 not above 1e-300, or NaN: |t| measured by hypot)
 /// could differ from the lanes' t2 > g^2: a tiny or NaN t2 next to a bound not far above it. Where
@@ -66,10 +70,12 @@ WRC_AVX_INLINE V outsideLanes(V t2, V g2) {
 constexpr std::uint32_t kSlipBytes[16] = {
     0x00000000, 0x00000001, 0x00000100, 0x00000101, 0x00010000, 0x00010001, 0x00010100, 0x00010101,
     0x01000000, 0x01000001, 0x01000100, 0x01000101, 0x01010000, 0x01010001, 0x01010100, 0x01010101};
-/// Four slip flags, lane q's into flags[k[q]], from a comparison's mask's bits (movemask).
+/// The first kLive of four slip flags, lane q's into flags[k[q]], from a comparison's mask's bits
+/// (movemask).
+template <int kLive = 4>
 WRC_AVX_INLINE void storeFlags(int bits, bool* flags, const int* k) {
   const std::uint32_t bytes = kSlipBytes[bits];
-  for (int q = 0; q < 4; ++q) {
+  for (int q = 0; q < kLive; ++q) {
     const auto flag = static_cast<std::uint8_t>(bytes >> (8 * q));
     std::memcpy(flags + k[q], &flag, 1);  // a bool's byte, 0 or 1
   }

@@ -420,7 +420,7 @@ WRC_AVX_INLINE void split(const History* h, Pair History::*m, V* x, V* y) {
 // state, x and y apart. p[q]: where lane q's node is written.
 // In place: read where it is written.
 struct InPlaceReader {
-  template <bool kSecond>
+  template <bool kSecond, int>
   WRC_AVX_INLINE void read(int, const double* const* p, V* h) const {
     split(p, kTraction, &h[0], &h[1]);
     split(p, kState, &h[2], &h[3]);
@@ -434,7 +434,7 @@ struct CarriedReader {
   const double* weights;
   const double* strip[4];  // the old strips' node 0
   int at;
-  template <bool kSecond>
+  template <bool kSecond, int kLive>
   WRC_AVX_INLINE void read(int i, const double* const*, V* h) const {
     const std::ptrdiff_t o = offsets[at + i];
     const V w0 = _mm256_set1_pd(weights[4 * (at + i)]),
@@ -443,7 +443,7 @@ struct CarriedReader {
     // register, then turned into the lanes' tx, ty, sx, sy; s2 as a pair per lane.
     V r[4];
     for (int q = 0; q < 4; ++q) {
-      const double* const p = strip[q] + o;
+      const double* const p = strip[std::min(q, kLive - 1)] + o;
       r[q] = add(mul(w0, _mm256_loadu_pd(p)), mul(w1, _mm256_loadu_pd(p + kPerNode)));
     }
     const V a = _mm256_unpacklo_pd(r[0], r[1]), b = _mm256_unpackhi_pd(r[0], r[1]),
@@ -456,7 +456,7 @@ struct CarriedReader {
       const __m128d v0 = _mm256_castpd256_pd128(w0), v1 = _mm256_castpd256_pd128(w1);
       __m128d e[4];
       for (int q = 0; q < 4; ++q) {
-        const double* const p = strip[q] + o + kSecondState;
+        const double* const p = strip[std::min(q, kLive - 1)] + o + kSecondState;
         e[q] =
             _mm_add_pd(_mm_mul_pd(v0, _mm_load_pd(p)), _mm_mul_pd(v1, _mm_load_pd(p + kPerNode)));
       }
@@ -471,7 +471,7 @@ struct CarriedReader {
 template <class Read>
 struct HistoryReader {
   Read read_;
-  template <bool kSecond>
+  template <bool kSecond, int>
   WRC_AVX_INLINE void read(int i, const double* const*, V* h) const {
     History n[4];
     read_(i, n);
@@ -481,13 +481,14 @@ struct HistoryReader {
   }
 };
 
-// The four (x, y) pairs into p[q] + offset.
+// The first kLive of the four (x, y) pairs into p[q] + offset.
+template <int kLive>
 WRC_AVX_INLINE void join(V x, V y, double* const* p, int offset) {
   const V ac = _mm256_unpacklo_pd(x, y), bd = _mm256_unpackhi_pd(x, y);
   _mm_store_pd(p[0] + offset, _mm256_castpd256_pd128(ac));
-  _mm_store_pd(p[1] + offset, _mm256_castpd256_pd128(bd));
-  _mm_store_pd(p[2] + offset, _mm256_extractf128_pd(ac, 1));
-  _mm_store_pd(p[3] + offset, _mm256_extractf128_pd(bd, 1));
+  if constexpr (kLive > 1) _mm_store_pd(p[1] + offset, _mm256_castpd256_pd128(bd));
+  if constexpr (kLive > 2) _mm_store_pd(p[2] + offset, _mm256_extractf128_pd(ac, 1));
+  if constexpr (kLive > 3) _mm_store_pd(p[3] + offset, _mm256_extractf128_pd(bd, 1));
 }
 // The lanes' strips: per lane q its strip (index, node 0, history, end), next node and running
 // state (StripMarch's tx, ty, oldUpstream, sums) as rows of four, and the PackedStep constants of
@@ -613,23 +614,23 @@ WRC_AVX_INLINE void pack(V H, V driveX, V perTy, const Pair& beta, double lagPer
   }
 }
 
-// Nodes next[q] + i of the lanes' strips, i < n, each step's constants c (Lanes::entry or full);
-// read(i, h) gives their histories h[0..3]. Returns the number of nodes marched: n, or where the
-// guards stopped the lanes; next advances by it.
-template <bool kSecond, class Reader>
-[[gnu::target("avx"), gnu::noinline]] int march(Lanes* lanes, const Lanes::Constants& c, int n,
+// Nodes next[q] + i of the lanes' strips, i < n, on the step constants Lanes::full, the first on
+// Lanes::entry where `entry` (the strips' first loaded nodes); read(i, h) gives their histories
+// h[0..3]. Returns the number of nodes marched: n, or where the guards stopped the lanes; next
+// advances by it. Lanes from kLive on repeat lane kLive - 1 (repeat): they read its history and
+// write nothing (its stores are theirs).
+template <bool kSecond, int kLive, class Reader>
+[[gnu::target("avx"), gnu::noinline]] int march(Lanes* lanes, bool entry, int n,
                                                 const Reader& reader, const double* xn,
                                                 const FieldPointers& field,
                                                 const StateUpdate<kSecond>& update) {
   using L = Lanes;
   const FieldPointers out = field;
   double* const written = update.written;
-  const V memX = load(c[L::kMemX]), memY = load(c[L::kMemY]), lagX = load(c[L::kLagX]),
-          lagY = load(c[L::kLagY]), pushX = load(c[L::kPushX]), pushY = load(c[L::kPushY]),
-          decayX = load(c[L::kDecayX]), decayY = load(c[L::kDecayY]),
-          pushPerXn = load(c[L::kPushPerXn]), inverseX = load(c[L::kInverseX]),
-          inverseY = load(c[L::kInverseY]), scale2 = load(c[L::kScale2]),
-          coupleX = load(c[L::kCoupleX]);
+  // The node's constants are read from the lanes at each node (the stores to the field keep the
+  // compiler from holding them in registers anyway): the entry step's at the first, then the
+  // full step's.
+  const double(*c)[4] = entry ? lanes->entry : lanes->full;
   const V rateX = _mm256_set1_pd(update.rate(0)), rateY = _mm256_set1_pd(update.rate(1)),
           rateOldX = _mm256_set1_pd(update.rateOld(0)),
           rateOldY = _mm256_set1_pd(update.rateOld(1)),
@@ -651,7 +652,8 @@ template <bool kSecond, class Reader>
     sumX = load(v[L::kSumX]), sumY = load(v[L::kSumY]), sumXnY = load(v[L::kSumXnY]),
     loaded = load(v[L::kLoaded]), stuck = load(v[L::kStuck]);
   const V one = _mm256_set1_pd(1.0);
-  const int next[4] = {lanes->next[0], lanes->next[1], lanes->next[2], lanes->next[3]};
+  int next[4];
+  for (int q = 0; q < 4; ++q) next[q] = lanes->next[std::min(q, kLive - 1)];
   int i = 0;
   for (; i < n; ++i) {
     const int node[4] = {next[0] + i, next[1] + i, next[2] + i, next[3] + i};
@@ -659,7 +661,14 @@ template <bool kSecond, class Reader>
     double* const p[4] = {written + kPerNode * node[0], written + kPerNode * node[1],
                           written + kPerNode * node[2], written + kPerNode * node[3]};
     V h[6];  // oldX, oldY, sX, sY, s2X, s2Y
-    reader.template read<kSecond>(i, p, h);
+    reader.template read<kSecond, kLive>(i, p, h);
+    const V memX = load(c[L::kMemX]), memY = load(c[L::kMemY]), lagX = load(c[L::kLagX]),
+            lagY = load(c[L::kLagY]), pushX = load(c[L::kPushX]), pushY = load(c[L::kPushY]),
+            decayX = load(c[L::kDecayX]), decayY = load(c[L::kDecayY]),
+            pushPerXn = load(c[L::kPushPerXn]), inverseX = load(c[L::kInverseX]),
+            inverseY = load(c[L::kInverseY]), scale2 = load(c[L::kScale2]),
+            coupleX = load(c[L::kCoupleX]);
+    c = lanes->full;
     const V oldX = h[0], oldY = h[1], sX = h[2], sY = h[3];
     const V guessX = sub(sub(sub(mul(memX, oldX), mul(lagX, sX)), pushX), mul(coupleX, upY));
     const V guessY = sub(sub(mul(memY, oldY), mul(lagY, sY)), pushY);
@@ -696,9 +705,9 @@ template <bool kSecond, class Reader>
     upX = oldX;
     upY = oldY;
     // StripSums::add.
-    scatter(tx, out.tx, node);
-    scatter(ty, out.ty, node);
-    storeFlags(slipping, out.slip, node);
+    scatter<kLive>(tx, out.tx, node);
+    scatter<kLive>(ty, out.ty, node);
+    storeFlags<kLive>(slipping, out.slip, node);
     sumX = add(sumX, tx);
     sumY = add(sumY, ty);
     sumXnY = add(sumXnY, mul(x, ty));
@@ -712,12 +721,13 @@ template <bool kSecond, class Reader>
       const V s2X = h[4], s2Y = h[5];
       nextX = add(nextX, mul(second.r, s2X));
       nextY = add(nextY, mul(second.r, s2Y));
-      join(sub(sub(mul(second.rateX, tx), mul(second.rateOldX, oldX)), mul(second.poleOldX, sX)),
-           sub(sub(mul(second.rateY, ty), mul(second.rateOldY, oldY)), mul(second.poleOldY, sY)), p,
-           kSecondState);
+      join<kLive>(
+          sub(sub(mul(second.rateX, tx), mul(second.rateOldX, oldX)), mul(second.poleOldX, sX)),
+          sub(sub(mul(second.rateY, ty), mul(second.rateOldY, oldY)), mul(second.poleOldY, sY)), p,
+          kSecondState);
     }
-    join(nextX, nextY, p, kState);
-    join(tx, ty, p, kTraction);
+    join<kLive>(nextX, nextY, p, kState);
+    join<kLive>(tx, ty, p, kTraction);
   }
   store(v[L::kTx], tx);
   store(v[L::kTy], ty);
@@ -847,11 +857,31 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
         return k == 0 ? half : (k % 2 == 1 ? half - (k + 1) / 2 : half + k / 2);
       };
       bool live[4];
-      // n nodes of every lane on constants `steps` (entry: the strips' entry steps), the nodes the
-      // guards stop at one strip at a time.
-      auto marchLanes = [&](const quad::Lanes::Constants& steps, int n, bool entry, int own) {
+      // n nodes of every lane, the first on the strips' entry steps where entryFirst, the nodes
+      // the guards stop at one strip at a time.
+      auto marchLanes = [&](bool entryFirst, int n, int own) {
+        // The lanes live: the first `prefix`, the others repeating the last of them (own), or all
+        // four marched where a dead lane sits between live ones.
+        int prefix = 0;
+        while (prefix < 4 && live[prefix]) ++prefix;
+        for (int q = prefix; q < 4; ++q)
+          if (live[q]) prefix = 4;
         int done = 0;
+        auto run = [&](bool entry, const auto& reader) __attribute__((always_inline)) {
+          const int m = n - done;
+          switch (prefix) {
+            case 1:
+              return quad::march<kSecond, 1>(&lanes, entry, m, reader, xn, out, update);
+            case 2:
+              return quad::march<kSecond, 2>(&lanes, entry, m, reader, xn, out, update);
+            case 3:
+              return quad::march<kSecond, 3>(&lanes, entry, m, reader, xn, out, update);
+            default:
+              return quad::march<kSecond, 4>(&lanes, entry, m, reader, xn, out, update);
+          }
+        };
         while (done < n) {
+          const bool entry = entryFirst && done == 0;
           if constexpr (Source::kMapped) {
             const int at0 = lanes.next[0] - lanes.first[0];
             bool aligned = true;  // the four march the same nodes of their strips
@@ -862,7 +892,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
                   history.weights,
                   {lanes.history[0], lanes.history[1], lanes.history[2], lanes.history[3]},
                   at0};
-              done += quad::march<kSecond>(&lanes, steps, n - done, reader, xn, out, update);
+              done += run(entry, reader);
             } else {
               int from[4];
               for (int q = 0; q < 4; ++q) from[q] = lanes.next[q] - lanes.first[q];
@@ -870,13 +900,10 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
                 for (int q = 0; q < 4; ++q)
                   h[q] = history.template at<kSecond>(lanes.history[q], from[q] + i);
               };
-              done +=
-                  quad::march<kSecond>(&lanes, steps, n - done,
-                                       quad::HistoryReader<decltype(read)>{read}, xn, out, update);
+              done += run(entry, quad::HistoryReader<decltype(read)>{read});
             }
           } else {
-            done += quad::march<kSecond>(&lanes, steps, n - done, quad::InPlaceReader{}, xn, out,
-                                         update);
+            done += run(entry, quad::InPlaceReader{});
           }
           if (done == n) break;
           // The node the guards stopped at, one strip at a time (its constants as the lanes',
@@ -916,18 +943,18 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
           stripSums[lanes.strip[0]] = A.sums;
           break;
         }
-        for (int q = count; q < 4; ++q) {  // the group's last lanes repeat its first
-          lanes.strip[q] = lanes.strip[0];
-          lanes.first[q] = lanes.first[0];
-          lanes.next[q] = lanes.next[0];
-          lanes.leave[q] = lanes.leave[0];
-          lanes.history[q] = lanes.history[0];
+        for (int q = count; q < 4; ++q) {  // the group's last lanes repeat its last strip
+          lanes.strip[q] = lanes.strip[count - 1];
+          lanes.first[q] = lanes.first[count - 1];
+          lanes.next[q] = lanes.next[count - 1];
+          lanes.leave[q] = lanes.leave[count - 1];
+          lanes.history[q] = lanes.history[count - 1];
           live[q] = false;
         }
         quad::start(mesh, f->entry.data(), gx, gphiX, L.lateralCoupling, beta, X.lagPerLength, r,
                     gy, gphi, a, &lanes);
         // The first loaded node steps from the patch's leading edge, where the traction is zero.
-        marchLanes(lanes.entry, 1, true, 0);
+        bool entered = false;
         while (true) {
           int n = std::numeric_limits<int>::max(), own = -1;
           bool ended = false;  // a lane's strip ended: the lanes repeating it must move on
@@ -944,7 +971,8 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
           }
           if (own < 0) break;
           if (ended) quad::repeat(own, live, &lanes);
-          marchLanes(lanes.full, n, false, own);
+          marchLanes(!entered, n, own);
+          entered = true;
         }
       }
       for (int jj = 0; jj < ny; ++jj)
