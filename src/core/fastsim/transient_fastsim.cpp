@@ -627,10 +627,25 @@ template <bool kSecond, int kLive, class Reader>
   using L = Lanes;
   const FieldPointers out = field;
   double* const written = update.written;
-  // The node's constants are read from the lanes at each node (the stores to the field keep the
-  // compiler from holding them in registers anyway): the entry step's at the first, then the
-  // full step's.
-  const double(*c)[4] = entry ? lanes->entry : lanes->full;
+  // The step's constants: the entry step's at the first node where `entry`, then the full step's.
+  V memX, memY, lagX, lagY, pushX, pushY, decayX, decayY, pushPerXn, inverseX, inverseY, scale2,
+      coupleX;
+  auto steps = [&](const Lanes::Constants& c) __attribute__((always_inline, target("avx"))) {
+    memX = load(c[L::kMemX]);
+    memY = load(c[L::kMemY]);
+    lagX = load(c[L::kLagX]);
+    lagY = load(c[L::kLagY]);
+    pushX = load(c[L::kPushX]);
+    pushY = load(c[L::kPushY]);
+    decayX = load(c[L::kDecayX]);
+    decayY = load(c[L::kDecayY]);
+    pushPerXn = load(c[L::kPushPerXn]);
+    inverseX = load(c[L::kInverseX]);
+    inverseY = load(c[L::kInverseY]);
+    scale2 = load(c[L::kScale2]);
+    coupleX = load(c[L::kCoupleX]);
+  };
+  steps(entry ? lanes->entry : lanes->full);
   const V rateX = _mm256_set1_pd(update.rate(0)), rateY = _mm256_set1_pd(update.rate(1)),
           rateOldX = _mm256_set1_pd(update.rateOld(0)),
           rateOldY = _mm256_set1_pd(update.rateOld(1)),
@@ -662,13 +677,6 @@ template <bool kSecond, int kLive, class Reader>
                           written + kPerNode * node[2], written + kPerNode * node[3]};
     V h[6];  // oldX, oldY, sX, sY, s2X, s2Y
     reader.template read<kSecond, kLive>(i, p, h);
-    const V memX = load(c[L::kMemX]), memY = load(c[L::kMemY]), lagX = load(c[L::kLagX]),
-            lagY = load(c[L::kLagY]), pushX = load(c[L::kPushX]), pushY = load(c[L::kPushY]),
-            decayX = load(c[L::kDecayX]), decayY = load(c[L::kDecayY]),
-            pushPerXn = load(c[L::kPushPerXn]), inverseX = load(c[L::kInverseX]),
-            inverseY = load(c[L::kInverseY]), scale2 = load(c[L::kScale2]),
-            coupleX = load(c[L::kCoupleX]);
-    c = lanes->full;
     const V oldX = h[0], oldY = h[1], sX = h[2], sY = h[3];
     const V guessX = sub(sub(sub(mul(memX, oldX), mul(lagX, sX)), pushX), mul(coupleX, upY));
     const V guessY = sub(sub(mul(memY, oldY), mul(lagY, sY)), pushY);
@@ -728,6 +736,7 @@ template <bool kSecond, int kLive, class Reader>
     }
     join<kLive>(nextX, nextY, p, kState);
     join<kLive>(tx, ty, p, kTraction);
+    if (i == 0 && entry) steps(lanes->full);
   }
   store(v[L::kTx], tx);
   store(v[L::kTy], ty);
