@@ -963,8 +963,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
         quad::start(mesh, f->entry.data(), gx, gphiX, L.lateralCoupling, beta, X.lagPerLength, r,
                     gy, gphi, a, &lanes);
         // The first loaded node steps from the patch's leading edge, where the traction is zero.
-        bool entered = false;
-        while (true) {
+        for (bool entry = true;; entry = false) {
           int n = std::numeric_limits<int>::max(), own = -1;
           bool ended = false;  // a lane's strip ended: the lanes repeating it must move on
           for (int q = 0; q < 4; ++q) {
@@ -980,8 +979,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
           }
           if (own < 0) break;
           if (ended) quad::repeat(own, live, &lanes);
-          marchLanes(!entered, n, own);
-          entered = true;
+          marchLanes(entry, n, own);
         }
       }
       for (int jj = 0; jj < ny; ++jj)
