@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/fastsim/steady_calibration.hpp"
 #include "step_inputs.hpp"
 
 using namespace wheel_rail_contact;
@@ -95,4 +96,36 @@ BENCHMARK(SteadyCalibrated)->MESHES;
 BENCHMARK(SteadyFixedMeshCalibrated)->MESHES;
 BENCHMARK(NssFixedCalibrated)->MESHES;
 BENCHMARK(NssAdaptiveCalibrated)->MESHES;
+
+// The calibrated FastSim's per-step calibration alone (FlexibilityCalibration::step) on the nss
+// rows' inputs: the default patch scaled with the load, mu fz, and the eta phi < 0 branch's weight
+// following over travel with relaxation length a as NssModel::followBranch does (between the
+// branches most of the time: eta changes sign every 25 mm).
+void CalibrationStep(benchmark::State& state) {
+  const ContactParameters p;
+  const FlexibilityCalibration cal =
+      SteadyCalibration::shipped().forMesh(static_cast<int>(state.range(0))).at(p.a0 / p.b0);
+  const CreepCoefficients k = kalkerCoefficients(p.a0 / p.b0, p.nu);
+  struct Step {
+    double a, b, muFz, opposed;
+    Creepages c;
+  } steps[256];
+  double opposed = -1.0;
+  for (int i = 0; i < 256; ++i) {
+    const StepInput in = bench::input(i, true);
+    const double s = std::cbrt(in.fz / p.fz0), a = p.a0 * s;
+    const Creepages c{in.xi, in.eta, in.phi};
+    const double target = FlexibilityCalibration::opposedBranch(c);
+    opposed = opposed < 0.0 || c.eta * c.phi == 0.0
+                  ? (opposed < 0.0 ? target : opposed)
+                  : target + (opposed - target) * std::exp(-in.V * in.dt / a);
+    steps[i] = {a, p.b0 * s, p.mu * in.fz, opposed, c};
+  }
+  int i = 0;
+  for (auto _ : state) {
+    const Step& x = steps[i++ & 255];
+    benchmark::DoNotOptimize(cal.step(x.a, x.b, p.G, k, x.muFz, x.c, x.opposed));
+  }
+}
+BENCHMARK(CalibrationStep)->Arg(5)->Arg(10)->Arg(20)->ComputeStatistics("min", least);
 BENCHMARK_MAIN();
