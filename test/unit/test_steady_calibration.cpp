@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -620,6 +622,71 @@ TEST(SteadyCalibration, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOn
   EXPECT_NE(message(single + "1,c1,0.5,1,0,0.5,0,1\n").find(":12: the knots"), std::string::npos);
   EXPECT_NE(message(body.substr(0, body.rfind("1,cs,0,1"))).find("misses a direction"),
             std::string::npos);
+}
+
+TEST(SteadyCalibration, VectorisedStepIsTheScalarStepBitForBit) {
+  if (!fourStripLanesAvailable()) GTEST_SKIP() << "no AVX on this CPU";
+  // Every field of the step, as bits.
+  auto same = [](const CalibratedStep& x, const CalibratedStep& y) {
+    const double u[] = {x.L.L1,       x.L.L2,      x.L.L3,      x.L.L3x, x.L.lateralCoupling,
+                        x.L.etaSlope, x.L.etaGain, x.boundShape};
+    const double v[] = {y.L.L1,       y.L.L2,      y.L.L3,      y.L.L3x, y.L.lateralCoupling,
+                        y.L.etaSlope, y.L.etaGain, y.boundShape};
+    return std::memcmp(u, v, sizeof u) == 0;
+  };
+  // The shipped table on three meshes and three a/b, creepages of every size and sign (some
+  // zero) from linear theory to full slip, on both branches and between them.
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto creepage = [&](double scale) {
+    const double u = unit(rng);
+    return u < 0.1 ? 0.0 : (u < 0.55 ? -1.0 : 1.0) * scale * std::pow(10.0, -4.0 * unit(rng));
+  };
+  int compared = 0, differ = 0;
+  for (int nx : {5, 10, 40})
+    for (double ab : {0.2, 1.0, 3.7}) {
+      FlexibilityCalibration scalar = SteadyCalibration::shipped().forMesh(nx).at(ab);
+      const FlexibilityCalibration lanes = scalar;
+      ASSERT_TRUE(lanes.vectorised());
+      scalar.setVectorised(false);
+      ASSERT_FALSE(scalar.vectorised());
+      const double a = 6e-3 * std::sqrt(ab), b = 6e-3 / std::sqrt(ab), G = 8.2e10, muFz = 2.4e4;
+      const CreepCoefficients k = kalkerCoefficients(ab, 0.28);
+      for (int n = 0; n < 4000; ++n) {
+        const Creepages c{creepage(0.05), creepage(0.05), creepage(20.0)};
+        const double opposed = n % 3 == 0 ? unit(rng) : FlexibilityCalibration::opposedBranch(c);
+        ++compared;
+        if (!same(lanes.step(a, b, G, k, muFz, c, opposed),
+                  scalar.step(a, b, G, k, muFz, c, opposed)))
+          ++differ;
+      }
+    }
+  EXPECT_EQ(differ, 0) << "of " << compared;
+  // A lane whose exp leaves the inline range (|x| >= 700) takes std::exp, as the scalar path: a
+  // table whose c1 multiplies L1 by 1e-310 (a subnormal) at e = 1.
+  std::string body =
+      "a_over_b,kind,epsilon,ratio,fit_error,spin_share,xi_share,sign\n1,11,0,1\n1,11,1,1\n"
+      "1,22,0,1\n1,22,1,1\n1,23,0,1\n1,23,1,1\n1,23x,0,1\n1,23x,1,1\n1,23s,0,1\n1,23s,1,1\n";
+  for (const char* kind : {"c1", "c2", "c3", "cs"})
+    for (const char* t : {"0", "1"})
+      for (const char* sign : {"1", "-1"}) {
+        body += std::string("1,") + kind + ",0,1,0,0.5," + t + "," + sign + "\n";
+        body += std::string("1,") + kind + ",1," + (std::string(kind) == "c1" ? "1e-310" : "2") +
+                ",0,0.5," + t + "," + sign + "\n";
+      }
+  FlexibilityCalibration scalar = SteadyCalibration::load(writeTable(body)).at(1.0);
+  const FlexibilityCalibration lanes = scalar;
+  scalar.setVectorised(false);
+  const RoundPatch p;
+  const double h = std::sqrt(0.5);
+  // At spin's share 1/2 (its knot) and e >= 1 (the last knot, held) ln c1 is -714: 2^m below the
+  // normal range.
+  for (double e : {0.5, 0.99, 1.0, 3.0}) {
+    const Creepages c = p.normalised(0.6 * e * h, 0.8 * e * h, e * h);
+    EXPECT_TRUE(same(p.step(lanes, c), p.step(scalar, c))) << "e = " << e;
+  }
+  const Flexibilities kalker = kalkerFlexibilities(p.a, p.b, p.G, p.k);
+  EXPECT_LT(p.step(lanes, p.normalised(0.6 * h, 0.8 * h, h)).L.L1 / kalker.L1, 1e-302);
 }
 
 TEST(SteadyCalibration, FifthCorrectionScalesTheLongitudinalSpinDriveAlone) {

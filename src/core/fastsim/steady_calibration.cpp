@@ -1,6 +1,7 @@
 #include "core/fastsim/steady_calibration.hpp"
 
 #include "core/csv_fields.hpp"
+#include "core/fastsim/avx_lanes.hpp"
 #include "core/fastsim/nearest_mesh.hpp"
 #include "wheel_rail_contact/shipped_tables.hpp"
 
@@ -42,22 +43,107 @@ const Exp2Table& exp2Table() {
   return table;
 }
 
-inline double stepExp(double x, const Exp2Table& table) {
-  if (!(std::fabs(x) < 700.0)) return std::exp(x);
-  constexpr double perLn2 = 128.0 / M_LN2, shift = 0x1.8p52;
-  constexpr double ln2Hi = 0x1.62e42fefa0000p-8, ln2Lo = 0x1.cf79abc9e3b3ap-47;  // ln 2 / 128
-  // k = round(x 128 / ln 2) in the low bits of kd (the shift's mantissa holds it).
-  double kd = x * perLn2 + shift;
-  std::uint64_t ki;
-  std::memcpy(&ki, &kd, sizeof ki);
-  kd -= shift;
-  const double r = x - kd * ln2Hi - kd * ln2Lo, r2 = r * r;
-  const double p = r + r2 * (0.5 + r * (1.0 / 6.0)) + r2 * r2 * (1.0 / 24.0 + r * (1.0 / 120.0));
+constexpr double kExpPerLn2 = 128.0 / M_LN2, kExpShift = 0x1.8p52;
+constexpr double kExpLn2Hi = 0x1.62e42fefa0000p-8, kExpLn2Lo = 0x1.cf79abc9e3b3ap-47;  // ln 2 / 128
+
+// 2^m 2^(i / 128) for k = 128 m + i in the low bits of ki.
+inline double expScale(std::uint64_t ki, const Exp2Table& table) {
   const std::uint64_t sbits = table.bits[ki & 127] + (ki << 45);
   double scale;
   std::memcpy(&scale, &sbits, sizeof scale);
+  return scale;
+}
+
+inline double stepExp(double x, const Exp2Table& table) {
+  if (!(std::fabs(x) < 700.0)) return std::exp(x);
+  // k = round(x 128 / ln 2) in the low bits of kd (the shift's mantissa holds it).
+  double kd = x * kExpPerLn2 + kExpShift;
+  std::uint64_t ki;
+  std::memcpy(&ki, &kd, sizeof ki);
+  kd -= kExpShift;
+  const double r = x - kd * kExpLn2Hi - kd * kExpLn2Lo, r2 = r * r;
+  const double p = r + r2 * (0.5 + r * (1.0 / 6.0)) + r2 * r2 * (1.0 / 24.0 + r * (1.0 / 120.0));
+  const double scale = expScale(ki, table);
   return scale + scale * p;
 }
+
+// The combined correction's ln multiplier p in a cell (FlexibilityCalibration::correctionCell):
+// `l0` its first corner, alongT and alongS the strides to the next xi share and spin share, we,
+// wt, ws the weights along e, xi's share and spin's share.
+inline double inCell(const double* l0, std::size_t alongT, std::size_t alongS, double we, double wt,
+                     double ws, int p) {
+  constexpr std::size_t P = FlexibilityCalibration::kCorrections;
+  auto along = [we](const double* x) { return x[0] + we * (x[P] - x[0]); };
+  const double* h0 = l0 + alongS;
+  const double l = (1.0 - wt) * along(l0 + p) + wt * along(l0 + alongT + p);
+  const double h = (1.0 - wt) * along(h0 + p) + wt * along(h0 + alongT + p);
+  return (1.0 - ws) * l + ws * h;
+}
+
+#ifdef WRC_FOUR_STRIP_LANES
+// The corrected step's interpolation (lookUpCorrection's) and four of its exps with the first four
+// multipliers in the lanes of an AVX register, the fifth (of L3x alone) as a scalar. Lane p does
+// multiplier p's operations in the scalar path's order, and AVX's plain ones (no fused
+// multiply-add): each result is the scalar path's bit for bit. The cell: `lo` its first corner,
+// alongT, alongS and branch the strides to the next xi share, spin share and branch, we, wt, ws
+// the weights along e, xi's share and spin's share. Into r the exps of logRho + lm[0..2] and of
+// logShape + lm[3], into lm4 the fifth ln multiplier.
+[[gnu::target("avx")]] void correctedExps(const double* lo, std::size_t alongT, std::size_t alongS,
+                                          std::size_t branch, double we, double wt, double ws,
+                                          double opposed, double logRho, double logShape,
+                                          const Exp2Table& table, double* r, double* lm4) {
+  using namespace avx;
+  constexpr std::size_t P = FlexibilityCalibration::kCorrections;
+  const V weV = _mm256_set1_pd(we), wtV = _mm256_set1_pd(wt), restT = _mm256_set1_pd(1.0 - wt),
+          wsV = _mm256_set1_pd(ws), restS = _mm256_set1_pd(1.0 - ws);
+  auto along = [&](const double* x) __attribute__((always_inline, target("avx"))) {
+    const V x0 = _mm256_loadu_pd(x);
+    return add(x0, mul(weV, sub(_mm256_loadu_pd(x + P), x0)));
+  };
+  auto inCellFour = [&](const double* l0) __attribute__((always_inline, target("avx"))) {
+    const double* h0 = l0 + alongS;
+    const V l = add(mul(restT, along(l0)), mul(wtV, along(l0 + alongT)));
+    const V h = add(mul(restT, along(h0)), mul(wtV, along(h0 + alongT)));
+    return add(mul(restS, l), mul(wsV, h));
+  };
+  auto inCellFifth = [&](const double* l0) { return inCell(l0, alongT, alongS, we, wt, ws, 4); };
+  V lm;
+  if (opposed <= 0.0) {
+    lm = inCellFour(lo);
+    *lm4 = inCellFifth(lo);
+  } else if (opposed >= 1.0) {
+    lm = inCellFour(lo + branch);
+    *lm4 = inCellFifth(lo + branch);
+  } else {
+    lm = add(mul(_mm256_set1_pd(1.0 - opposed), inCellFour(lo)),
+             mul(_mm256_set1_pd(opposed), inCellFour(lo + branch)));
+    *lm4 = (1.0 - opposed) * inCellFifth(lo) + opposed * inCellFifth(lo + branch);
+  }
+  // stepExp lane by lane; a lane outside |x| < 700 (or NaN) by std::exp, as there.
+  const V x = add(_mm256_set_pd(logShape, logRho, logRho, logRho), lm);
+  const V shift = _mm256_set1_pd(kExpShift);
+  const V kd0 = add(mul(x, _mm256_set1_pd(kExpPerLn2)), shift);
+  alignas(32) std::uint64_t ki[4];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(ki), _mm256_castpd_si256(kd0));
+  const V kd = sub(kd0, shift);
+  const V q = sub(sub(x, mul(kd, _mm256_set1_pd(kExpLn2Hi))), mul(kd, _mm256_set1_pd(kExpLn2Lo)));
+  const V q2 = mul(q, q);
+  const V p =
+      add(add(q, mul(q2, add(_mm256_set1_pd(0.5), mul(q, _mm256_set1_pd(1.0 / 6.0))))),
+          mul(mul(q2, q2), add(_mm256_set1_pd(1.0 / 24.0), mul(q, _mm256_set1_pd(1.0 / 120.0)))));
+  const V scale = _mm256_set_pd(expScale(ki[3], table), expScale(ki[2], table),
+                                expScale(ki[1], table), expScale(ki[0], table));
+  _mm256_storeu_pd(r, add(scale, mul(scale, p)));
+  const int inRange = _mm256_movemask_pd(
+      _mm256_cmp_pd(_mm256_andnot_pd(_mm256_set1_pd(-0.0), x), _mm256_set1_pd(700.0), _CMP_LT_OQ));
+  if (inRange != 15) {
+    alignas(32) double xs[4];
+    store(xs, x);
+    for (int k = 0; k < 4; ++k)
+      if (!(inRange >> k & 1)) r[k] = std::exp(xs[k]);
+  }
+}
+#endif
 
 // e1^2, e2^2, e3^2 and e (FlexibilityCalibration::normalisedCreepage), here with internal linkage
 // so that step() inlines it.
@@ -92,6 +178,27 @@ inline FlexibilityCalibration::KnotCell FlexibilityCalibration::cell(
   return {i, (e - x[i - 1]) * perWidth[i]};
 }
 
+inline FlexibilityCalibration::KnotCell FlexibilityCalibration::kindCell(double e) const {
+  const std::vector<double>& x = eps_[0];
+  if (!(e < x.back())) return {x.size(), 1.0};
+  std::size_t i = knotStart_.at(e);
+  while (x[i] <= e) ++i;
+  return {i, (e - x[i - 1]) * perWidth_[0][i]};
+}
+
+void FlexibilityCalibration::setSearchStarts() {
+  if (eps_[0].size() >= 2)
+    knotStart_.set(eps_[0].back(), [&](double v) {
+      std::size_t i = 1;
+      while (eps_[0][i] <= v) ++i;
+      return i;
+    });
+  if (corrS3_.empty()) return;
+  corrS3Start_.set(1.0, [&](double v) { return spinShareRow(v, 0); });
+  corrTStart_.set(1.0, [&](double v) { return xiShareCell(v, 1); });
+  corrEpsStart_.set(corrEps_.back(), [&](double v) { return epsCell(v, 1); });
+}
+
 double FlexibilityCalibration::logRatio(int kind, double e) const {
   if (eps_[kind].empty()) return 0.0;
   return at(logRatio_[kind], cell(kind, e));
@@ -118,22 +225,21 @@ bool FlexibilityCalibration::logCorrection(const double* e2, double e, double op
   return true;
 }
 
-inline void FlexibilityCalibration::lookUpCorrection(double s3, double t, double e, double opposed,
-                                                     int first, int last, double* lm) const {
+inline FlexibilityCalibration::CorrectionCell FlexibilityCalibration::correctionCell(
+    double s3, double t, double e) const {
   const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
+  CorrectionCell c;
   // Spin's share between its knots, the ends 0 and 1 implicit: the cell is [row i - 1, row i].
-  std::size_t i = 0;
-  while (i < nS && corrS3_[i] <= s3) ++i;
-  const double ws = std::min(1.0, (s3 - (i == 0 ? 0.0 : corrS3_[i - 1])) * corrS3PerWidth_[i]);
+  std::size_t i = spinShareRow(s3, corrS3Start_.at(s3));
+  c.ws = std::min(1.0, (s3 - (i == 0 ? 0.0 : corrS3_[i - 1])) * corrS3PerWidth_[i]);
   ++i;
-  std::size_t j = 1;
-  while (j + 1 < nT && corrT_[j] <= t) ++j;
-  const double wt = std::min(1.0, std::max(0.0, (t - corrT_[j - 1]) * corrTPerWidth_[j]));
+  const std::size_t j = xiShareCell(t, corrTStart_.at(t));
+  c.wt = std::min(1.0, std::max(0.0, (t - corrT_[j - 1]) * corrTPerWidth_[j]));
   std::size_t k = 1;
-  double we = 1.0;
+  c.we = 1.0;
   if (e < corrEps_.back()) {
-    while (corrEps_[k] <= e) ++k;
-    we = (e - corrEps_[k - 1]) * corrEpsPerWidth_[k];
+    k = epsCell(e, corrEpsStart_.at(e));
+    c.we = (e - corrEps_[k - 1]) * corrEpsPerWidth_[k];
   } else {
     k = nE - 1;  // held beyond the last knot
   }
@@ -141,22 +247,26 @@ inline void FlexibilityCalibration::lookUpCorrection(double s3, double t, double
   // cell [k - 1, k]: the five multipliers of a grid point lie side by side; the eta phi < 0
   // branch's block follows the eta phi > 0 one.
   constexpr std::size_t P = kCorrections;
-  const std::size_t alongT = nE * P, alongS = nT * alongT, branch = (nS + 2) * alongS;
-  const double* lo = corrLog_.data() + (i - 1) * alongS + (j - 1) * alongT + (k - 1) * P;
-  auto along = [we](const double* x) { return x[0] + we * (x[P] - x[0]); };
-  auto inCell = [&](const double* l0, int p) {
-    const double* h0 = l0 + alongS;
-    const double l = (1.0 - wt) * along(l0 + p) + wt * along(l0 + alongT + p);
-    const double h = (1.0 - wt) * along(h0 + p) + wt * along(h0 + alongT + p);
-    return (1.0 - ws) * l + ws * h;
+  c.alongT = nE * P;
+  c.alongS = nT * c.alongT;
+  c.branch = (nS + 2) * c.alongS;
+  c.lo = corrLog_.data() + (i - 1) * c.alongS + (j - 1) * c.alongT + (k - 1) * P;
+  return c;
+}
+
+inline void FlexibilityCalibration::lookUpCorrection(double s3, double t, double e, double opposed,
+                                                     int first, int last, double* lm) const {
+  const CorrectionCell c = correctionCell(s3, t, e);
+  auto multiplier = [&](const double* l0, int p) {
+    return inCell(l0, c.alongT, c.alongS, c.we, c.wt, c.ws, p);
   };
   if (opposed <= 0.0) {
-    for (int p = first; p < last; ++p) lm[p] = inCell(lo, p);
+    for (int p = first; p < last; ++p) lm[p] = multiplier(c.lo, p);
   } else if (opposed >= 1.0) {
-    for (int p = first; p < last; ++p) lm[p] = inCell(lo + branch, p);
+    for (int p = first; p < last; ++p) lm[p] = multiplier(c.lo + c.branch, p);
   } else {
     for (int p = first; p < last; ++p)
-      lm[p] = (1.0 - opposed) * inCell(lo, p) + opposed * inCell(lo + branch, p);
+      lm[p] = (1.0 - opposed) * multiplier(c.lo, p) + opposed * multiplier(c.lo + c.branch, p);
   }
 }
 
@@ -196,7 +306,7 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   if (!(e > 0.0)) return s;              // no creepage: linear theory, the parabolic bound
   const bool finite = std::isfinite(e);  // not finite: no friction, full slip (last knot)
   // Every kind's ln ratio at e: one search where the kinds share their knots.
-  const KnotCell shared = cell(0, e);
+  const KnotCell shared = kindCell(e);
   auto logRatioOf = [&](int kind) {
     return sharedKnots_ ? at(logRatio_[kind], shared) : logRatio(kind, e);
   };
@@ -240,12 +350,6 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
       if (w > 0.0) setEtaSlope(logRatioOf(kEtaSlopeKind) * w, a, &L);
     }
   }
-  // The combined correction's ln multipliers, of L1, L2, L3 and of the bound's shape, in one
-  // lookup; each goes into the exp of the ratio it multiplies. None for one kind or xi with eta.
-  double lm[kCorrections];
-  const double rest = e2[0] + e2[1];
-  const bool corrected = finite && !corrS3_.empty() && e2[2] > 0.0 && rest > 0.0;
-  if (corrected) lookUpCorrection(share[2], e2[0] / rest, e, opposed, 0, kCorrections, lm);
   // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
   // curves better than the arithmetic one (identify_steady's combined rays,
@@ -254,6 +358,36 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
                                      share[1] * towardsNoSpin(logRatioOf(1), kEtaNoSpinKind) +
                                      share[2] * logRatioOf(2)
                                : logRatioOf(0);
+  const bool spin = finite && e2[2] > 0.0;
+  const bool shaped = spin && !eps_[4].empty();  // the bound's shape from spin's share (23s)
+  const double logShape = shaped ? logRatioOf(4) : 0.0;
+  // The combined correction's ln multipliers, of L1, L2, L3, of the bound's shape and of L3x, in
+  // one lookup; each goes into the exp of the ratio it multiplies. None for one kind or xi with
+  // eta. The step's exps (inline): the ratios of L1, L2, L3 (the correction's multipliers folded
+  // in), of the spin drive's L3x to L3 (below) and the bound's shape.
+  const Exp2Table& table = exp2Table();
+  double lm[kCorrections], r1, r2, r3, shapeRatio = 0.0;
+  const double rest = e2[0] + e2[1];
+  const bool corrected = finite && !corrS3_.empty() && e2[2] > 0.0 && rest > 0.0;
+#ifdef WRC_FOUR_STRIP_LANES
+  if (corrected && vectorised_) {
+    const CorrectionCell cc = correctionCell(share[2], e2[0] / rest, e);
+    double r[4];
+    correctedExps(cc.lo, cc.alongT, cc.alongS, cc.branch, cc.we, cc.wt, cc.ws, opposed, logRho,
+                  logShape, table, r, &lm[4]);
+    r1 = r[0];
+    r2 = r[1];
+    r3 = r[2];
+    shapeRatio = r[3];
+  } else
+#endif
+  {
+    if (corrected) lookUpCorrection(share[2], e2[0] / rest, e, opposed, 0, kCorrections, lm);
+    r1 = stepExp(corrected ? logRho + lm[0] : logRho, table);
+    r2 = corrected ? stepExp(logRho + lm[1], table) : r1;
+    r3 = corrected ? stepExp(logRho + lm[2], table) : r1;
+    if (shaped) shapeRatio = stepExp(logShape + (corrected ? lm[3] : 0.0), table);
+  }
   // Towards full slip the flexibilities blend into one, L_crss (Vollebregt and Voltr 2023,
   // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
   // theory, not along (xi / L1, eta / L2). A single creepage has L_crss = its own L, unchanged.
@@ -265,12 +399,6 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   const double den = x2 * L23 + (y2 * L.L3 + s2 * L.L2) * L.L1;
   const double w = finite ? std::min(1.0, e / 5.0) : 1.0;
   const double crss = den > 0.0 ? (x2 + y2 + s2) * (L12 * L.L3) / den : L.L1;
-  // The step's exps (inline): the ratios of L1, L2, L3 (the correction's multipliers folded in),
-  // of the spin drive's L3x to L3 and the bound's shape.
-  const Exp2Table& table = exp2Table();
-  const double r1 = stepExp(corrected ? logRho + lm[0] : logRho, table);
-  const double r2 = corrected ? stepExp(logRho + lm[1], table) : r1;
-  const double r3 = corrected ? stepExp(logRho + lm[2], table) : r1;
   L.L1 = r1 * ((1.0 - w) * L.L1 + w * crss);
   L.L2 = r2 * ((1.0 - w) * L.L2 + w * crss);
   L.L3 = r3 * ((1.0 - w) * L.L3 + w * crss);
@@ -278,7 +406,6 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   // The correction's fifth multiplier (c3x) acts on L3x alone, in the same exp. 23x's knot 0 is
   // linear theory's spin moment (C33): it holds for the rest of e^2 too (spin's own curve has it
   // for spin's share) until the patch slips (linearSpinMoment).
-  const bool spin = finite && e2[2] > 0.0;
   if (spin && (!eps_[3].empty() || corrected)) {
     double lx = corrected ? lm[4] : 0.0;
     if (!eps_[3].empty())
@@ -297,11 +424,9 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   // The bound's shape: shape_23s(e) times spin's share of e^2 and shape_22s(e) times eta's where
   // spin's is small (no friction: parabolic).
   const double etaShape = noSpin > 0.0 ? noSpin * share[1] * logRatioOf(kEtaShapeKind) : 0.0;
-  if (spin && !eps_[4].empty())
-    s.boundShape = towardsFullSlip(
-        std::min(kMaxBoundShape,
-                 stepExp(logRatioOf(4) + (corrected ? lm[3] : 0.0), table) * share[2] + etaShape),
-        e, share[2], a / b);
+  if (shaped)
+    s.boundShape = towardsFullSlip(std::min(kMaxBoundShape, shapeRatio * share[2] + etaShape), e,
+                                   share[2], a / b);
   else
     s.boundShape = etaShape;
   return s;
@@ -664,6 +789,8 @@ void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
         1.0 / ((q == nS ? 1.0 : lo.corrS3[q]) - (q == 0 ? 0.0 : lo.corrS3[q - 1]));
   reciprocalWidths(c->corrT_, &c->corrTPerWidth_);
   reciprocalWidths(c->corrEps_, &c->corrEpsPerWidth_);
+  c->setSearchStarts();
+  c->vectorised_ = fourStripLanesAvailable();
   // Row's layout ((((p * 2 + opposed) * nS + q) * nT + j) * nE + k) into FlexibilityCalibration's
   // (grid point by grid point, the end rows 0).
   constexpr int P = FlexibilityCalibration::kCorrections;

@@ -92,6 +92,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -110,6 +111,11 @@ struct CalibratedStep {
 class FlexibilityCalibration {
  public:
   bool classic() const { return eps_[0].empty(); }
+  /// Whether step() interpolates the combined correction and takes its exps four at a time in the
+  /// lanes of AVX registers, where the CPU has them (the default); the results are the scalar
+  /// path's bit for bit (tests compare the two).
+  void setVectorised(bool on) { vectorised_ = on && fourStripLanesAvailable(); }
+  bool vectorised() const { return vectorised_; }
   /// The step's flexibilities and bound shape together (what flexibilities() and boundShape()
   /// give), from one normalised creepage, one knot search and one correction lookup: what a
   /// model calls each step. Classic: Kalker's flexibilities and shape 0.
@@ -290,6 +296,17 @@ class FlexibilityCalibration {
   // Where every kind present holds kind 11's knots (the shipped table), one search of e serves
   // them all; set by SteadyCalibration::at.
   bool sharedKnots_ = false;
+  // The correction's cell for spin's share s3, xi's share t and e: its first corner, the strides
+  // to the next xi share, spin share and branch (the eta phi < 0 one), and the weights along each.
+  struct CorrectionCell {
+    const double* lo;
+    std::size_t alongT, alongS, branch;
+    double we, wt, ws;
+  };
+  CorrectionCell correctionCell(double s3, double t, double e) const;
+  // Whether step() takes the corrected case's lookup and exps four at a time in AVX's lanes (set
+  // by SteadyCalibration::at where the CPU has them; setVectorised).
+  bool vectorised_ = false;
   // The knot cell [i - 1, i] holding e and e's place t in it; i = the knot count at and beyond the
   // last knot (or for NaN), where the last value is held.
   struct KnotCell {
@@ -306,6 +323,53 @@ class FlexibilityCalibration {
                         double* lm) const;
   static KnotCell cell(const std::vector<double>& x, const std::vector<double>& perWidth, double e);
   KnotCell cell(int kind, double e) const { return cell(eps_[kind], perWidth_[kind], e); }
+  // Where a search over knots starts: the searched value's range in kBuckets equal buckets, each
+  // bucket's start the knot that the search from the first knot reaches at the bucket's least
+  // value (a hundredth of a bucket below it, for the rounding of v times perBucket). The search
+  // goes on from there with its own test, so it ends on the knot the search from the first would:
+  // one or two knots on rather than up to seventeen.
+  struct SearchStart {
+    static constexpr std::size_t kBuckets = 128;
+    double perBucket = 0.0;
+    std::vector<std::uint32_t> from;  // kBuckets; empty: no knots
+    // The start for value v (the first bucket's below 0 and for NaN, the last's from the range's
+    // end on).
+    std::size_t at(double v) const {
+      const double q = v * perBucket;
+      return from[q > 0.0 ? (q < double(kBuckets) ? static_cast<std::size_t>(q) : kBuckets - 1)
+                          : 0];
+    }
+    // Over [0, range), range > 0, of the search `search(v)` (the knot it ends on for value v).
+    template <class Search>
+    void set(double range, const Search& search) {
+      perBucket = double(kBuckets) / range;
+      from.resize(kBuckets);
+      for (std::size_t b = 0; b < kBuckets; ++b)
+        from[b] = static_cast<std::uint32_t>(search((double(b) - 0.01) / perBucket));
+    }
+  };
+  // Kind 0's knot search's start (where the kinds share their knots, every kind's), and the
+  // correction's over spin's share, xi's share and e; set by SteadyCalibration::at.
+  SearchStart knotStart_, corrS3Start_, corrTStart_, corrEpsStart_;
+  // Kind 0's cell, from knotStart_ (cell(0, e), one bucket's knots searched).
+  KnotCell kindCell(double e) const;
+  // The three searches (each from `from`, the first knot or a bucket's start): the spin-share row
+  // i (knots below s3 counted, from 0), the xi-share cell j (from 1, at most nT - 1) and the e
+  // cell k (from 1, at most nE - 1; e below the last knot).
+  std::size_t spinShareRow(double s3, std::size_t from) const {
+    while (from < corrS3_.size() && corrS3_[from] <= s3) ++from;
+    return from;
+  }
+  std::size_t xiShareCell(double t, std::size_t from) const {
+    while (from + 1 < corrT_.size() && corrT_[from] <= t) ++from;
+    return from;
+  }
+  std::size_t epsCell(double e, std::size_t from) const {
+    while (corrEps_[from] <= e) ++from;
+    return from;
+  }
+  // Sets the four SearchStarts from the knots (SteadyCalibration::at).
+  void setSearchStarts();
   static double at(const std::vector<double>& r, KnotCell c) {
     return c.i == r.size() ? r.back() : r[c.i - 1] + c.t * (r[c.i] - r[c.i - 1]);
   }
