@@ -946,10 +946,20 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
           ++count;
         }
         if (count == 0) break;
-        if (count == 1) {  // the last, outermost strip: the lanes would idle three quarters
+        // The last, outermost one or two strips as scalars: a node-row of the lanes costs about
+        // what it costs with four live lanes, and takes the slip return's chain, as long as a
+        // scalar pair's.
+        if (count == 1) {
           Strip A = strip(lanes.strip[0]);
           marchOne(A);
           stripSums[lanes.strip[0]] = A.sums;
+          break;
+        }
+        if (count == 2) {
+          Strip A = strip(lanes.strip[0]), B = strip(lanes.strip[1]);
+          marchTwo(A, B);
+          stripSums[lanes.strip[0]] = A.sums;
+          stripSums[lanes.strip[1]] = B.sums;
           break;
         }
         for (int q = count; q < 4; ++q) {  // the group's last lanes repeat its last strip
