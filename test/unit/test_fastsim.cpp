@@ -266,8 +266,10 @@ TEST(SteadyFastSim, EveryStripMarchesAsIfAloneWhateverItsPartner) {
 }
 
 TEST(SteadyFastSim, CoupledLanesMarchBitForBitAsOneStripAtATime) {
-  // The coupled (calibrated) march takes four strips at a time in AVX's lanes, the strips' first
-  // nodes and what a group's shorter strips leave one strip at a time, and stops for the nodes
+  // The coupled (calibrated) march takes four strips at a time in AVX's lanes in centre-out order
+  // (the one to three left over at the edges as scalars, the sums added in strip order), the
+  // strips' first nodes and what a group's shorter strips leave one strip at a time, and stops for
+  // the nodes
   // StripSums::node's tiny path takes. Each strip must come out exactly as from the scalar march:
   // tractions, slip flags and forces equal bit for bit, on a mesh fitted to the patch and on one
   // larger than it (strips of different lengths), strip counts that leave a remainder after the

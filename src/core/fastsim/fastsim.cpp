@@ -404,11 +404,15 @@ CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Cre
                  L.lateralCoupling * mesh.stripY(j),
                  mesh.index(0, j)};
   };
-  auto finish = [&](int j, const Strip& s) {
+  // Strip j's nodes outside the patch.
+  auto unloadedEnds = [&](int j, const Strip& s) {
     const StripEntry& e = f->entry[j];
     for (int i = 0; i < std::min(e.first, nx); ++i) out.unloaded(s.k0 + i);
     for (int i = std::max(nx - e.first, e.first); i < nx; ++i) out.unloaded(s.k0 + i);
-    sums.addStrip(mesh, j, s.sums, e, out.tx, out.ty);
+  };
+  auto finish = [&](int j, const Strip& s) {
+    unloadedEnds(j, s);
+    sums.addStrip(mesh, j, s.sums, f->entry[j], out.tx, out.ty);
   };
   // Nodes at[m] + s, s < n, of the four strips S, in step; at follows.
   auto together = [&](Strip * S, int* at, int n) __attribute__((always_inline)) {
@@ -428,17 +432,13 @@ CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Cre
       for (int m = 0; m < 4; ++m) S[m].node(at[m] + s, S[m].dx, xn, out);
     for (int m = 0; m < 4; ++m) at[m] += n;
   };
-  int j = 0;
   // Four strips at a time: their marches are independent chains, so each fills the others'
   // latency (a saturated node's square root and division sit on its strip's chain). Each strip's
-  // nodes still go in order: the result is that of one strip at a time. The coupled march takes
-  // them in AVX lanes (coupledLanes) where the CPU has them; as scalars, with its extra running
-  // operand, four strips spilled registers and ran slower than two.
-  for (; (!kCoupled || inLanes) && j + 3 < ny; j += 4) {
-    Strip S[4] = {strip(j), strip(j + 1), strip(j + 2), strip(j + 3)};
+  // nodes still go in order: the result is that of one strip at a time.
+  auto marchFour = [&](const int* js, Strip* S) __attribute__((always_inline)) {
     int at[4], end[4];
     for (int m = 0; m < 4; ++m) {
-      const StripEntry& e = f->entry[j + m];
+      const StripEntry& e = f->entry[js[m]];
       at[m] = e.first;
       end[m] = nx - e.first;
       if (at[m] < end[m]) S[m].node(at[m]++, e.h, xn, out);
@@ -446,15 +446,12 @@ CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Cre
     together(
         S, at,
         std::max(0, std::min({end[0] - at[0], end[1] - at[1], end[2] - at[2], end[3] - at[3]})));
-    for (int m = 0; m < 4; ++m) {
+    for (int m = 0; m < 4; ++m)
       for (int i = at[m]; i < end[m]; ++i) S[m].node(i, S[m].dx, xn, out);
-      finish(j + m, S[m]);
-    }
-  }
+  };
   // Two strips at a time, the same.
-  for (; j + 1 < ny; j += 2) {
-    Strip A = strip(j), B = strip(j + 1);
-    const StripEntry ea = f->entry[j], eb = f->entry[j + 1];
+  auto marchTwo = [&](int ja, int jb, Strip& A, Strip& B) __attribute__((always_inline)) {
+    const StripEntry ea = f->entry[ja], eb = f->entry[jb];
     int ia = ea.first, ib = eb.first;
     const int la = nx - ea.first, lb = nx - eb.first;
     if (ia < la) A.node(ia++, ea.h, xn, out);
@@ -466,15 +463,70 @@ CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Cre
     }
     for (ia += n; ia < la; ++ia) A.node(ia, A.dx, xn, out);
     for (ib += n; ib < lb; ++ib) B.node(ib, B.dx, xn, out);
+  };
+  auto marchOne = [&](int j, Strip& A) __attribute__((always_inline)) {
+    const StripEntry ea = f->entry[j];
+    const int la = nx - ea.first;
+    if (ea.first < la) A.node(ea.first, ea.h, xn, out);
+    for (int i = ea.first + 1; i < la; ++i) A.node(i, A.dx, xn, out);
+  };
+  if constexpr (kCoupled) {
+    if (inLanes && ny >= 4) {
+      // The coupled march in AVX lanes (coupledLanes), four strips at a time in centre-out order
+      // (PatchMesh::centreOutStrip): on a mesh larger than the patch a group's strips are then
+      // about as long, and the lanes march most of their nodes together. A strip with no loaded
+      // node is only finished; one, two or three left over at the edges go as scalars. The sums
+      // are added in strip order at the end, as one strip at a time.
+      f->stripSums.resize(ny);
+      StripSums* const stripSums = f->stripSums.data();
+      for (int k = 0; k < ny;) {
+        int js[4], count = 0;
+        for (; k < ny && count < 4; ++k) {
+          const int j = mesh.centreOutStrip(k);
+          if (f->entry[j].first >= nx - f->entry[j].first) {  // nothing loaded
+            unloadedEnds(j, strip(j));
+            stripSums[j] = StripSums{};
+            continue;
+          }
+          js[count++] = j;
+        }
+        Strip S[4];
+        for (int m = 0; m < count; ++m) S[m] = strip(js[m]);
+        if (count == 4) {
+          marchFour(js, S);
+        } else {
+          int m = 0;
+          if (count >= 2) marchTwo(js[0], js[1], S[0], S[1]), m = 2;
+          if (m < count) marchOne(js[m], S[m]);
+        }
+        for (int m = 0; m < count; ++m) {
+          unloadedEnds(js[m], S[m]);
+          stripSums[js[m]] = S[m].sums;
+        }
+      }
+      for (int j = 0; j < ny; ++j)
+        sums.addStrip(mesh, j, stripSums[j], f->entry[j], out.tx, out.ty);
+      return sums.forces();
+    }
+  }
+  // In strip order. As scalars, with its extra running operand, the coupled march spilled
+  // registers on four strips and ran slower than on two.
+  int j = 0;
+  for (; !kCoupled && j + 3 < ny; j += 4) {
+    const int js[4] = {j, j + 1, j + 2, j + 3};
+    Strip S[4] = {strip(j), strip(j + 1), strip(j + 2), strip(j + 3)};
+    marchFour(js, S);
+    for (int m = 0; m < 4; ++m) finish(j + m, S[m]);
+  }
+  for (; j + 1 < ny; j += 2) {
+    Strip A = strip(j), B = strip(j + 1);
+    marchTwo(j, j + 1, A, B);
     finish(j, A);
     finish(j + 1, B);
   }
   if (j < ny) {
     Strip A = strip(j);
-    const StripEntry ea = f->entry[j];
-    const int la = nx - ea.first;
-    if (ea.first < la) A.node(ea.first, ea.h, xn, out);
-    for (int i = ea.first + 1; i < la; ++i) A.node(i, A.dx, xn, out);
+    marchOne(j, A);
     finish(j, A);
   }
   return sums.forces();

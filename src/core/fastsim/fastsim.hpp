@@ -83,6 +83,8 @@ struct StripEntry {
   double w = 0.0;
 };
 
+struct StripSums;
+
 /// Per-node fields on a PatchMesh (index = mesh.index(i, j)).
 struct TractionField {
   Eigen::ArrayXd tx;                           ///< traction on the wheel along x [Pa]
@@ -90,6 +92,7 @@ struct TractionField {
   Eigen::ArrayXd bound;                        ///< mu * pressure, the Coulomb bound [Pa]
   Eigen::Array<bool, Eigen::Dynamic, 1> slip;  ///< node saturated
   std::vector<StripEntry> entry;               ///< per strip, written with the bound
+  std::vector<StripSums> stripSums;            ///< the steady march's per-strip sums (its scratch)
   void resize(int n);
 };
 

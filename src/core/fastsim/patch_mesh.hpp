@@ -28,6 +28,15 @@ class PatchMesh {
   /// Re-size the patch to semi-axes (a, b) keeping the normalised layout.
   void scale(double a, double b);
 
+  /// The k-th strip from the centre out, k in [0, ny): the centre strip (or the two beside y = 0)
+  /// first, then the strips on either side of them, alternately. Strips j and ny - 1 - j are as
+  /// long, and strips next to each other about as long: the marches that take four at a time take
+  /// them in this order.
+  int centreOutStrip(int k) const {
+    const int half = ny_ / 2;
+    if (ny_ % 2 == 0) return k % 2 == 0 ? half - 1 - k / 2 : half + k / 2;
+    return k == 0 ? half : (k % 2 == 1 ? half - (k + 1) / 2 : half + k / 2);
+  }
   double stripWidth() const { return 2.0 * b_ / ny_; }                     ///< dy [m]
   double stripY(int j) const { return b_ * yNorm_(j); }                    ///< y_j [m]
   double stripHalfLength(int j) const { return a_ * halfNorm_(j); }        ///< a_j [m]

@@ -860,11 +860,6 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       // end.
       StripSums* const stripSums = TransientStorage::stripSums(ny, st);
       quad::Lanes lanes;
-      const int half = ny / 2;
-      auto centreOut = [&](int k) {
-        if (ny % 2 == 0) return k % 2 == 0 ? half - 1 - k / 2 : half + k / 2;
-        return k == 0 ? half : (k % 2 == 1 ? half - (k + 1) / 2 : half + k / 2);
-      };
       bool live[4];
       // n nodes of every lane, the first on the strips' entry steps where entryFirst, the nodes
       // the guards stop at one strip at a time.
@@ -932,7 +927,7 @@ CreepForces march(const PatchMesh& mesh, const Flexibilities& L, const Creepages
       for (int k = 0; k < ny;) {
         int count = 0;
         for (; k < ny && count < 4; ++k) {
-          const int jk = centreOut(k), e = f->entry[jk].first;
+          const int jk = mesh.centreOutStrip(k), e = f->entry[jk].first;
           if (e >= nx - e) {  // nothing loaded
             stripSums[jk] = StripSums{};
             continue;
