@@ -269,12 +269,11 @@ TEST(SteadyFastSim, CoupledLanesMarchBitForBitAsOneStripAtATime) {
   // The coupled (calibrated) march takes four strips at a time in AVX's lanes in centre-out order
   // (the one to three left over at the edges as scalars, the sums added in strip order), the
   // strips' first nodes and what a group's shorter strips leave one strip at a time, and stops for
-  // the nodes
-  // StripSums::node's tiny path takes. Each strip must come out exactly as from the scalar march:
-  // tractions, slip flags and forces equal bit for bit, on a mesh fitted to the patch and on one
-  // larger than it (strips of different lengths), strip counts that leave a remainder after the
-  // groups of four, with spin, eta's drive's slope, zero creepage (the tiny path) and a bound
-  // next to zero (the lanes' stop).
+  // the nodes StripSums::node's tiny path takes. Each strip must come out exactly as from the
+  // scalar march: tractions, slip flags and forces equal bit for bit, on a mesh fitted to the patch
+  // and on one larger than it (strips of different lengths, the outermost unloaded), strip counts
+  // that leave one to three after the groups of four, with spin, eta's drive's slope, zero
+  // creepage (the tiny path) and a bound next to zero (the lanes' stop).
   if (!fourStripLanesAvailable()) GTEST_SKIP() << "this CPU has no AVX: no lanes";
   const Patch p;
   Flexibilities L = kalkerFlexibilities(p.a, p.b, p.G, kalkerCoefficients(p.a / p.b, p.nu));
