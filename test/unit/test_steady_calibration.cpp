@@ -47,6 +47,24 @@ struct RoundPatch {
   }
 };
 
+// A table at a/b 1 whose rule is 1 everywhere (kinds 11, 22, 23, 23x, 23s, knots 0 and 1) and
+// whose combined correction has one spin share (0.5), the xi shares 0 and 1 and both signs, with
+// knots 0 and 1: kind k's ratio at e = 1 in the direction (t, sign) is ratio(k, t, sign).
+const char* const kRuleOfOnes =
+    "a_over_b,kind,epsilon,ratio,fit_error,spin_share,xi_share,sign\n1,11,0,1\n1,11,1,1\n"
+    "1,22,0,1\n1,22,1,1\n1,23,0,1\n1,23,1,1\n1,23x,0,1\n1,23x,1,1\n1,23s,0,1\n1,23s,1,1\n";
+template <class Ratio>
+std::string oneShareCorrection(const Ratio& ratio) {
+  std::string body = kRuleOfOnes;
+  for (const std::string k : {"c1", "c2", "c3", "cs"})
+    for (const std::string t : {"0", "1"})
+      for (const std::string sign : {"1", "-1"}) {
+        body += "1," + k + ",0,1,0,0.5," + t + "," + sign + "\n";
+        body += "1," + k + ",1," + ratio(k, t, sign) + ",0,0.5," + t + "," + sign + "\n";
+      }
+  return body;
+}
+
 std::string message(const std::string& body) {
   try {
     SteadyCalibration::load(writeTable(body));
@@ -573,19 +591,10 @@ TEST(SteadyCalibration, LinearSpinMomentHoldsAtEveryShareOfSpinUntilThePatchSlip
 TEST(SteadyCalibration, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOnItsEdges) {
   // One spin share (0.5), xi shares 0 and 1, both signs, knots 0 and 1: c1 is 2 at t = 0 and 8
   // at t = 1 where eta and phi have one sign, 1 where they oppose; cs (the bound's shape) 3.
-  std::string body =
-      "a_over_b,kind,epsilon,ratio,fit_error,spin_share,xi_share,sign\n1,11,0,1\n1,11,1,1\n"
-      "1,22,0,1\n1,22,1,1\n1,23,0,1\n1,23,1,1\n1,23x,0,1\n1,23x,1,1\n1,23s,0,1\n1,23s,1,1\n";
-  for (const char* kind : {"c1", "c2", "c3", "cs"})
-    for (const char* t : {"0", "1"})
-      for (const char* sign : {"1", "-1"}) {
-        const std::string k = kind;
-        const char* r = k == "c1" && std::string(sign) == "1" ? (std::string(t) == "0" ? "2" : "8")
-                        : k == "cs"                           ? "3"
-                                                              : "1";
-        body += "1," + k + ",0,1,0,0.5," + t + "," + sign + "\n";
-        body += "1," + k + ",1," + r + ",0,0.5," + t + "," + sign + "\n";
-      }
+  const std::string body =
+      oneShareCorrection([](const std::string& k, const std::string& t, const std::string& sign) {
+        return k == "c1" && sign == "1" ? (t == "0" ? "2" : "8") : k == "cs" ? "3" : "1";
+      });
   const FlexibilityCalibration c = SteadyCalibration::load(writeTable(body)).at(1.0);
   double m[FlexibilityCalibration::kCorrections];
   auto m1 = [&](double e1, double e2, double e3, bool opposed) {
@@ -664,16 +673,10 @@ TEST(SteadyCalibration, VectorisedStepIsTheScalarStepBitForBit) {
   EXPECT_EQ(differ, 0) << "of " << compared;
   // A lane whose exp leaves the inline range (|x| >= 700) takes std::exp, as the scalar path: a
   // table whose c1 multiplies L1 by 1e-310 (a subnormal) at e = 1.
-  std::string body =
-      "a_over_b,kind,epsilon,ratio,fit_error,spin_share,xi_share,sign\n1,11,0,1\n1,11,1,1\n"
-      "1,22,0,1\n1,22,1,1\n1,23,0,1\n1,23,1,1\n1,23x,0,1\n1,23x,1,1\n1,23s,0,1\n1,23s,1,1\n";
-  for (const char* kind : {"c1", "c2", "c3", "cs"})
-    for (const char* t : {"0", "1"})
-      for (const char* sign : {"1", "-1"}) {
-        body += std::string("1,") + kind + ",0,1,0,0.5," + t + "," + sign + "\n";
-        body += std::string("1,") + kind + ",1," + (std::string(kind) == "c1" ? "1e-310" : "2") +
-                ",0,0.5," + t + "," + sign + "\n";
-      }
+  const std::string body =
+      oneShareCorrection([](const std::string& k, const std::string&, const std::string&) {
+        return k == "c1" ? "1e-310" : "2";
+      });
   FlexibilityCalibration scalar = SteadyCalibration::load(writeTable(body)).at(1.0);
   const FlexibilityCalibration lanes = scalar;
   scalar.setVectorised(false);
@@ -691,9 +694,7 @@ TEST(SteadyCalibration, VectorisedStepIsTheScalarStepBitForBit) {
 
 TEST(SteadyCalibration, FifthCorrectionScalesTheLongitudinalSpinDriveAlone) {
   // The grid of the test above with every multiplier 1, and c3x 4 at e = 1 in every direction.
-  std::string plain =
-      "a_over_b,kind,epsilon,ratio,fit_error,spin_share,xi_share,sign\n1,11,0,1\n1,11,1,1\n"
-      "1,22,0,1\n1,22,1,1\n1,23,0,1\n1,23,1,1\n1,23x,0,1\n1,23x,1,1\n1,23s,0,1\n1,23s,1,1\n";
+  std::string plain = kRuleOfOnes;
   std::string c3x;
   for (const char* kind : {"c1", "c2", "c3", "cs", "c3x"})
     for (const char* t : {"0", "1"})

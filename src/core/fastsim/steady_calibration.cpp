@@ -173,26 +173,20 @@ inline FlexibilityCalibration::KnotCell FlexibilityCalibration::cell(
     const std::vector<double>& x, const std::vector<double>& perWidth, double e) {
   if (!(e < x.back())) return {x.size(), 1.0};  // beyond the last knot (or NaN): held
   // A short table (17 knots): a forward scan is as fast as bisection and branch-predictable.
-  std::size_t i = 1;
-  while (x[i] <= e) ++i;
+  const std::size_t i = knotAbove(x, e, 1);
   return {i, (e - x[i - 1]) * perWidth[i]};
 }
 
 inline FlexibilityCalibration::KnotCell FlexibilityCalibration::kindCell(double e) const {
   const std::vector<double>& x = eps_[0];
   if (!(e < x.back())) return {x.size(), 1.0};
-  std::size_t i = knotStart_.at(e);
-  while (x[i] <= e) ++i;
+  const std::size_t i = knotAbove(x, e, knotStart_.at(e));
   return {i, (e - x[i - 1]) * perWidth_[0][i]};
 }
 
 void FlexibilityCalibration::setSearchStarts() {
   if (eps_[0].size() >= 2)
-    knotStart_.set(eps_[0].back(), [&](double v) {
-      std::size_t i = 1;
-      while (eps_[0][i] <= v) ++i;
-      return i;
-    });
+    knotStart_.set(eps_[0].back(), [&](double v) { return knotAbove(eps_[0], v, 1); });
   if (corrS3_.empty()) return;
   corrS3Start_.set(1.0, [&](double v) { return spinShareRow(v, 0); });
   corrTStart_.set(1.0, [&](double v) { return xiShareCell(v, 1); });

@@ -364,8 +364,10 @@ class FlexibilityCalibration {
     while (from + 1 < corrT_.size() && corrT_[from] <= t) ++from;
     return from;
   }
-  std::size_t epsCell(double e, std::size_t from) const {
-    while (corrEps_[from] <= e) ++from;
+  std::size_t epsCell(double e, std::size_t from) const { return knotAbove(corrEps_, e, from); }
+  // The first knot of x above e from `from` on (e below x's last knot).
+  static std::size_t knotAbove(const std::vector<double>& x, double e, std::size_t from) {
+    while (x[from] <= e) ++from;
     return from;
   }
   // Sets the four SearchStarts from the knots (SteadyCalibration::at).
