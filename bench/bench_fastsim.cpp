@@ -115,10 +115,7 @@ void CalibrationStep(benchmark::State& state) {
     const StepInput in = bench::input(i, true);
     const double s = std::cbrt(in.fz / p.fz0), a = p.a0 * s;
     const Creepages c{in.xi, in.eta, in.phi};
-    const double target = FlexibilityCalibration::opposedBranch(c);
-    opposed = opposed < 0.0 || c.eta * c.phi == 0.0
-                  ? (opposed < 0.0 ? target : opposed)
-                  : target + (opposed - target) * std::exp(-in.V * in.dt / a);
+    opposed = FlexibilityCalibration::followedBranch(opposed, c, in.V * in.dt, a);
     steps[i] = {a, p.b0 * s, p.mu * in.fz, opposed, c};
   }
   int i = 0;

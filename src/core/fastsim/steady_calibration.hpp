@@ -130,6 +130,18 @@ class FlexibilityCalibration {
   /// The eta phi < 0 branch's weight that creepages c select by themselves: 1 where eta phi < 0,
   /// else 0 (where eta phi = 0 both branches give the same correction's ends).
   static double opposedBranch(const Creepages& c) { return c.eta * c.phi < 0.0 ? 1.0 : 0.0; }
+  /// That weight after `travel` [m] of rolling under creepages c, from `weight` (< 0: none yet):
+  /// it relaxes towards opposedBranch(c) over the length `relaxation` [m], exp(-travel /
+  /// relaxation), and is the target once within 1e-12 of it. A weight not yet set, or travel < 0,
+  /// starts at the target; where eta phi = 0 the branches meet and the weight is kept.
+  static double followedBranch(double weight, const Creepages& c, double travel,
+                               double relaxation) {
+    const double target = opposedBranch(c);
+    if (weight < 0.0 || travel < 0.0) return target;
+    if (c.eta * c.phi == 0.0 || weight == target) return weight;
+    const double w = target + (weight - target) * std::exp(-travel / relaxation);
+    return std::abs(w - target) < 1e-12 ? target : w;
+  }
   /// Kalker's flexibilities at patch (a, b), scaled for creepages c at mu fz = muFz. Classic:
   /// exactly kalkerFlexibilities(a, b, G, k).
   Flexibilities flexibilities(double a, double b, double G, const CreepCoefficients& k, double muFz,

@@ -180,16 +180,8 @@ void NssModel::followBranch(const StepInput& in, double travel, double a) {
   // while the traction standing in the patch is carried on: switching branches there moved the
   // bound under that traction within no travel (a force jump of tens of times what the step's
   // travel allows). The steady traction of the other branch builds as material crosses the
-  // patch, so the branch's weight follows over travel with relaxation length a. Where eta phi = 0
-  // the branches meet and the weight is kept.
-  const double target = FlexibilityCalibration::opposedBranch({in.xi, in.eta, in.phi});
-  if (opposed_ < 0.0 || travel < 0.0) {
-    opposed_ = target;
-    return;
-  }
-  if (in.eta * in.phi == 0.0 || opposed_ == target) return;
-  opposed_ = target + (opposed_ - target) * std::exp(-travel / a);
-  if (std::abs(opposed_ - target) < 1e-12) opposed_ = target;  // settled: one branch again
+  // patch, so the branch's weight follows over travel with relaxation length a.
+  opposed_ = FlexibilityCalibration::followedBranch(opposed_, {in.xi, in.eta, in.phi}, travel, a);
 }
 
 double NssModel::historyScale(double a) const {
