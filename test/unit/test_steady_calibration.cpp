@@ -89,6 +89,22 @@ TEST(SteadyCalibration, InterpolatesInCreepageAndLogAOverBAndHoldsBeyondTheLastK
   EXPECT_DOUBLE_EQ(t.at(9.0).ratio(0, 1.0), 4.0);
 }
 
+TEST(SteadyCalibration, NumbersFromCharsRefusesReadAsStrtodReadsThem) {
+  // A sign '+', leading space and hex are the C library's forms of the same numbers.
+  std::string other = kTwoRows;
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"0.5,11,1,2,", "+0.5,11,1, 2,"},
+        {"2,23,2,1,", "0x2,23,2,1,"}})
+    other.replace(other.find(from), from.size(), to);
+  const SteadyCalibration a = SteadyCalibration::load(writeTable(kTwoRows)),
+                          b = SteadyCalibration::load(writeTable(other));
+  for (const double ab : {0.5, 2.0})
+    for (int kind = 0; kind < 3; ++kind)
+      for (const double e : {0.5, 1.5}) EXPECT_EQ(a.at(ab).ratio(kind, e), b.at(ab).ratio(kind, e));
+  EXPECT_NE(message(std::string(kTwoRows) + "2,23,3,1e999,0\n").find(":15: not a finite"),
+            std::string::npos);
+}
+
 TEST(SteadyCalibration, ScalesEachFlexibilityByItsKindsRatioAtTheNormalisedCreepage) {
   const SteadyCalibration t = SteadyCalibration::load(writeTable(kTwoRows));
   const FlexibilityCalibration c = t.at(0.5);
