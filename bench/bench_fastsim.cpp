@@ -14,7 +14,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/fastsim/steady_calibration.hpp"
+#include "core/calibration/calibration_table.hpp"
 #include "step_inputs.hpp"
 
 using namespace wheel_rail_contact;
@@ -97,14 +97,14 @@ BENCHMARK(SteadyFixedMeshCalibrated)->MESHES;
 BENCHMARK(NssFixedCalibrated)->MESHES;
 BENCHMARK(NssAdaptiveCalibrated)->MESHES;
 
-// The calibrated FastSim's per-step calibration alone (FlexibilityCalibration::step) on the nss
+// The calibrated FastSim's per-step calibration alone (PatchCalibration::step) on the nss
 // rows' inputs: the default patch scaled with the load, mu fz, and the eta phi < 0 branch's weight
 // following over travel with relaxation length a as NssModel::followBranch does (between the
 // branches most of the time: eta changes sign every 25 mm).
 void CalibrationStep(benchmark::State& state) {
   const ContactParameters p;
-  const FlexibilityCalibration cal =
-      SteadyCalibration::shipped().forMesh(static_cast<int>(state.range(0))).at(p.a0 / p.b0);
+  const PatchCalibration cal =
+      CalibrationTable::shipped().forMesh(static_cast<int>(state.range(0))).at(p.a0 / p.b0);
   const CreepCoefficients k = kalkerCoefficients(p.a0 / p.b0, p.nu);
   struct Step {
     double a, b, muFz, opposed;
@@ -115,7 +115,7 @@ void CalibrationStep(benchmark::State& state) {
     const StepInput in = bench::input(i, true);
     const double s = std::cbrt(in.fz / p.fz0), a = p.a0 * s;
     const Creepages c{in.xi, in.eta, in.phi};
-    opposed = FlexibilityCalibration::followedBranch(opposed, c, in.V * in.dt, a);
+    opposed = PatchCalibration::followedBranch(opposed, c, in.V * in.dt, a);
     steps[i] = {a, p.b0 * s, p.mu * in.fz, opposed, c};
   }
   int i = 0;

@@ -37,7 +37,7 @@ inline std::unique_ptr<ContactModel> makeModel(const std::string& model, const s
   p.model = calibrated ? model.substr(0, model.size() - suffix.size()) : model;
   p.mesh = mesh;
   p.nx = p.ny = n;
-  const SteadyCalibration cal = calibrated ? SteadyCalibration::shipped() : SteadyCalibration();
+  const CalibrationTable cal = calibrated ? CalibrationTable::shipped() : CalibrationTable();
   if (p.model == "steady" && p.mesh == "fixed")
     return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kSizedForFzMax, cal);
   if (p.model == "steady")

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Steady creep curves exact / classic FastSim / calibrated FastSim (doc/calibrated_fastsim.md).
 
-Reads doc/data/steady_curves.csv (written by identify_steady --curves) and writes
+Reads doc/data/steady_curves.csv (written by identify_calibration --curves) and writes
 doc/figures/steady_curves_ab<R>.png, one figure per a/b: one column per ray (creepage kind or
 combination), forces over mu fz on top, the spin moment over mu fz sqrt(ab) below.
 usage: scripts/plot_steady_curves.py [--data doc/data/steady_curves.csv] [--out doc/figures]

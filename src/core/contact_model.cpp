@@ -83,11 +83,11 @@ namespace {
 
 // The calibrated FastSim's table when p asks for it (calibratedFastSim), else empty (classic): the
 // parsed shipped table itself, not a copy (each model keeps only its own mesh's part).
-const SteadyCalibration& steadyCalibration(const ContactParameters& p) {
-  static const SteadyCalibration classic;
+const CalibrationTable& steadyCalibration(const ContactParameters& p) {
+  static const CalibrationTable classic;
   if (p.model == "exact" || !calibratedFastSim(p)) return classic;
   try {
-    return SteadyCalibration::shipped();
+    return CalibrationTable::shipped();
   } catch (const std::runtime_error& e) {
     throw std::invalid_argument(std::string("fastsim: ") + e.what());
   }
@@ -97,7 +97,7 @@ const SteadyCalibration& steadyCalibration(const ContactParameters& p) {
 
 std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
   validate(p);
-  const SteadyCalibration& calibration = steadyCalibration(p);
+  const CalibrationTable& calibration = steadyCalibration(p);
   if (p.model == "steady")
     return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kFittedToPatch, calibration);
   if (p.model == "exact") return std::make_unique<ExactModel>(p);

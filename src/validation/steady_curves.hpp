@@ -1,6 +1,6 @@
 /// The cached exact steady creep curves (doc/data/steady_exact_curves.csv, written by
-/// identify_steady): one point per line, a_over_b,ray,epsilon,xi,eta,phi,fx,fy,mz with fx, fy over
-/// mu fz and mz over mu fz sqrt(ab) (the setup is in the file's comment lines).
+/// identify_calibration): one point per line, a_over_b,ray,epsilon,xi,eta,phi,fx,fy,mz with fx, fy
+/// over mu fz and mz over mu fz sqrt(ab) (the setup is in the file's comment lines).
 #pragma once
 
 #include <string>
@@ -12,13 +12,13 @@ namespace wheel_rail_contact {
 
 struct SteadyCurvePoint {
   double aOverB = 0.0;
-  std::string ray;     ///< 11, 22, 23 (one creepage) or a combination (identify_steady.cpp)
-  double epsilon = 0;  ///< normalised creepage (steady_calibration.hpp)
+  std::string ray;     ///< 11, 22, 23 (one creepage) or a combination (identify_calibration.cpp)
+  double epsilon = 0;  ///< normalised creepage (calibration_table.hpp)
   Creepages c;
   double fx = 0.0, fy = 0.0, mz = 0.0;
 };
 
-/// The cache's header line, its columns in order: written by identify_steady, required here.
+/// The cache's header line, its columns in order: written by identify_calibration, required here.
 inline constexpr const char* kSteadyCurvesHeader = "a_over_b,ray,epsilon,xi,eta,phi,fx,fy,mz";
 
 /// The points of `path` in file order; none if the file does not exist or is empty. Throws

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/fastsim/steady_calibration.hpp"
+#include "core/calibration/calibration_table.hpp"
 #include "core/models/auto_model.hpp"
 #include "core/models/steady_model.hpp"
 #include "validation/harmonic_scenes.hpp"
@@ -189,8 +189,8 @@ namespace {
 void expectToleranceOnWavesTheChartDidNotSee(const char* fastsim) {
   constexpr int kGrid = 16;
   const bool calibrated = std::string(fastsim) == "calibrated";
-  const SteadyCalibration calibration =
-      calibrated ? SteadyCalibration::shipped() : SteadyCalibration();
+  const CalibrationTable calibration =
+      calibrated ? CalibrationTable::shipped() : CalibrationTable();
   for (const CreepageKind kind : kCreepageKinds) {
     const NonSteadyCoefficients exact(kind, 1.0, 0.28, kGrid, kGrid);
     for (const double tolerance : {0.1, 0.05})

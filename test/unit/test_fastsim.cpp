@@ -2,8 +2,8 @@
 
 #include <cmath>
 
+#include "core/calibration/calibration_table.hpp"
 #include "core/fastsim/fastsim.hpp"
-#include "core/fastsim/steady_calibration.hpp"
 #include "core/models/steady_model.hpp"
 
 using namespace wheel_rail_contact;
@@ -79,7 +79,7 @@ TEST(SteadyFastSim, EtasDriveSlopeKeepsLinearTheorysForceAndMovesTheMoment) {
   const Creepages c{0, 1e-7, 0};
   const CreepForces plain = steadyFastSim(mesh, L, c, &f);
   for (double beta : {-1.0, 0.5, 2.0}) {
-    FlexibilityCalibration::setEtaSlope(beta, p.a, &L);
+    PatchCalibration::setEtaSlope(beta, p.a, &L);
     const CreepForces sloped = steadyFastSim(mesh, L, c, &f);
     EXPECT_NEAR(sloped.fy, plain.fy, 0.01 * std::abs(plain.fy)) << beta;
     EXPECT_EQ(sloped.fx, 0.0) << beta;

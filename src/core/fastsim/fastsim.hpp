@@ -21,18 +21,18 @@ struct Flexibilities {
   double L2 = 0.0;
   double L3 = 0.0;
   /// Flexibility of the spin's longitudinal drive, -phi y / L3x, where it differs from L3 (the
-  /// calibrated FastSim's second spin parameter, steady_calibration.hpp); 0: L3, as in Kalker's
+  /// calibrated FastSim's second spin parameter, calibration_table.hpp); 0: L3, as in Kalker's
   /// theory.
   double L3x = 0.0;
   /// Coupling of the longitudinal slip to the lateral traction [1/m^2] (the calibrated FastSim's,
-  /// steady_calibration.hpp): the x drive gains lateralCoupling y tau_y, tau_y the upstream
+  /// calibration_table.hpp): the x drive gains lateralCoupling y tau_y, tau_y the upstream
   /// node's lateral traction, y the strip's lateral position. Odd in y, it adds no force in
   /// linear theory, only a moment; in full slip it turns the traction off the rigid slip's
   /// direction, as the longitudinal displacement that lateral traction makes through Poisson's
   /// ratio does in exact theory. 0: Kalker's FastSim.
   double lateralCoupling = 0.0;
   /// Eta's lateral drive varying along the rolling direction (the calibrated FastSim's,
-  /// steady_calibration.hpp): the drive eta / L2 becomes etaGain (eta / L2) (1 - etaSlope x), x [m]
+  /// calibration_table.hpp): the drive eta / L2 becomes etaGain (eta / L2) (1 - etaSlope x), x [m]
   /// from the patch's centre, leading edge at +a. With xi beside eta it turns the saturated
   /// traction along the strip and carries the moment that exact theory keeps there. 0 and 1:
   /// Kalker's FastSim.
@@ -113,7 +113,7 @@ void parabolicBound(const PatchMesh& mesh, double a, double b, double fz, double
 /// mesh's node sums (Sum over nodes of a_j / a times the bound) keep the parabolic total. The sums
 /// are taken in closed form per strip (from the mesh's shape sums where the patch fills the mesh),
 /// not from the nodes. s = 0 is parabolicBound, bit for bit; the patch is the same ellipse. The
-/// calibrated FastSim's bound shape (steady_calibration.hpp).
+/// calibrated FastSim's bound shape (calibration_table.hpp).
 void flattenedBound(const PatchMesh& mesh, double a, double b, double fz, double mu, double s,
                     TractionField* field);
 

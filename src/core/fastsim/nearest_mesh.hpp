@@ -1,4 +1,4 @@
-/// The FastSim mesh a per-mesh table serves a model on (ChiTable, SteadyCalibration): both are
+/// The FastSim mesh a per-mesh table serves a model on (ChiTable, CalibrationTable): both are
 /// identified per nodes per strip nx, because they absorb the march's discretisation along the
 /// strips.
 #pragma once

@@ -142,7 +142,7 @@ double nssRelaxationLength(const ContactParameters& p, const ChiTable& chi) {
 }
 
 AutoModel::AutoModel(const ContactParameters& p, const ChiTable& chi,
-                     const SteadyCalibration& calibration)
+                     const CalibrationTable& calibration)
     : p_(p),
       calibrated_(!calibration.empty()),
       n_(meshForTolerance(p.tolerance, calibrated_)),

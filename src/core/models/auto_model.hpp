@@ -45,7 +45,7 @@ class AutoModel : public ContactModel {
   /// p.model must be "auto"; p.nx, p.ny are replaced by meshForTolerance(p.tolerance, the
   /// variant): calibrated FastSim when `calibration` is not empty, classic otherwise.
   AutoModel(const ContactParameters& p, const ChiTable& chi,
-            const SteadyCalibration& calibration = SteadyCalibration());
+            const CalibrationTable& calibration = CalibrationTable());
   StepOutput step(const StepInput& in) override;
   void reset() override;
   /// "auto:steady", "auto:nss" or "auto:blend": what produced the last step.

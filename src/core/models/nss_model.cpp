@@ -11,7 +11,7 @@
 namespace wheel_rail_contact {
 
 NssModel::NssModel(const ContactParameters& p, const ChiTable& chi,
-                   const SteadyCalibration& calibration)
+                   const CalibrationTable& calibration)
     : p_(p),
       ref_{p.a0, p.b0, p.fz0},
       kalker_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
@@ -171,7 +171,7 @@ CalibratedStep NssModel::calibrated(const HertzEllipse& h, const StepInput& in) 
   // the bound limits); only the drive w / L changes, as it does with the creepages themselves.
   const Creepages c{in.xi, in.eta, in.phi};
   return calibration_.step(h.a, h.b, p_.G, kalker_, stepMu(in, p_.mu) * in.fz, c,
-                           opposed_ >= 0.0 ? opposed_ : FlexibilityCalibration::opposedBranch(c));
+                           opposed_ >= 0.0 ? opposed_ : PatchCalibration::opposedBranch(c));
 }
 
 void NssModel::followBranch(const StepInput& in, double travel, double a) {
@@ -181,7 +181,7 @@ void NssModel::followBranch(const StepInput& in, double travel, double a) {
   // bound under that traction within no travel (a force jump of tens of times what the step's
   // travel allows). The steady traction of the other branch builds as material crosses the
   // patch, so the branch's weight follows over travel with relaxation length a.
-  opposed_ = FlexibilityCalibration::followedBranch(opposed_, {in.xi, in.eta, in.phi}, travel, a);
+  opposed_ = PatchCalibration::followedBranch(opposed_, {in.xi, in.eta, in.phi}, travel, a);
 }
 
 double NssModel::historyScale(double a) const {

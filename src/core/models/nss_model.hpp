@@ -9,7 +9,7 @@
 
 #include <vector>
 
-#include "core/fastsim/steady_calibration.hpp"
+#include "core/calibration/calibration_table.hpp"
 #include "core/fastsim/transient_fastsim.hpp"
 #include "core/models/rolling_direction.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
@@ -24,9 +24,9 @@ class NssModel : public ContactModel {
   /// `chi` is used when p.model == "nss" (shen-li ignores it). Allocates everything here: step()
   /// allocates nothing.
   /// `calibration`: the calibrated FastSim's table (empty: classic FastSim); of several meshes,
-  /// the one nearest p.nx (SteadyCalibration::forMesh).
+  /// the one nearest p.nx (CalibrationTable::forMesh).
   NssModel(const ContactParameters& p, const ChiTable& chi,
-           const SteadyCalibration& calibration = SteadyCalibration());
+           const CalibrationTable& calibration = CalibrationTable());
   StepOutput step(const StepInput& in) override;
   void reset() override;
   std::string name() const override { return p_.model; }
@@ -66,8 +66,8 @@ class NssModel : public ContactModel {
   ContactParameters p_;
   ReferencePatch ref_;
   CreepCoefficients kalker_;
-  SteadyCalibration calibrationTable_;
-  FlexibilityCalibration calibration_;  // calibrationTable_ at a/b ab_
+  CalibrationTable calibrationTable_;
+  PatchCalibration calibration_;  // calibrationTable_ at a/b ab_
   /// The step's traction bound mu p on `mesh` (field_): parabolic, flattened by `shape` (the
   /// calibration's bound shape; classic: 0).
   void boundOn(const PatchMesh& mesh, const HertzEllipse& h, const StepInput& in, double shape);

@@ -5,8 +5,7 @@
 
 namespace wheel_rail_contact {
 
-SteadyModel::SteadyModel(const ContactParameters& p, Mesh mesh,
-                         const SteadyCalibration& calibration)
+SteadyModel::SteadyModel(const ContactParameters& p, Mesh mesh, const CalibrationTable& calibration)
     : p_(p),
       ref_{p.a0, p.b0, p.fz0},
       c_(kalkerCoefficients(p.a0 / p.b0, p.nu)),

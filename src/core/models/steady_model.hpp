@@ -3,8 +3,8 @@
 /// V < 0 marches the mirror image (rolling_direction.hpp). Units as in contact_model.hpp.
 #pragma once
 
+#include "core/calibration/calibration_table.hpp"
 #include "core/fastsim/fastsim.hpp"
-#include "core/fastsim/steady_calibration.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
 
@@ -18,9 +18,9 @@ class SteadyModel : public ContactModel {
   /// benchmarks).
   enum class Mesh { kFittedToPatch, kSizedForFzMax };
   /// `calibration`: the calibrated FastSim's table (empty: classic FastSim); of several meshes,
-  /// the one nearest p.nx (SteadyCalibration::forMesh).
+  /// the one nearest p.nx (CalibrationTable::forMesh).
   explicit SteadyModel(const ContactParameters& p, Mesh mesh = Mesh::kFittedToPatch,
-                       const SteadyCalibration& calibration = SteadyCalibration());
+                       const CalibrationTable& calibration = CalibrationTable());
   StepOutput step(const StepInput& in) override;
   void reset() override { last_ = StepOutput(); }
   std::string name() const override { return "steady"; }
@@ -35,8 +35,8 @@ class SteadyModel : public ContactModel {
   CreepCoefficients c_;  // Kalker's, at a/b ab_
   double ab0_;           // a0/b0: the a/b of every step without per-step geometry
   double ab_;
-  SteadyCalibration calibrationTable_;
-  FlexibilityCalibration calibration_;  // calibrationTable_ at a/b ab_
+  CalibrationTable calibrationTable_;
+  PatchCalibration calibration_;  // calibrationTable_ at a/b ab_
   PatchMesh mesh_;
   TractionField field_;
   bool fitted_;      // mesh_ follows the patch

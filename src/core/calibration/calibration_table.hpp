@@ -1,9 +1,9 @@
 /// Calibrated FastSim (issue 19): Kalker's flexibilities scaled, per creepage kind, by a ratio that
 /// depends on how far the contact is from linear theory, the ratio identified against our exact
-/// half-space solver (src/tools/identify_steady.cpp) so that FastSim's steady creep curves follow
-/// the exact ones. The ratio is 1 at zero creepage, so linear theory (Kalker's coefficients) stays
-/// exact, and it is chosen once per step from that step's creepages and load: the march then runs
-/// unchanged with the scaled flexibilities, on a traction field bounded by mu p; the time term
+/// half-space solver (src/tools/identify_calibration.cpp) so that FastSim's steady creep curves
+/// follow the exact ones. The ratio is 1 at zero creepage, so linear theory (Kalker's coefficients)
+/// stays exact, and it is chosen once per step from that step's creepages and load: the march then
+/// runs unchanged with the scaled flexibilities, on a traction field bounded by mu p; the time term
 /// marches that field as it always does (its history is traction, which a change of flexibility
 /// between steps leaves standing, like the drive's change with the creepage).
 ///
@@ -108,7 +108,7 @@ struct CalibratedStep {
 };
 
 /// The three ratio curves at one a/b; empty (the default) is classic FastSim: every ratio 1.
-class FlexibilityCalibration {
+class PatchCalibration {
  public:
   bool classic() const { return eps_[0].empty(); }
   /// Whether step() interpolates the combined correction and takes its exps four at a time in the
@@ -169,13 +169,13 @@ class FlexibilityCalibration {
   /// right only with Hertz's weights. From kSmallSpinShare on the identified correction decides;
   /// without a correction (or spin), `shape` is returned.
   double towardsFullSlip(double shape, double e, double s3, double aOverB) const;
-  /// towardsFullSlip's blend itself, whatever the table (identify_steady fits a knot below
+  /// towardsFullSlip's blend itself, whatever the table (identify_calibration fits a knot below
   /// kSmallSpinShare with it).
   static double hertzShapeBlend(double shape, double e, double s3, double aOverB);
   /// Spin's share below which towardsFullSlip acts, whatever the table's spin-share knots. The
   /// shipped table's knots below it (0.03, 0.06, 0.1, 0.175) are identified with towardsFullSlip in
   /// the fit and, near linear theory, hold the correction interpolated between no spin and the
-  /// first knot from it on (identify_steady).
+  /// first knot from it on (identify_calibration).
   static constexpr double kSmallSpinShare = 0.25;
   /// Normalised creepage from which towardsFullSlip moves the shape: kFullSlipFrom, and
   /// heldFullSlipFrom(aOverB) where the lateral coupling is held (heldShare): the held coupling's
@@ -297,7 +297,7 @@ class FlexibilityCalibration {
                                    double muFz, const Creepages& c, double* squares = nullptr);
 
  private:
-  friend class SteadyCalibration;
+  friend class CalibrationTable;
   static constexpr int kKinds = 10;
   // Per kind (0-4: 11, 22, 23, 23x, 23s; 5: 22c; 6: 22b; 7-9: 22n, 22cn, 22s) its knots and ln
   // ratio at them (heldAsIs: the value itself).
@@ -306,7 +306,7 @@ class FlexibilityCalibration {
   // division.
   std::vector<double> perWidth_[kKinds];
   // Where every kind present holds kind 11's knots (the shipped table), one search of e serves
-  // them all; set by SteadyCalibration::at.
+  // them all; set by CalibrationTable::at.
   bool sharedKnots_ = false;
   // The correction's cell for spin's share s3, xi's share t and e: its first corner, the strides
   // to the next xi share, spin share and branch (the eta phi < 0 one), and the weights along each.
@@ -317,7 +317,7 @@ class FlexibilityCalibration {
   };
   CorrectionCell correctionCell(double s3, double t, double e) const;
   // Whether step() takes the corrected case's lookup and exps four at a time in AVX's lanes (set
-  // by SteadyCalibration::at where the CPU has them; setVectorised).
+  // by CalibrationTable::at where the CPU has them; setVectorised).
   bool vectorised_ = false;
   // The knot cell [i - 1, i] holding e and e's place t in it; i = the knot count at and beyond the
   // last knot (or for NaN), where the last value is held.
@@ -361,7 +361,7 @@ class FlexibilityCalibration {
     }
   };
   // Kind 0's knot search's start (where the kinds share their knots, every kind's), and the
-  // correction's over spin's share, xi's share and e; set by SteadyCalibration::at.
+  // correction's over spin's share, xi's share and e; set by CalibrationTable::at.
   SearchStart knotStart_, corrS3Start_, corrTStart_, corrEpsStart_;
   // Kind 0's cell, from knotStart_ (cell(0, e), one bucket's knots searched).
   KnotCell kindCell(double e) const;
@@ -382,7 +382,7 @@ class FlexibilityCalibration {
     while (x[from] <= e) ++from;
     return from;
   }
-  // Sets the four SearchStarts from the knots (SteadyCalibration::at).
+  // Sets the four SearchStarts from the knots (CalibrationTable::at).
   void setSearchStarts();
   static double at(const std::vector<double>& r, KnotCell c) {
     return c.i == r.size() ? r.back() : r[c.i - 1] + c.t * (r[c.i] - r[c.i - 1]);
@@ -398,40 +398,40 @@ class FlexibilityCalibration {
 };
 
 /// The identified table over a/b, per FastSim mesh.
-class SteadyCalibration {
+class CalibrationTable {
  public:
   /// Reads a table. Throws std::runtime_error naming the file and line on a malformed,
   /// non-finite or non-positive ratio, knots not increasing or not starting at (0, 1), or a/b rows
   /// whose knots differ (23x, 23s: in every a/b or in none; 23s in (0, 1], any at knot 0), an
   /// unknown or repeated column, a fastsim_nx below 2 or missing in a row, or a mesh in two blocks.
-  static SteadyCalibration load(const std::string& path);
+  static CalibrationTable load(const std::string& path);
   /// The same from a stream; `source` names it in messages.
-  static SteadyCalibration parse(std::istream& in, const std::string& source);
+  static CalibrationTable parse(std::istream& in, const std::string& source);
   /// The table shipped with the package (config/steady_calibration.csv, meshes 5x5 to 40x40,
   /// compiled in; parsed once per process).
-  static const SteadyCalibration& shipped();
+  static const CalibrationTable& shipped();
   /// The table for a FastSim mesh of nx nodes per strip, as a table of its own: an identified
   /// mesh's own; between two identified meshes of the same knots their ratios interpolated in
   /// 1/nx (the march's step along the strip; ln ratio, the coupling itself); beyond the table's
   /// meshes (or between meshes of other knots) the nearest in 1/nx, a tie to the finer, as
   /// ChiTable::forMesh. A table of one mesh (or none) is itself.
-  SteadyCalibration forMesh(int nx) const;
+  CalibrationTable forMesh(int nx) const;
   /// nx of each mesh the table holds, increasing (one 0: a table without fastsim_nx).
   std::vector<int> meshes() const;
   /// The calibration at a/b. On a table of one mesh: narrow a table of several with forMesh()
   /// first (std::logic_error otherwise).
-  FlexibilityCalibration at(double a_over_b) const;
+  PatchCalibration at(double a_over_b) const;
   /// The same into `c`, reusing the storage it holds (a model re-picking at a new a/b each step
   /// allocates nothing).
-  void at(double a_over_b, FlexibilityCalibration* c) const;
+  void at(double a_over_b, PatchCalibration* c) const;
   bool empty() const { return meshes_.empty(); }
 
  private:
   struct Row {
     double logAB;
-    std::vector<double> eps[FlexibilityCalibration::kKinds],
-        ratio[FlexibilityCalibration::kKinds];  // FlexibilityCalibration's kinds (heldAsIs as is)
-    std::vector<double> corrS3, corrT, corrEps, corr;  // as FlexibilityCalibration's, ratios
+    std::vector<double> eps[PatchCalibration::kKinds],
+        ratio[PatchCalibration::kKinds];               // PatchCalibration's kinds (heldAsIs as is)
+    std::vector<double> corrS3, corrT, corrEps, corr;  // as PatchCalibration's, ratios
   };
   struct Mesh {
     int nx = 0;             // 0: any

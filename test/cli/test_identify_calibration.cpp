@@ -1,4 +1,4 @@
-// identify_steady's exact cache (doc/data/steady_exact_curves*.csv) is keyed by a/b, ray and e
+// identify_calibration's exact cache (doc/data/steady_exact_curves*.csv) is keyed by a/b, ray and e
 // alone: a cache solved for another setup must stop the tool, not be read as this setup's curves;
 // and its reader (validation/steady_curves.hpp) takes the cache's own columns and nothing else.
 #include <gtest/gtest.h>
@@ -74,7 +74,7 @@ TEST(IdentifySteady, StopsWhereTheDefaultCacheIsNotFound) {
   // otherwise start solving every exact point. The timeout turns that into a failure here.
   std::string out;
   const int code = wrc_test::run("cd " + testing::TempDir() + " && timeout 120 " +
-                                     std::string(WRC_IDENTIFY_STEADY) + " --nx 20 --ab 1",
+                                     std::string(WRC_IDENTIFY_CALIBRATION) + " --nx 20 --ab 1",
                                  &out);
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("run from the repository root, or give --exact FILE"), std::string::npos)
@@ -82,13 +82,13 @@ TEST(IdentifySteady, StopsWhereTheDefaultCacheIsNotFound) {
 }
 
 TEST(IdentifySteady, RefusesAnExactCacheSolvedForAnotherSetup) {
-  const std::string cache = testing::TempDir() + "identify_steady_nu028.csv";
+  const std::string cache = testing::TempDir() + "identify_calibration_nu028.csv";
   std::ofstream(cache) << kSetup << kHeader << kPoint;
   const std::string before = wrc_test::fileText(cache);
   // Without the check the tool would go on to solve the rays' exact points for minutes: the
   // timeout turns that into a failure here.
   std::string out;
-  const int code = wrc_test::run("timeout 120 " + std::string(WRC_IDENTIFY_STEADY) +
+  const int code = wrc_test::run("timeout 120 " + std::string(WRC_IDENTIFY_CALIBRATION) +
                                      " --nu 0.3 --nx 20 --ab 1 --exact " + cache,
                                  &out);
   EXPECT_EQ(code, 1) << out;

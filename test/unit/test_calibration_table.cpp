@@ -1,4 +1,4 @@
-// The calibrated FastSim's table (steady_calibration.hpp) and the `fastsim` parameter.
+// The calibrated FastSim's table (calibration_table.hpp) and the `fastsim` parameter.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "core/calibration/calibration_table.hpp"
 #include "core/fastsim/patch_mesh.hpp"
-#include "core/fastsim/steady_calibration.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/contact_parameters.hpp"
 
@@ -36,13 +36,13 @@ const char* const kTwoRows =
 struct RoundPatch {
   double a = 5e-3, b = 5e-3, G = 8.2e10, muFz = 3e3;
   CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
-  // The creepages whose normalised parts (FlexibilityCalibration::normalisedCreepage) are e1,
+  // The creepages whose normalised parts (PatchCalibration::normalisedCreepage) are e1,
   // e2, e3.
   Creepages normalised(double e1, double e2, double e3) const {
     const double unit = muFz / (G * a * b);
     return {e1 * unit / k.c11, e2 * unit / k.c22, e3 * unit / (k.c23 * std::sqrt(a * b))};
   }
-  CalibratedStep step(const FlexibilityCalibration& c, const Creepages& cr) const {
+  CalibratedStep step(const PatchCalibration& c, const Creepages& cr) const {
     return c.step(a, b, G, k, muFz, cr);
   }
 };
@@ -67,7 +67,7 @@ std::string oneShareCorrection(const Ratio& ratio) {
 
 std::string message(const std::string& body) {
   try {
-    SteadyCalibration::load(writeTable(body));
+    CalibrationTable::load(writeTable(body));
   } catch (const std::runtime_error& e) {
     return e.what();
   }
@@ -76,9 +76,9 @@ std::string message(const std::string& body) {
 
 }  // namespace
 
-TEST(SteadyCalibration, InterpolatesInCreepageAndLogAOverBAndHoldsBeyondTheLastKnot) {
-  const SteadyCalibration t = SteadyCalibration::load(writeTable(kTwoRows));
-  const FlexibilityCalibration lo = t.at(0.5), mid = t.at(1.0), below = t.at(0.1);
+TEST(CalibrationTable, InterpolatesInCreepageAndLogAOverBAndHoldsBeyondTheLastKnot) {
+  const CalibrationTable t = CalibrationTable::load(writeTable(kTwoRows));
+  const PatchCalibration lo = t.at(0.5), mid = t.at(1.0), below = t.at(0.1);
   EXPECT_DOUBLE_EQ(lo.ratio(0, 0.0), 1.0);
   EXPECT_DOUBLE_EQ(lo.ratio(0, 0.5), std::sqrt(2.0));  // ln ratio linear in e
   EXPECT_DOUBLE_EQ(lo.ratio(0, 7.0), 2.0);             // held
@@ -89,15 +89,15 @@ TEST(SteadyCalibration, InterpolatesInCreepageAndLogAOverBAndHoldsBeyondTheLastK
   EXPECT_DOUBLE_EQ(t.at(9.0).ratio(0, 1.0), 4.0);
 }
 
-TEST(SteadyCalibration, NumbersFromCharsRefusesReadAsStrtodReadsThem) {
+TEST(CalibrationTable, NumbersFromCharsRefusesReadAsStrtodReadsThem) {
   // A sign '+', leading space and hex are the C library's forms of the same numbers.
   std::string other = kTwoRows;
   for (const auto& [from, to] :
        {std::pair<std::string, std::string>{"0.5,11,1,2,", "+0.5,11,1, 2,"},
         {"2,23,2,1,", "0x2,23,2,1,"}})
     other.replace(other.find(from), from.size(), to);
-  const SteadyCalibration a = SteadyCalibration::load(writeTable(kTwoRows)),
-                          b = SteadyCalibration::load(writeTable(other));
+  const CalibrationTable a = CalibrationTable::load(writeTable(kTwoRows)),
+                         b = CalibrationTable::load(writeTable(other));
   for (const double ab : {0.5, 2.0})
     for (int kind = 0; kind < 3; ++kind)
       for (const double e : {0.5, 1.5}) EXPECT_EQ(a.at(ab).ratio(kind, e), b.at(ab).ratio(kind, e));
@@ -105,14 +105,14 @@ TEST(SteadyCalibration, NumbersFromCharsRefusesReadAsStrtodReadsThem) {
             std::string::npos);
 }
 
-TEST(SteadyCalibration, ScalesEachFlexibilityByItsKindsRatioAtTheNormalisedCreepage) {
-  const SteadyCalibration t = SteadyCalibration::load(writeTable(kTwoRows));
-  const FlexibilityCalibration c = t.at(0.5);
+TEST(CalibrationTable, ScalesEachFlexibilityByItsKindsRatioAtTheNormalisedCreepage) {
+  const CalibrationTable t = CalibrationTable::load(writeTable(kTwoRows));
+  const PatchCalibration c = t.at(0.5);
   const double a = 4e-3, b = 8e-3, G = 8.2e10, muFz = 3e3;
   const CreepCoefficients k = kalkerCoefficients(0.5, 0.28);
   // e = G a b C11 xi / (mu fz) = 0.5 for xi alone: ratio sqrt(2) (ln ratio halfway to ln 2).
   const Creepages c1{0.5 * muFz / (G * a * b * k.c11), 0.0, 0.0};
-  EXPECT_NEAR(FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, c1), 0.5, 1e-12);
+  EXPECT_NEAR(PatchCalibration::normalisedCreepage(a, b, G, k, muFz, c1), 0.5, 1e-12);
   const Flexibilities L0 = kalkerFlexibilities(a, b, G, k),
                       L = c.flexibilities(a, b, G, k, muFz, c1);
   // A single creepage: its kind's ratio, the others blended towards L_crss = L1 with w = e / 5.
@@ -123,35 +123,34 @@ TEST(SteadyCalibration, ScalesEachFlexibilityByItsKindsRatioAtTheNormalisedCreep
   // Two kinds at e = 1 (e1 = e2): ln rho is the mean of their ln ratios, 2 and 0.5: rho = 1.
   const Creepages c12{c1.xi / 0.5 / std::sqrt(2.0), c1.xi / 0.5 / std::sqrt(2.0) * k.c11 / k.c22,
                       0.0};
-  EXPECT_NEAR(FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, c12), 1.0, 1e-12);
+  EXPECT_NEAR(PatchCalibration::normalisedCreepage(a, b, G, k, muFz, c12), 1.0, 1e-12);
   const Flexibilities L12 = c.flexibilities(a, b, G, k, muFz, c12);
   const double x2 = c12.xi * c12.xi, y2 = c12.eta * c12.eta;
   const double crss = (x2 + y2) / (x2 / L0.L1 + y2 / L0.L2);
   EXPECT_NEAR(L12.L1, 0.8 * L0.L1 + 0.2 * crss, 1e-12 * L0.L1);
   // Spin and signs: e is the norm of the three linear forces over mu fz.
   const Creepages c3{-c1.xi, 0.0, 0.5 * muFz / (G * std::pow(a * b, 1.5) * k.c23)};
-  EXPECT_NEAR(FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, c3), std::sqrt(0.5),
-              1e-12);
+  EXPECT_NEAR(PatchCalibration::normalisedCreepage(a, b, G, k, muFz, c3), std::sqrt(0.5), 1e-12);
   // No friction: full slip, the last knots.
   const Flexibilities Lf = c.flexibilities(a, b, G, k, 0.0, c1);
   EXPECT_NEAR(Lf.L1, 2.0 * L0.L1, 1e-12 * L0.L1);
 }
 
-TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
+TEST(CalibrationTable, OneStepCallIsTheRuleKindByKind) {
   // The shipped table's kinds share their knots: step() locates e once for all of them and folds
   // the combined correction into the ratios' exp. It must give what the rule gives kind by kind:
   // each kind's own ratio(), the correction's multipliers (L3x's besides L3's), the blend towards
   // L_crss.
-  const FlexibilityCalibration c = SteadyCalibration::shipped().forMesh(20).at(0.7);
+  const PatchCalibration c = CalibrationTable::shipped().forMesh(20).at(0.7);
   const double a = 5e-3, b = a / 0.7, G = 8.2e10, muFz = 2.4e4;
   const CreepCoefficients k = kalkerCoefficients(0.7, 0.28);
   const Flexibilities L0 = kalkerFlexibilities(a, b, G, k);
   for (const Creepages cr : {Creepages{1e-3, -4e-4, 0.6}, Creepages{-3e-3, 2e-3, 1.5},
                              Creepages{2e-4, 1e-3, -0.3}, Creepages{0.05, 0.02, 8.0}}) {
     double e2[3];
-    const double e = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, cr, e2);
-    double m[FlexibilityCalibration::kCorrections];
-    c.correction(e2, e, cr.eta * cr.phi < 0.0, 0, FlexibilityCalibration::kCorrections, m);
+    const double e = PatchCalibration::normalisedCreepage(a, b, G, k, muFz, cr, e2);
+    double m[PatchCalibration::kCorrections];
+    c.correction(e2, e, cr.eta * cr.phi < 0.0, 0, PatchCalibration::kCorrections, m);
     const double rho = std::exp(
         (e2[0] * c.logRatio(0, e) + e2[1] * c.logRatio(1, e) + e2[2] * c.logRatio(2, e)) / (e * e));
     const double kphi = 3.0 * M_PI * a / 32.0 * cr.phi, x2 = cr.xi * cr.xi, y2 = cr.eta * cr.eta;
@@ -162,13 +161,12 @@ TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
     EXPECT_NEAR(s.L.L2, rho * m[1] * ((1 - w) * L0.L2 + w * crss), 1e-14 * s.L.L2) << e;
     EXPECT_NEAR(s.L.L3, rho * m[2] * ((1 - w) * L0.L3 + w * crss), 1e-14 * s.L.L3) << e;
     const double s3 = e2[2] / (e * e);
-    EXPECT_NEAR(
-        s.L.L3x,
-        s.L.L3 *
-            std::exp(s3 * c.logRatio(3, e) + (1.0 - s3) * c.logRatio(3, 0.0) *
-                                                 FlexibilityCalibration::linearSpinMoment(e)) *
-            m[4],
-        1e-14 * s.L.L3x);
+    EXPECT_NEAR(s.L.L3x,
+                s.L.L3 *
+                    std::exp(s3 * c.logRatio(3, e) + (1.0 - s3) * c.logRatio(3, 0.0) *
+                                                         PatchCalibration::linearSpinMoment(e)) *
+                    m[4],
+                1e-14 * s.L.L3x);
     EXPECT_NEAR(s.boundShape, c.towardsFullSlip(c.ratio(4, e) * s3 * m[3], e, s3, a / b),
                 1e-14 * s.boundShape);
     EXPECT_NE(m[0], 1.0);  // the correction acts on these directions
@@ -178,16 +176,16 @@ TEST(SteadyCalibration, OneStepCallIsTheRuleKindByKind) {
   }
 }
 
-TEST(SteadyCalibration, SmallSpinSharesGoTowardsHertzsShapeInFullSlipOnly) {
+TEST(CalibrationTable, SmallSpinSharesGoTowardsHertzsShapeInFullSlipOnly) {
   // Below kSmallSpinShare (0.25), in full slip (e >= 5), the shape is Hertz's moment shape; in
   // partial slip, from kSmallSpinShare on and without spin it is the table's own. The blend starts
   // at e = 2.5, and at 1.5 where the lateral coupling is held (spin's share up to 0.06, linearly
   // between 0.06 and 0.12: 2 at 0.09).
-  const FlexibilityCalibration c = SteadyCalibration::shipped().forMesh(20).at(1.0);
-  constexpr double hertz = FlexibilityCalibration::kHertzMomentShape;
-  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.02, 1.0), 1.5);
-  EXPECT_DOUBLE_EQ(FlexibilityCalibration::fullSlipFrom(0.09, 1.0), 2.0);
-  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.15, 1.0), 2.5);
+  const PatchCalibration c = CalibrationTable::shipped().forMesh(20).at(1.0);
+  constexpr double hertz = PatchCalibration::kHertzMomentShape;
+  EXPECT_EQ(PatchCalibration::fullSlipFrom(0.02, 1.0), 1.5);
+  EXPECT_DOUBLE_EQ(PatchCalibration::fullSlipFrom(0.09, 1.0), 2.0);
+  EXPECT_EQ(PatchCalibration::fullSlipFrom(0.15, 1.0), 2.5);
   for (double shape : {0.0, 0.3, 1.8}) {
     EXPECT_EQ(c.towardsFullSlip(shape, 1.5, 0.02, 1.0), shape);
     EXPECT_EQ(c.towardsFullSlip(shape, 2.0, 0.09, 1.0), shape);
@@ -203,42 +201,42 @@ TEST(SteadyCalibration, SmallSpinSharesGoTowardsHertzsShapeInFullSlipOnly) {
   }
 }
 
-TEST(SteadyCalibration, TheBlendSpansLessCreepageOnAWidePatch) {
+TEST(CalibrationTable, TheBlendSpansLessCreepageOnAWidePatch) {
   // From a/b 0.5 on the span is the one above; at a/b 0.2 and below the held shares start at 0.75
   // and every small share is fully blended from 3.5; linear in a/b between (half way at 0.35).
-  EXPECT_EQ(FlexibilityCalibration::wideness(0.5), 0.0);
-  EXPECT_EQ(FlexibilityCalibration::wideness(5.0), 0.0);
-  EXPECT_EQ(FlexibilityCalibration::wideness(0.2), 1.0);
-  EXPECT_EQ(FlexibilityCalibration::wideness(0.1), 1.0);
-  EXPECT_DOUBLE_EQ(FlexibilityCalibration::wideness(0.35), 0.5);
-  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.02, 0.2), 0.75);
-  EXPECT_EQ(FlexibilityCalibration::fullSlipFrom(0.15, 0.2), 2.5);
-  EXPECT_DOUBLE_EQ(FlexibilityCalibration::fullSlipFrom(0.02, 0.35), 1.125);
-  EXPECT_EQ(FlexibilityCalibration::fullSlipTo(0.2), 3.5);
-  EXPECT_EQ(FlexibilityCalibration::fullSlipTo(1.0), 5.0);
-  const double shape = 0.3, hertz = FlexibilityCalibration::kHertzMomentShape;
+  EXPECT_EQ(PatchCalibration::wideness(0.5), 0.0);
+  EXPECT_EQ(PatchCalibration::wideness(5.0), 0.0);
+  EXPECT_EQ(PatchCalibration::wideness(0.2), 1.0);
+  EXPECT_EQ(PatchCalibration::wideness(0.1), 1.0);
+  EXPECT_DOUBLE_EQ(PatchCalibration::wideness(0.35), 0.5);
+  EXPECT_EQ(PatchCalibration::fullSlipFrom(0.02, 0.2), 0.75);
+  EXPECT_EQ(PatchCalibration::fullSlipFrom(0.15, 0.2), 2.5);
+  EXPECT_DOUBLE_EQ(PatchCalibration::fullSlipFrom(0.02, 0.35), 1.125);
+  EXPECT_EQ(PatchCalibration::fullSlipTo(0.2), 3.5);
+  EXPECT_EQ(PatchCalibration::fullSlipTo(1.0), 5.0);
+  const double shape = 0.3, hertz = PatchCalibration::kHertzMomentShape;
   const double w = (1.0 - 0.02 / 0.25);  // full blend's share factor at s3 = 0.02
   // Held share at a/b 0.2: from 0.75 to 3.5, half way at 2.125.
-  EXPECT_EQ(FlexibilityCalibration::hertzShapeBlend(shape, 0.75, 0.02, 0.2), shape);
-  EXPECT_NEAR(FlexibilityCalibration::hertzShapeBlend(shape, 2.125, 0.02, 0.2),
+  EXPECT_EQ(PatchCalibration::hertzShapeBlend(shape, 0.75, 0.02, 0.2), shape);
+  EXPECT_NEAR(PatchCalibration::hertzShapeBlend(shape, 2.125, 0.02, 0.2),
               shape + (hertz - shape) * 0.5 * w, 1e-12);
-  EXPECT_NEAR(FlexibilityCalibration::hertzShapeBlend(shape, 3.5, 0.02, 0.2),
-              shape + (hertz - shape) * w, 1e-12);
+  EXPECT_NEAR(PatchCalibration::hertzShapeBlend(shape, 3.5, 0.02, 0.2), shape + (hertz - shape) * w,
+              1e-12);
   // A share beyond the hold: from 2.5 to 3.5 there.
-  EXPECT_EQ(FlexibilityCalibration::hertzShapeBlend(shape, 2.5, 0.15, 0.2), shape);
-  EXPECT_NEAR(FlexibilityCalibration::hertzShapeBlend(shape, 3.0, 0.15, 0.2),
+  EXPECT_EQ(PatchCalibration::hertzShapeBlend(shape, 2.5, 0.15, 0.2), shape);
+  EXPECT_NEAR(PatchCalibration::hertzShapeBlend(shape, 3.0, 0.15, 0.2),
               shape + (hertz - shape) * 0.5 * (1.0 - 0.15 / 0.25), 1e-12);
   // The same creepage on a round patch is still early in its blend.
-  EXPECT_LT(FlexibilityCalibration::hertzShapeBlend(shape, 2.125, 0.02, 1.0),
-            FlexibilityCalibration::hertzShapeBlend(shape, 2.125, 0.02, 0.2));
+  EXPECT_LT(PatchCalibration::hertzShapeBlend(shape, 2.125, 0.02, 1.0),
+            PatchCalibration::hertzShapeBlend(shape, 2.125, 0.02, 0.2));
 }
 
-TEST(SteadyCalibration, ClassicHasNoBlendTowardsHertzsShape) {
+TEST(CalibrationTable, ClassicHasNoBlendTowardsHertzsShape) {
   // Classic (no correction table): nothing to fill in.
-  EXPECT_EQ(SteadyCalibration().at(1.0).towardsFullSlip(0.3, 13.0, 0.02, 1.0), 0.3);
+  EXPECT_EQ(CalibrationTable().at(1.0).towardsFullSlip(0.3, 13.0, 0.02, 1.0), 0.3);
 }
 
-TEST(SteadyCalibration, HertzMomentShapeGivesHertzsFullSlipSpinMoment) {
+TEST(CalibrationTable, HertzMomentShapeGivesHertzsFullSlipSpinMoment) {
   // Pure spin in full slip on a circle: the traction is mu p around the spin pole at the centre,
   // so Mz = mu fz a times 8/15 on the parabolic bound and 3 pi / 16 on Hertz's; the flattened
   // bound with kHertzMomentShape must give Hertz's (within the 40x40 mesh's quadrature).
@@ -252,14 +250,14 @@ TEST(SteadyCalibration, HertzMomentShapeGivesHertzsFullSlipSpinMoment) {
     return -steadyFastSim(mesh, L, {0.0, 0.0, 1e3}, &f).mz / (mu * fz * a);  // phi > 0: Mz < 0
   };
   EXPECT_NEAR(moment(0.0), 8.0 / 15.0, 1e-3);
-  EXPECT_NEAR(moment(FlexibilityCalibration::kHertzMomentShape), 3.0 * M_PI / 16.0, 1e-3);
+  EXPECT_NEAR(moment(PatchCalibration::kHertzMomentShape), 3.0 * M_PI / 16.0, 1e-3);
 }
 
-TEST(SteadyCalibration, CreepagesWhoseSquaresAreSubnormalGiveFiniteFlexibilities) {
+TEST(CalibrationTable, CreepagesWhoseSquaresAreSubnormalGiveFiniteFlexibilities) {
   // xi = 2.4e-159 (found by fuzzing, nss fixed): e1^2 is subnormal, so one reciprocal of the
   // squares' sum overflowed to infinity and the kinds' shares, then L1, were NaN. As e -> 0 the
   // step must tend to linear theory: Kalker's flexibilities.
-  const FlexibilityCalibration c = SteadyCalibration::shipped().forMesh(20).at(1.5);
+  const PatchCalibration c = CalibrationTable::shipped().forMesh(20).at(1.5);
   const double a = 6e-3, b = 4e-3, G = 8.2e10, muFz = 0.3 * 8e4;
   const CreepCoefficients k = kalkerCoefficients(1.5, 0.28);
   const Flexibilities L0 = kalkerFlexibilities(a, b, G, k);
@@ -278,8 +276,8 @@ TEST(SteadyCalibration, CreepagesWhoseSquaresAreSubnormalGiveFiniteFlexibilities
   EXPECT_TRUE(std::isfinite(out.fx) && std::isfinite(out.fy) && std::isfinite(out.mz));
 }
 
-TEST(SteadyCalibration, EmptyIsClassicFastSimExactly) {
-  const FlexibilityCalibration c = SteadyCalibration().at(1.0);
+TEST(CalibrationTable, EmptyIsClassicFastSimExactly) {
+  const PatchCalibration c = CalibrationTable().at(1.0);
   EXPECT_TRUE(c.classic());
   const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
   const Flexibilities L = c.flexibilities(5e-3, 5e-3, 8.2e10, k, 3e3, {0.01, 0.02, 1.0}),
@@ -289,7 +287,7 @@ TEST(SteadyCalibration, EmptyIsClassicFastSimExactly) {
   EXPECT_EQ(L.L3, L0.L3);
 }
 
-TEST(SteadyCalibration, RefusesMalformedTablesNamingTheLine) {
+TEST(CalibrationTable, RefusesMalformedTablesNamingTheLine) {
   const std::string h = "a_over_b,kind,epsilon,ratio\n";
   EXPECT_NE(message("").find("no header"), std::string::npos);
   EXPECT_NE(message("a,b\n").find(":1: expected header"), std::string::npos);
@@ -318,7 +316,7 @@ TEST(SteadyCalibration, RefusesMalformedTablesNamingTheLine) {
             std::string::npos);
 }
 
-TEST(SteadyCalibration, LateralCouplingIsEtasCouplingFadingWithSpin) {
+TEST(CalibrationTable, LateralCouplingIsEtasCouplingFadingWithSpin) {
   // Kind 22c: the coupling c per a/b and knot, any sign, interpolated linearly in e and in
   // ln(a/b); Flexibilities::lateralCoupling = 3 C11 c / (8 a b) times eta's share of the lateral
   // creepages' squares to the sixth; 0 without eta or without the kind.
@@ -329,16 +327,16 @@ TEST(SteadyCalibration, LateralCouplingIsEtasCouplingFadingWithSpin) {
       "0.5,22c,0,-0.4\n0.5,22c,1,-0.2\n"
       "2,11,0,1\n2,11,1,1\n2,22,0,1\n2,22,1,1\n2,23,0,1\n2,23,1,1\n"
       "2,22c,0,-0.8\n2,22c,1,0.2\n";
-  const SteadyCalibration t = SteadyCalibration::load(writeTable(body));
+  const CalibrationTable t = CalibrationTable::load(writeTable(body));
   EXPECT_DOUBLE_EQ(t.at(0.5).coupling(0.5), -0.3);
   EXPECT_DOUBLE_EQ(t.at(0.5).coupling(9.0), -0.2);  // held
   EXPECT_DOUBLE_EQ(t.at(1.0).coupling(1.0), 0.0);   // halfway in ln(a/b)
-  EXPECT_DOUBLE_EQ(SteadyCalibration::load(writeTable(kTwoRows)).at(1.0).coupling(1.0), 0.0);
+  EXPECT_DOUBLE_EQ(CalibrationTable::load(writeTable(kTwoRows)).at(1.0).coupling(1.0), 0.0);
   const double a = 4e-3, b = 8e-3, G = 8.2e10, muFz = 3e3;
   const CreepCoefficients k = kalkerCoefficients(a / b, 0.28);
-  const FlexibilityCalibration c = t.at(0.5);
+  const PatchCalibration c = t.at(0.5);
   const Creepages eta{0.0, 2e-4, 0.0}, xi{2e-4, 0.0, 0.0};
-  const double e = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, eta);
+  const double e = PatchCalibration::normalisedCreepage(a, b, G, k, muFz, eta);
   ASSERT_LT(e, 1.0);
   const double full = 3.0 * k.c11 * c.coupling(e) / (8.0 * a * b);
   EXPECT_DOUBLE_EQ(c.step(a, b, G, k, muFz, eta).L.lateralCoupling, full);
@@ -349,7 +347,7 @@ TEST(SteadyCalibration, LateralCouplingIsEtasCouplingFadingWithSpin) {
   const double phi = k.c22 * eta.eta / (k.c23 * std::sqrt(a * b));
   const Creepages both{0.0, eta.eta, phi};
   double squares[3];
-  const double eb = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, both, squares);
+  const double eb = PatchCalibration::normalisedCreepage(a, b, G, k, muFz, both, squares);
   ASSERT_NEAR(squares[1], squares[2], 1e-12 * squares[1]);
   EXPECT_NEAR(c.step(a, b, G, k, muFz, both).L.lateralCoupling,
               3.0 * k.c11 * c.coupling(eb) / (8.0 * a * b) / 64.0, 1e-12 * std::abs(full));
@@ -362,7 +360,7 @@ TEST(SteadyCalibration, LateralCouplingIsEtasCouplingFadingWithSpin) {
             std::string::npos);
 }
 
-TEST(SteadyCalibration, EtasDriveSlopeActsWhereXiIsBesideEta) {
+TEST(CalibrationTable, EtasDriveSlopeActsWhereXiIsBesideEta) {
   // Kind 22b: the slope beta per a/b and knot, any sign, interpolated linearly in e; applied with
   // the weight 4 t (1 - t), t xi's share of e1^2 + e2^2, falling with spin's share to 0 at the
   // first spin-share knot, 0.03: full at xi = eta, none on eta alone or xi alone.
@@ -370,14 +368,14 @@ TEST(SteadyCalibration, EtasDriveSlopeActsWhereXiIsBesideEta) {
   const std::string body = h +
                            "1,11,0,1\n1,11,1,1\n1,22,0,1\n1,22,1,1\n1,23,0,1\n1,23,1,1\n"
                            "1,22c,0,-0.5\n1,22c,1,-0.5\n1,22b,0,0\n1,22b,1,-0.4\n";
-  const FlexibilityCalibration c = SteadyCalibration::load(writeTable(body)).at(1.0);
+  const PatchCalibration c = CalibrationTable::load(writeTable(body)).at(1.0);
   EXPECT_DOUBLE_EQ(c.etaSlope(0.5), -0.2);
   EXPECT_DOUBLE_EQ(c.etaSlope(3.0), -0.4);  // held
   const double a = 6e-3, b = 6e-3, G = 8.2e10, muFz = 3e3;
   const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
   const double xi = 1e-4, eta = xi * k.c11 / k.c22;  // e1 = e2
   const Creepages both{xi, eta, 0.0};
-  const double e = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, both);
+  const double e = PatchCalibration::normalisedCreepage(a, b, G, k, muFz, both);
   ASSERT_LT(e, 1.0);
   const Flexibilities L = c.step(a, b, G, k, muFz, both).L;
   EXPECT_NEAR(L.etaSlope * a, c.etaSlope(e), 1e-12);
@@ -388,7 +386,7 @@ TEST(SteadyCalibration, EtasDriveSlopeActsWhereXiIsBesideEta) {
   }
   // xi's share 0.9: weight 4 (0.9)(0.1).
   const Creepages mostlyXi{3.0 * xi, eta, 0.0};
-  const double em = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, mostlyXi);
+  const double em = PatchCalibration::normalisedCreepage(a, b, G, k, muFz, mostlyXi);
   EXPECT_NEAR(c.step(a, b, G, k, muFz, mostlyXi).L.etaSlope * a, 0.36 * c.etaSlope(em), 1e-12);
   // Spin 1.5 % of e^2: half the weight; 3 % and more: none (the combined correction decides).
   const double perSqrtAb = 1.0 / std::sqrt(a * b);
@@ -396,7 +394,7 @@ TEST(SteadyCalibration, EtasDriveSlopeActsWhereXiIsBesideEta) {
     // e3^2 = s3 / (1 - s3) (e1^2 + e2^2), e3 = G (ab)^1.5 C23 |phi| / (mu fz).
     const double e3 = std::sqrt(s3 / (1.0 - s3)) * std::sqrt(2.0) * G * a * b * k.c11 * xi / muFz;
     const Creepages spun{xi, eta, e3 * muFz / (G * a * b * k.c23) * perSqrtAb};
-    const double es = FlexibilityCalibration::normalisedCreepage(a, b, G, k, muFz, spun);
+    const double es = PatchCalibration::normalisedCreepage(a, b, G, k, muFz, spun);
     EXPECT_NEAR(c.step(a, b, G, k, muFz, spun).L.etaSlope * a, weight * c.etaSlope(es), 1e-9) << s3;
   }
   // Out of range, or in some a/b only: errors naming the line.
@@ -408,7 +406,7 @@ TEST(SteadyCalibration, EtasDriveSlopeActsWhereXiIsBesideEta) {
             std::string::npos);
 }
 
-TEST(SteadyCalibration, EtaWithoutSpinReplacesThePairWhereSpinIsNoShare) {
+TEST(CalibrationTable, EtaWithoutSpinReplacesThePairWhereSpinIsNoShare) {
   // Kinds 22n, 22cn, 22s: eta's ratio, coupling and bound shape where spin has no share, in
   // place of 22 and 22c, fading linearly with spin's share to the pair at 0.03 (noSpinWeight).
   const std::string h = "a_over_b,kind,epsilon,ratio\n";
@@ -418,8 +416,8 @@ TEST(SteadyCalibration, EtaWithoutSpinReplacesThePairWhereSpinIsNoShare) {
   const std::string own =
       "1,22n,0,1\n1,22n,1,0.8\n1,22cn,0,-0.3\n1,22cn,1,-0.3\n"
       "1,22s,0,0.6\n1,22s,1,0.6\n";
-  const FlexibilityCalibration withPair = SteadyCalibration::load(writeTable(pair)).at(1.0);
-  const FlexibilityCalibration c = SteadyCalibration::load(writeTable(pair + own)).at(1.0);
+  const PatchCalibration withPair = CalibrationTable::load(writeTable(pair)).at(1.0);
+  const PatchCalibration c = CalibrationTable::load(writeTable(pair + own)).at(1.0);
   const double a = 6e-3, b = 6e-3, G = 8.2e10, muFz = 3e3;
   const CreepCoefficients k = kalkerCoefficients(1.0, 0.28);
   const Flexibilities kalker = kalkerFlexibilities(a, b, G, k);
@@ -427,7 +425,7 @@ TEST(SteadyCalibration, EtaWithoutSpinReplacesThePairWhereSpinIsNoShare) {
   const double eta = 0.5 * muFz / (G * a * b * k.c22);
   const CalibratedStep alone = c.step(a, b, G, k, muFz, {0.0, eta, 0.0});
   EXPECT_NEAR(alone.L.L2, kalker.L2 * std::sqrt(0.8), 1e-12 * kalker.L2);
-  EXPECT_NEAR(alone.L.lateralCoupling, FlexibilityCalibration::lateralCoupling(-0.3, a, b, k),
+  EXPECT_NEAR(alone.L.lateralCoupling, PatchCalibration::lateralCoupling(-0.3, a, b, k),
               1e-12 * std::abs(alone.L.lateralCoupling));
   EXPECT_DOUBLE_EQ(alone.boundShape, 0.6);
   EXPECT_EQ(withPair.step(a, b, G, k, muFz, {0.0, eta, 0.0}).boundShape, 0.0);
@@ -462,19 +460,19 @@ TEST(SteadyCalibration, EtaWithoutSpinReplacesThePairWhereSpinIsNoShare) {
             std::string::npos);
 }
 
-TEST(SteadyCalibration, CouplingHeldAtSmallSpinSharesKeepsLinearTheorysSuperposition) {
+TEST(CalibrationTable, CouplingHeldAtSmallSpinSharesKeepsLinearTheorysSuperposition) {
   // In linear theory forces and moment add up over the creepages: eta with spin a small share
   // (3 % of e^2) must give eta's moment (its coupling) plus spin's (23x's knot 0). The coupling
   // is held there (heldCoupling: 1 - e / 4.5 below spin's share 0.06, none from 0.12) and its
   // moment on spin's traction taken back through L3x. Faded as (e2^2 / (e2^2 + e3^2))^6 alone
   // (a sixth of the coupling gone here) the sum was off by 8.3 % of eta's moment; held, 0.4 %.
   // Shipped 20x20 table, e = 0.02.
-  EXPECT_DOUBLE_EQ(FlexibilityCalibration::heldCoupling(0.9, 0.03), 0.8);
-  EXPECT_DOUBLE_EQ(FlexibilityCalibration::heldCoupling(0.9, 0.09), 0.4);
-  EXPECT_EQ(FlexibilityCalibration::heldCoupling(0.9, 0.12), 0.0);
-  EXPECT_EQ(FlexibilityCalibration::heldCoupling(4.5, 0.03), 0.0);
+  EXPECT_DOUBLE_EQ(PatchCalibration::heldCoupling(0.9, 0.03), 0.8);
+  EXPECT_DOUBLE_EQ(PatchCalibration::heldCoupling(0.9, 0.09), 0.4);
+  EXPECT_EQ(PatchCalibration::heldCoupling(0.9, 0.12), 0.0);
+  EXPECT_EQ(PatchCalibration::heldCoupling(4.5, 0.03), 0.0);
   const RoundPatch p;
-  const FlexibilityCalibration c = SteadyCalibration::shipped().forMesh(20).at(1.0);
+  const PatchCalibration c = CalibrationTable::shipped().forMesh(20).at(1.0);
   const PatchMesh mesh(20, 20, p.a, p.b);
   TractionField f;
   f.resize(mesh.size());
@@ -490,16 +488,15 @@ TEST(SteadyCalibration, CouplingHeldAtSmallSpinSharesKeepsLinearTheorysSuperposi
   EXPECT_NEAR(moment(both), eta + spin, 0.01 * std::abs(eta + spin));
   // Where spin is no small share the coupling fades as before: spin's 25 %, (3/4)^6 of c.
   const Creepages quarter = p.normalised(0.0, e * std::sqrt(0.75), e * 0.5);
-  EXPECT_NEAR(
-      p.step(c, quarter).L.lateralCoupling,
-      FlexibilityCalibration::lateralCoupling(c.coupling(FlexibilityCalibration::normalisedCreepage(
-                                                  p.a, p.b, p.G, p.k, p.muFz, quarter)),
-                                              p.a, p.b, p.k) *
-          std::pow(0.75, 6),
-      1e-9 * std::abs(p.step(c, {0.0, both.eta, 0.0}).L.lateralCoupling));
+  EXPECT_NEAR(p.step(c, quarter).L.lateralCoupling,
+              PatchCalibration::lateralCoupling(c.coupling(PatchCalibration::normalisedCreepage(
+                                                    p.a, p.b, p.G, p.k, p.muFz, quarter)),
+                                                p.a, p.b, p.k) *
+                  std::pow(0.75, 6),
+              1e-9 * std::abs(p.step(c, {0.0, both.eta, 0.0}).L.lateralCoupling));
 }
 
-TEST(SteadyCalibration, OneBlockPerMeshInterpolatedInOneOverNxBetweenThem) {
+TEST(CalibrationTable, OneBlockPerMeshInterpolatedInOneOverNxBetweenThem) {
   // Two meshes, 5 and 20 nodes per strip (columns found by name, in any order after ratio).
   const std::string h = "a_over_b,kind,epsilon,ratio,fastsim_nx,fit_error\n";
   auto mesh = [](int nx, double r, const char* knot = "1") {
@@ -507,7 +504,7 @@ TEST(SteadyCalibration, OneBlockPerMeshInterpolatedInOneOverNxBetweenThem) {
     return "1,11,0,1," + n + "\n1,11," + knot + "," + v + "," + n + ",0\n1,22,0,1," + n +
            "\n1,23,0,1," + n + "\n";
   };
-  const SteadyCalibration t = SteadyCalibration::load(writeTable(h + mesh(20, 2) + mesh(5, 4)));
+  const CalibrationTable t = CalibrationTable::load(writeTable(h + mesh(20, 2) + mesh(5, 4)));
   EXPECT_EQ(t.meshes(), (std::vector<int>{5, 20}));
   EXPECT_THROW(t.at(1.0), std::logic_error);           // which mesh is the caller's to say
   EXPECT_EQ(t.forMesh(5).at(1.0).ratio(0, 1.0), 4.0);  // an identified mesh: its own, exactly
@@ -523,13 +520,13 @@ TEST(SteadyCalibration, OneBlockPerMeshInterpolatedInOneOverNxBetweenThem) {
   EXPECT_EQ(t.forMesh(3).at(1.0).ratio(0, 1.0), 4.0);
   // Meshes identified on other knots are not blended: the nearest in 1/nx, a tie (8) for the
   // finer mesh.
-  const SteadyCalibration other =
-      SteadyCalibration::load(writeTable(h + mesh(20, 2) + mesh(5, 4, "1.5")));
+  const CalibrationTable other =
+      CalibrationTable::load(writeTable(h + mesh(20, 2) + mesh(5, 4, "1.5")));
   EXPECT_EQ(other.forMesh(8).at(1.0).ratio(0, 1.5), 2.0);
   EXPECT_EQ(other.forMesh(7).at(1.0).ratio(0, 1.5), 4.0);
   EXPECT_EQ(other.forMesh(7).meshes(), (std::vector<int>{5}));
   // A table without fastsim_nx serves every mesh.
-  const SteadyCalibration any = SteadyCalibration::load(writeTable(kTwoRows));
+  const CalibrationTable any = CalibrationTable::load(writeTable(kTwoRows));
   EXPECT_EQ(any.meshes(), (std::vector<int>{0}));
   EXPECT_DOUBLE_EQ(any.forMesh(5).at(0.5).ratio(0, 1.0), 2.0);
   // Errors name the line.
@@ -554,11 +551,11 @@ TEST(SteadyCalibration, OneBlockPerMeshInterpolatedInOneOverNxBetweenThem) {
             std::string::npos);
 }
 
-TEST(SteadyCalibration, SpinsSecondParameterAndBoundShapeFollowSpinsShare) {
+TEST(CalibrationTable, SpinsSecondParameterAndBoundShapeFollowSpinsShare) {
   const std::string path = writeTable(
       "a_over_b,kind,epsilon,ratio\n1,11,0,1\n1,11,1,1\n1,22,0,1\n1,22,1,1\n1,23,0,1\n"
       "1,23,1,1\n1,23x,0,1\n1,23x,1,4\n1,23s,0,0.5\n1,23s,1,0.5\n");
-  const FlexibilityCalibration c = SteadyCalibration::load(path).at(1.0);
+  const PatchCalibration c = CalibrationTable::load(path).at(1.0);
   const RoundPatch p;
   // e1 = e3 = 1 / sqrt(2): e = 1, spin's share 1/2.
   const Creepages c13 = p.normalised(std::sqrt(0.5), 0.0, std::sqrt(0.5));
@@ -569,54 +566,52 @@ TEST(SteadyCalibration, SpinsSecondParameterAndBoundShapeFollowSpinsShare) {
   const CalibratedStep s1 = p.step(c, p.normalised(1.0, 0.0, 0.0));
   EXPECT_EQ(s1.L.spinX(), s1.L.L3);
   EXPECT_EQ(s1.boundShape, 0.0);
-  EXPECT_EQ(p.step(SteadyCalibration().at(1.0), c13).boundShape, 0.0);
+  EXPECT_EQ(p.step(CalibrationTable().at(1.0), c13).boundShape, 0.0);
 }
 
-TEST(SteadyCalibration, LinearSpinMomentHoldsAtEveryShareOfSpinUntilThePatchSlips) {
+TEST(CalibrationTable, LinearSpinMomentHoldsAtEveryShareOfSpinUntilThePatchSlips) {
   // 23x is 0.5 at knot 0 (linear theory's spin moment) and 4 at e = 5: spin's own curve carries
   // spin's share of e^2, the rest keeps knot 0's ratio up to kLinearSpinMomentTo and loses it by
   // kLinearSpinMomentEnd.
   const std::string path = writeTable(
       "a_over_b,kind,epsilon,ratio\n1,11,0,1\n1,11,5,1\n1,22,0,1\n1,22,5,1\n1,23,0,1\n"
       "1,23,5,1\n1,23x,0,0.5\n1,23x,5,4\n");
-  const FlexibilityCalibration c = SteadyCalibration::load(path).at(1.0);
+  const PatchCalibration c = CalibrationTable::load(path).at(1.0);
   const RoundPatch p;
   // xi with a tenth of e^2 spin's, at normalised creepage e.
   auto spinX = [&](double e) {
     const Flexibilities L = p.step(c, p.normalised(std::sqrt(0.9) * e, 0.0, std::sqrt(0.1) * e)).L;
     return L.L3x / L.L3;
   };
-  for (double e : {0.01, 0.5 * FlexibilityCalibration::kLinearSpinMomentTo,
-                   0.5 * (FlexibilityCalibration::kLinearSpinMomentTo +
-                          FlexibilityCalibration::kLinearSpinMomentEnd),
-                   FlexibilityCalibration::kLinearSpinMomentEnd + 0.1}) {
+  for (double e :
+       {0.01, 0.5 * PatchCalibration::kLinearSpinMomentTo,
+        0.5 * (PatchCalibration::kLinearSpinMomentTo + PatchCalibration::kLinearSpinMomentEnd),
+        PatchCalibration::kLinearSpinMomentEnd + 0.1}) {
     const double own = std::log(0.5) + e / 5.0 * std::log(8.0);  // 23x's ln ratio at e
     const double expected =
-        std::exp(0.1 * own + 0.9 * std::log(0.5) * FlexibilityCalibration::linearSpinMoment(e));
+        std::exp(0.1 * own + 0.9 * std::log(0.5) * PatchCalibration::linearSpinMoment(e));
     EXPECT_NEAR(spinX(e), expected, 1e-12 * expected) << e;
   }
-  EXPECT_EQ(FlexibilityCalibration::linearSpinMoment(0.0), 1.0);
-  EXPECT_EQ(FlexibilityCalibration::linearSpinMoment(FlexibilityCalibration::kLinearSpinMomentTo),
-            1.0);
-  EXPECT_EQ(FlexibilityCalibration::linearSpinMoment(FlexibilityCalibration::kLinearSpinMomentEnd),
-            0.0);
+  EXPECT_EQ(PatchCalibration::linearSpinMoment(0.0), 1.0);
+  EXPECT_EQ(PatchCalibration::linearSpinMoment(PatchCalibration::kLinearSpinMomentTo), 1.0);
+  EXPECT_EQ(PatchCalibration::linearSpinMoment(PatchCalibration::kLinearSpinMomentEnd), 0.0);
   // Near linear theory L3x is knot 0's, whatever the share of spin.
   EXPECT_NEAR(spinX(1e-3), 0.5, 1e-3);
 }
 
-TEST(SteadyCalibration, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOnItsEdges) {
+TEST(CalibrationTable, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOnItsEdges) {
   // One spin share (0.5), xi shares 0 and 1, both signs, knots 0 and 1: c1 is 2 at t = 0 and 8
   // at t = 1 where eta and phi have one sign, 1 where they oppose; cs (the bound's shape) 3.
   const std::string body =
       oneShareCorrection([](const std::string& k, const std::string& t, const std::string& sign) {
         return k == "c1" && sign == "1" ? (t == "0" ? "2" : "8") : k == "cs" ? "3" : "1";
       });
-  const FlexibilityCalibration c = SteadyCalibration::load(writeTable(body)).at(1.0);
-  double m[FlexibilityCalibration::kCorrections];
+  const PatchCalibration c = CalibrationTable::load(writeTable(body)).at(1.0);
+  double m[PatchCalibration::kCorrections];
   auto m1 = [&](double e1, double e2, double e3, bool opposed) {
     const double sq[3] = {e1 * e1, e2 * e2, e3 * e3};
-    c.correction(sq, std::sqrt(sq[0] + sq[1] + sq[2]), opposed, 0,
-                 FlexibilityCalibration::kCorrections, m);
+    c.correction(sq, std::sqrt(sq[0] + sq[1] + sq[2]), opposed, 0, PatchCalibration::kCorrections,
+                 m);
     return m[0];
   };
   const double h = std::sqrt(0.5);
@@ -649,7 +644,7 @@ TEST(SteadyCalibration, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOn
             std::string::npos);
 }
 
-TEST(SteadyCalibration, VectorisedStepIsTheScalarStepBitForBit) {
+TEST(CalibrationTable, VectorisedStepIsTheScalarStepBitForBit) {
   if (!fourStripLanesAvailable()) GTEST_SKIP() << "no AVX on this CPU";
   // Every field of the step, as bits.
   auto same = [](const CalibratedStep& x, const CalibratedStep& y) {
@@ -670,8 +665,8 @@ TEST(SteadyCalibration, VectorisedStepIsTheScalarStepBitForBit) {
   int compared = 0, differ = 0;
   for (int nx : {5, 10, 40})
     for (double ab : {0.2, 1.0, 3.7}) {
-      FlexibilityCalibration scalar = SteadyCalibration::shipped().forMesh(nx).at(ab);
-      const FlexibilityCalibration lanes = scalar;
+      PatchCalibration scalar = CalibrationTable::shipped().forMesh(nx).at(ab);
+      const PatchCalibration lanes = scalar;
       ASSERT_TRUE(lanes.vectorised());
       scalar.setVectorised(false);
       ASSERT_FALSE(scalar.vectorised());
@@ -679,7 +674,7 @@ TEST(SteadyCalibration, VectorisedStepIsTheScalarStepBitForBit) {
       const CreepCoefficients k = kalkerCoefficients(ab, 0.28);
       for (int n = 0; n < 4000; ++n) {
         const Creepages c{creepage(0.05), creepage(0.05), creepage(20.0)};
-        const double opposed = n % 3 == 0 ? unit(rng) : FlexibilityCalibration::opposedBranch(c);
+        const double opposed = n % 3 == 0 ? unit(rng) : PatchCalibration::opposedBranch(c);
         ++compared;
         if (!same(lanes.step(a, b, G, k, muFz, c, opposed),
                   scalar.step(a, b, G, k, muFz, c, opposed)))
@@ -693,8 +688,8 @@ TEST(SteadyCalibration, VectorisedStepIsTheScalarStepBitForBit) {
       oneShareCorrection([](const std::string& k, const std::string&, const std::string&) {
         return k == "c1" ? "1e-310" : "2";
       });
-  FlexibilityCalibration scalar = SteadyCalibration::load(writeTable(body)).at(1.0);
-  const FlexibilityCalibration lanes = scalar;
+  PatchCalibration scalar = CalibrationTable::load(writeTable(body)).at(1.0);
+  const PatchCalibration lanes = scalar;
   scalar.setVectorised(false);
   const RoundPatch p;
   const double h = std::sqrt(0.5);
@@ -708,7 +703,7 @@ TEST(SteadyCalibration, VectorisedStepIsTheScalarStepBitForBit) {
   EXPECT_LT(p.step(lanes, p.normalised(0.6 * h, 0.8 * h, h)).L.L1 / kalker.L1, 1e-302);
 }
 
-TEST(SteadyCalibration, FifthCorrectionScalesTheLongitudinalSpinDriveAlone) {
+TEST(CalibrationTable, FifthCorrectionScalesTheLongitudinalSpinDriveAlone) {
   // The grid of the test above with every multiplier 1, and c3x 4 at e = 1 in every direction.
   std::string plain = kRuleOfOnes;
   std::string c3x;
@@ -720,8 +715,8 @@ TEST(SteadyCalibration, FifthCorrectionScalesTheLongitudinalSpinDriveAlone) {
         (k == "c3x" ? c3x : plain) +=
             row + "0,1" + dir + row + "1," + (k == "c3x" ? "4" : "1") + dir;
       }
-  const FlexibilityCalibration without = SteadyCalibration::load(writeTable(plain)).at(1.0);
-  const FlexibilityCalibration with = SteadyCalibration::load(writeTable(plain + c3x)).at(1.0);
+  const PatchCalibration without = CalibrationTable::load(writeTable(plain)).at(1.0);
+  const PatchCalibration with = CalibrationTable::load(writeTable(plain + c3x)).at(1.0);
   const RoundPatch p;
   const double h = std::sqrt(0.5);
   const Creepages c = p.normalised(0.0, h, h);  // e = 1
@@ -755,7 +750,7 @@ double saturatedForce(const PatchMesh& mesh, TractionField f) {
 
 }  // namespace
 
-TEST(SteadyCalibration, FlattenedBoundKeepsTheTotalAndThePatch) {
+TEST(CalibrationTable, FlattenedBoundKeepsTheTotalAndThePatch) {
   // Saturated everywhere, FastSim's force is the bound's quadrature: the blend must keep it (mu fz)
   // and the patch (where the bound is positive); s = 0 is the parabolic bound bit for bit. Down to
   // patches covering a node or two of a fixed mesh, where the end nodes' weights decide the total.
@@ -782,7 +777,7 @@ TEST(SteadyCalibration, FlattenedBoundKeepsTheTotalAndThePatch) {
   }
 }
 
-TEST(SteadyCalibration, FlattenedBoundOfAClippedPatchStaysPositive) {
+TEST(CalibrationTable, FlattenedBoundOfAClippedPatchStaysPositive) {
   // A patch longer or wider than the fixed mesh is clipped to it, its bound scaled to carry mu fz
   // on the part left, above the parabola's peak p0: flattened relative to p0 at the largest shape,
   // the bound went negative at the strips' ends and to zero in the middle (found by fuzzing: a
@@ -796,7 +791,7 @@ TEST(SteadyCalibration, FlattenedBoundOfAClippedPatchStaysPositive) {
       f.resize(mesh.size());
       g.resize(mesh.size());
       parabolicBound(mesh, a, b, fz, mu, &f);
-      flattenedBound(mesh, a, b, fz, mu, FlexibilityCalibration::kMaxBoundShape, &g);
+      flattenedBound(mesh, a, b, fz, mu, PatchCalibration::kMaxBoundShape, &g);
       for (int n = 0; n < mesh.size(); ++n) {
         ASSERT_GE(g.bound[n], 0.0) << ka << " " << kb << " " << n;
         EXPECT_EQ(f.bound[n] > 0.0, g.bound[n] > 0.0) << ka << " " << kb << " " << n;
@@ -805,7 +800,7 @@ TEST(SteadyCalibration, FlattenedBoundOfAClippedPatchStaysPositive) {
     }
 }
 
-TEST(SteadyCalibration, FlattenedBoundsClosedFormSumsAreTheNodeSums) {
+TEST(CalibrationTable, FlattenedBoundsClosedFormSumsAreTheNodeSums) {
   // flattenedBound takes the node sums of the parabolic bound per strip in closed form: it must
   // give the blend whose rescale is computed from the written parabolic bound's own nodes, on
   // meshes of odd and even nx, a patch filling the mesh, smaller (end nodes at their part's mean,
@@ -852,16 +847,16 @@ TEST(SteadyCalibration, FlattenedBoundsClosedFormSumsAreTheNodeSums) {
       }
 }
 
-TEST(SteadyCalibration, ShippedTableKeepsLinearTheory) {
+TEST(CalibrationTable, ShippedTableKeepsLinearTheory) {
   // Ratio 1 at zero creepage: Kalker's coefficients hold exactly in the linear limit. Near it
   // (e = 0.01, where the force is 1 % of mu fz) every ratio is within 1 % of 1.
-  const SteadyCalibration shipped = SteadyCalibration::shipped();
-  // One table per FastSim mesh of the chi table's (identify_steady --nx 5,10,20,30,40).
+  const CalibrationTable shipped = CalibrationTable::shipped();
+  // One table per FastSim mesh of the chi table's (identify_calibration --nx 5,10,20,30,40).
   EXPECT_EQ(shipped.meshes(), (std::vector<int>{5, 10, 20, 30, 40}));
   for (int nx : shipped.meshes()) {
-    const SteadyCalibration t = shipped.forMesh(nx);
+    const CalibrationTable t = shipped.forMesh(nx);
     for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0}) {
-      const FlexibilityCalibration c = t.at(ab);
+      const PatchCalibration c = t.at(ab);
       for (int k = 0; k < 3; ++k) {
         EXPECT_EQ(c.ratio(k, 0.0), 1.0);
         EXPECT_NEAR(c.ratio(k, 0.01), 1.0, 0.01) << nx << " " << ab << " " << k;

@@ -1,9 +1,9 @@
-// identify_steady: identifies the calibrated FastSim's flexibility ratios
-// (config/steady_calibration.csv, steady_calibration.hpp) against our exact half-space solver, and
+// identify_calibration: identifies the calibrated FastSim's flexibility ratios
+// (config/steady_calibration.csv, calibration_table.hpp) against our exact half-space solver, and
 // writes the steady creep curves exact / classic / calibrated for plots and tests.
 // Exact creep curves are cached (--exact, doc/data/steady_exact_curves.csv): a point found there
 // is read, not recomputed; missing points are solved and the cache rewritten.
-// Curves: along a ray of normalised creepage (e1, e2, e3) (steady_calibration.hpp), kinds 11, 22,
+// Curves: along a ray of normalised creepage (e1, e2, e3) (calibration_table.hpp), kinds 11, 22,
 // 23 one creepage each; combined rays xe (1, 1, 0), xep (1, 1, 1), opp (1, -1, 1), spin
 // (0.3, -0.3, 1) (large spin, opposite signs), h1 (1, 0.5, 0.8), h2 (0.4, 1, -0.7) and the small
 // spin shares h3 (1, -1, 0.2), h4 (0.5, 1, 0.25), h5 (1, 0.6, -0.5), h6 (0.8, 0.8, 0.55), h7 (0.6,
@@ -23,7 +23,7 @@
 // xi = eta together.
 // Per FastSim mesh (--nx 5,10,20,30,40): FastSim's own discretisation error differs per mesh, the
 // exact curves do not, so one cache serves every mesh; each mesh's rows carry its fastsim_nx.
-// Options: identify_steady --help.
+// Options: identify_calibration --help.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -41,9 +41,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/calibration/calibration_table.hpp"
 #include "core/exact/halfspace_solver.hpp"
 #include "core/fastsim/fastsim.hpp"
-#include "core/fastsim/steady_calibration.hpp"
 #include "tool_args.hpp"
 #include "validation/steady_curves.hpp"
 
@@ -88,7 +88,7 @@ struct Options {
 };
 
 const char* const kUsage =
-    "usage: identify_steady [--out config/steady_calibration.csv]\n"
+    "usage: identify_calibration [--out config/steady_calibration.csv]\n"
     "                       [--exact doc/data/steady_exact_curves.csv]\n"
     "                       [--curves doc/data/steady_curves.csv] [--table FILE]\n"
     "                       [--grid 20] [--nx 20[,...]] [--nu 0.28] [--ab 0.2,0.5,1,2,5]\n"
@@ -348,9 +348,10 @@ class ExactCache {
     dirty_ = false;
     std::ofstream out = tools::writeFile(path_);
     out << setupLine() << "\n"
-        << "# made by: identify_steady (src/tools/identify_steady.cpp); a cache: its points are "
+        << "# made by: identify_calibration (src/tools/identify_calibration.cpp); a cache: its "
+           "points are "
            "read, not recomputed\n"
-        << "# epsilon: normalised creepage (steady_calibration.hpp); fx, fy over mu fz; mz over "
+        << "# epsilon: normalised creepage (calibration_table.hpp); fx, fy over mu fz; mz over "
            "mu fz sqrt(ab)\n"
         << kSteadyCurvesHeader << "\n";
     char line[256];
@@ -374,9 +375,9 @@ class ExactCache {
   double solverAB_ = 0.0;
 };
 
-// The combined correction's multipliers at a knot, in FlexibilityCalibration::correction's order:
+// The combined correction's multipliers at a knot, in PatchCalibration::correction's order:
 // of L1, L2, L3, of the bound's shape, and of L3x besides L3's; the table's kinds for them.
-constexpr int kMultipliers = FlexibilityCalibration::kCorrections;
+constexpr int kMultipliers = PatchCalibration::kCorrections;
 using Multipliers = std::array<double, kMultipliers>;
 constexpr Multipliers kNoCorrection = {1.0, 1.0, 1.0, 1.0, 1.0};
 const char* const kCorrectionKinds[kMultipliers] = {"c1", "c2", "c3", "cs", "c3x"};
@@ -388,19 +389,19 @@ Multipliers expOf(const double* l) {
 
 // Steady FastSim at a/b = g along ray r at e on the table's flexibilities (`base`, without a
 // combined correction) with L1, L2, L3 (L3x with L3) multiplied by m[0..2], the bound's shape by
-// m[3] and L3x by m[4] besides (FlexibilityCalibration::correction's order).
+// m[3] and L3x by m[4] besides (PatchCalibration::correction's order).
 Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
-                       const FlexibilityCalibration& base, const double* m,
+                       const PatchCalibration& base, const double* m,
                        bool hertzShapeBlend = false) {
   const Setup s(o, g);
   const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
   TractionField f;
   f.resize(mesh.size());
   const Creepages c = s.creepages(r, e);
-  double shape = std::min(FlexibilityCalibration::kMaxBoundShape,
+  double shape = std::min(PatchCalibration::kMaxBoundShape,
                           base.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c) * m[3]);
   if (hertzShapeBlend)  // as the table with its correction does (towardsFullSlip)
-    shape = FlexibilityCalibration::hertzShapeBlend(
+    shape = PatchCalibration::hertzShapeBlend(
         shape, e, r.e[2] * r.e[2] / (r.e[0] * r.e[0] + r.e[1] * r.e[1] + r.e[2] * r.e[2]), g);
   flattenedBound(mesh, s.a, s.b, s.fz, s.mu, shape, &f);
   Flexibilities L = base.flexibilities(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
@@ -414,8 +415,7 @@ Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
 
 // Steady FastSim at a/b = g along ray r at e, flexibilities (and bound) as the table `cal` makes
 // them.
-Point fastsimAt(const Options& o, double g, const Ray& r, double e,
-                const FlexibilityCalibration& cal) {
+Point fastsimAt(const Options& o, double g, const Ray& r, double e, const PatchCalibration& cal) {
   return fastsimCorrected(o, g, r, e, cal, kNoCorrection.data());
 }
 
@@ -432,7 +432,7 @@ Point fastsimScaled(const Options& o, double g, int kind, double e, double ratio
   Flexibilities L = kalkerFlexibilities(s.a, s.b, s.G, s.k);
   (kind == 0 ? L.L1 : kind == 1 ? L.L2 : L.L3) *= ratio;
   if (kind == 2) L.L3x = L.L3 * ratioX;
-  L.lateralCoupling = FlexibilityCalibration::lateralCoupling(couple, s.a, s.b, s.k);
+  L.lateralCoupling = PatchCalibration::lateralCoupling(couple, s.a, s.b, s.k);
   const CreepForces x = steadyFastSim(mesh, L, c, &f);
   return s.normalised(x.fx, x.fy, x.mz);
 }
@@ -591,8 +591,7 @@ KindFit identifyLateral(const Options& o, ExactCache* exact, double g) {
 // towards 0 and the previous knot's. Knot 0 is 0: linear theory's
 // moment of xi with eta is the coupling's already. `error` gets each knot's fit error.
 std::vector<double> identifyEtaSlope(const Options& o, ExactCache* exact, double g,
-                                     const FlexibilityCalibration& cal,
-                                     std::vector<double>* error) {
+                                     const PatchCalibration& cal, std::vector<double>* error) {
   const Ray& xe = kRays[3];
   const double mzPeak = peakMoment(exact, g, xe, o.knots);
   std::vector<double> beta;
@@ -614,7 +613,7 @@ std::vector<double> identifyEtaSlope(const Options& o, ExactCache* exact, double
     flattenedBound(mesh, s.a, s.b, s.fz, s.mu, step.boundShape, &f);
     auto fit = [&](double b) {
       Flexibilities L = step.L;
-      FlexibilityCalibration::setEtaSlope(b, s.a, &L);
+      PatchCalibration::setEtaSlope(b, s.a, &L);
       const CreepForces y = steadyFastSim(mesh, L, c, &f);
       return spinError(s.normalised(y.fx, y.fy, y.mz), x, mzPeak);
     };
@@ -700,7 +699,7 @@ KindFit identifyKind(const Options& o, ExactCache* exact, double g, int kind, do
   }
   // 23x at knot 0 is linear theory's spin moment (C33), which FastSim's L3 = L3x misses; the first
   // knot's fit is in the linear range (the ratio is flat there), and the core applies knot 0's
-  // value at every share of spin (FlexibilityCalibration::step).
+  // value at every share of spin (PatchCalibration::step).
   if (kind == 2 && fit.ratioX.size() > 1) fit.ratioX[0] = fit.ratioX[1];
   return fit;
 }
@@ -730,7 +729,7 @@ struct CorrectionFit {
 constexpr int kSmoothingSweeps = 3;
 // Normalised creepage up to which the combined correction is 1.
 constexpr double kLinearEnd = 0.1;
-// Below FlexibilityCalibration::kSmallSpinShare a spin-share knot is fitted from this normalised
+// Below PatchCalibration::kSmallSpinShare a spin-share knot is fitted from this normalised
 // creepage on (with towardsFullSlip's blend in the fit, as the table applies it there), below it
 // holding the correction interpolated between no spin and the first knot from kSmallSpinShare on:
 // kRoundSmallShareFitFrom on a round patch (a/b 1), kSmallShareFitFrom from a/b 2 (or 1/2) on,
@@ -811,7 +810,7 @@ constexpr double kEtaNoSpinPairPull = 0.015;
 // the peak for eta's own.
 constexpr double kXiEtaCap = 0.009;
 EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double g,
-                                    const FlexibilityCalibration& cal) {
+                                    const PatchCalibration& cal) {
   const Ray &eta = kRays[1], &xe = kRays[3];
   const double peakEta = peakMoment(exact, g, eta, o.knots),
                peakXe = peakMoment(exact, g, xe, o.knots);
@@ -864,7 +863,7 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
         row(&t, "22s", k, w ? w[2] : 0.0);
       }
       std::istringstream text(t);
-      const FlexibilityCalibration one = SteadyCalibration::parse(text, "(knot cell)").at(g);
+      const PatchCalibration one = CalibrationTable::parse(text, "(knot cell)").at(g);
       double sum = 0.0, worst = 0.0;
       for (std::size_t i = 0; i < at.size(); ++i) {
         const double alone = lateralError(fastsimAt(o, g, eta, at[i], one), xEta[i], peakEta),
@@ -886,8 +885,8 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
     };
     auto allowed = [](const double* v) {
       return v[0] > std::log(0.05) && v[0] < std::log(50.0) &&
-             v[2] >= FlexibilityCalibration::kMinEtaShape &&
-             v[2] <= FlexibilityCalibration::kMaxBoundShape && std::abs(v[3]) <= kEtaSlopeMax;
+             v[2] >= PatchCalibration::kMinEtaShape && v[2] <= PatchCalibration::kMaxBoundShape &&
+             std::abs(v[3]) <= kEtaSlopeMax;
     };
     double best[4] = {pair[0], pair[1], pair[2], pair[3]};
     coordinateSearch(best, 4, cost, allowed, 20);
@@ -929,14 +928,14 @@ void heldKnot(const CorrectionFit& held, double heldPower, std::size_t i, double
 // The combined correction along one direction of the grid: at each knot the multipliers
 // (Multipliers) minimising spinError (force and moment weighed as for spin alone), by pattern
 // search in their logarithms from the previous knot's (one continuous branch), with a small pull
-// towards 1. `held` (a spin share s3 below FlexibilityCalibration::kSmallSpinShare): the same xi
+// towards 1. `held` (a spin share s3 below PatchCalibration::kSmallSpinShare): the same xi
 // share and sign's fit at the first spin share sA from it on; knots below smallShareFitFrom(g) take
 // held's multipliers to the power s3 / sA (what linear interpolation in ln multiplier between no
 // spin and sA gives there, so the knot changes nothing there) and the search goes on from them;
 // every knot is costed with towardsFullSlip's blend.
 CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, const Ray& r,
-                                const FlexibilityCalibration& base,
-                                const CorrectionFit* held = nullptr, double heldPower = 0.0) {
+                                const PatchCalibration& base, const CorrectionFit* held = nullptr,
+                                double heldPower = 0.0) {
   const double mzPeak = peakMoment(exact, g, r, o.corrKnots);
   CorrectionFit fit;
   double lm[kMultipliers] = {};
@@ -988,7 +987,7 @@ CorrectionFit identifyDirection(const Options& o, ExactCache* exact, double g, c
 // taken. A held small share (`held`, `heldPower` as in identifyDirection) takes its knots below
 // smallShareFitFrom(g) from the held fit as it is now.
 void refitTowards(const Options& o, ExactCache* exact, double g, const Ray& r,
-                  const FlexibilityCalibration& base, const CorrectionFit* held, double heldPower,
+                  const PatchCalibration& base, const CorrectionFit* held, double heldPower,
                   const std::vector<Multipliers>& target, double weight, double refitFrom,
                   CorrectionFit* fit) {
   const double mzPeak = peakMoment(exact, g, r, o.corrKnots);
@@ -1020,20 +1019,20 @@ void refitTowards(const Options& o, ExactCache* exact, double g, const Ray& r,
 
 // The combined correction's rows (kinds c1, c2, c3, cs, c3x) on the table `base` (single kinds
 // only).
-void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibration& base,
+void identifyCorrection(const Options& o, ExactCache* exact, const CalibrationTable& base,
                         std::map<double, std::string>* rows, std::ostringstream* notes) {
   for (double g : o.ratios) {
-    const FlexibilityCalibration cal = base.at(g);
+    const PatchCalibration cal = base.at(g);
     double worst = 0.0;
     // By spin share, then xi share and sign. The shares from kSmallSpinShare on first: a share
     // below it holds, outside its fitted range, the first of them (identifyDirection).
     std::map<double, std::map<std::pair<double, int>, CorrectionFit>> byShare;
     const auto first = std::find_if(o.spinShares.begin(), o.spinShares.end(), [](double s3) {
-      return s3 >= FlexibilityCalibration::kSmallSpinShare;
+      return s3 >= PatchCalibration::kSmallSpinShare;
     });
     for (bool small : {false, true})
       for (double s3 : o.spinShares) {
-        if ((s3 < FlexibilityCalibration::kSmallSpinShare) != small) continue;
+        if ((s3 < PatchCalibration::kSmallSpinShare) != small) continue;
         if (small && first == o.spinShares.end())
           throw std::runtime_error("--spin-shares: a share below 0.25 needs one from 0.25 on");
         for (double t : o.xiShares)
@@ -1067,7 +1066,7 @@ void identifyCorrection(const Options& o, ExactCache* exact, const SteadyCalibra
           for (std::size_t b = 0; b < nT; ++b)
             for (int sign : {1, -1}) {
               const double s3 = o.spinShares[a], t = o.xiShares[b];
-              const bool small = s3 < FlexibilityCalibration::kSmallSpinShare;
+              const bool small = s3 < PatchCalibration::kSmallSpinShare;
               if ((sign < 0 && t >= 1.0) || small != (pass == 1)) continue;
               // The neighbours along each share (no eta: both signs' next xi share); a multiplier
               // that acts on nothing (L1 without xi, L2 without eta) is left out of their mean.
@@ -1183,7 +1182,7 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
       single << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n" << rows[g];
       std::vector<double> error;
       std::vector<double> beta = identifyEtaSlope(
-          o, exact, g, SteadyCalibration::parse(single, "(single kinds)").at(g), &error);
+          o, exact, g, CalibrationTable::parse(single, "(single kinds)").at(g), &error);
       auto write = [&](const char* kind, const std::vector<double>& v) {
         for (std::size_t i = 0; i < v.size(); ++i) {
           char line[160];
@@ -1198,7 +1197,7 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
         for (std::size_t i = 0; i < beta.size(); ++i)
           withSlope << g << ",22b," << o.knots[i] << "," << beta[i] << ",0," << o.nx << "\n";
         const EtaNoSpinFit fit = identifyEtaWithoutSpin(
-            o, exact, g, SteadyCalibration::parse(withSlope, "(single kinds)").at(g));
+            o, exact, g, CalibrationTable::parse(withSlope, "(single kinds)").at(g));
         beta = fit.beta;
         error = fit.error;
         write("22n", fit.ratio);
@@ -1217,7 +1216,7 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
     std::stringstream single;
     single << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n";
     for (const auto& [g, block] : rows) single << block;
-    identifyCorrection(o, exact, SteadyCalibration::parse(single, "(single kinds)"), &rows, notes);
+    identifyCorrection(o, exact, CalibrationTable::parse(single, "(single kinds)"), &rows, notes);
   }
   std::string block;
   for (const auto& [g, text] : rows) block += text;
@@ -1238,13 +1237,13 @@ void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
     blocks += title + block;
   }
   std::ofstream out = tools::writeFile(o.out);
-  std::string command = "identify_steady";
+  std::string command = "identify_calibration";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
   out << "# Calibrated FastSim: flexibility ratio per creepage kind against normalised creepage\n"
-      << "# (src/core/fastsim/steady_calibration.hpp). Identified " << date << " by: " << command
+      << "# (src/core/calibration/calibration_table.hpp). Identified " << date << " by: " << command
       << "\n# against our exact solver (" << o.grid << "x" << o.grid << ", nu " << o.nu
       << "; exact curves cached in " << o.exact << ") per FastSim mesh (fastsim_nx; a model "
       << "interpolates between the meshes in 1/nx, the nearest beyond them); other nu: the same "
@@ -1260,13 +1259,14 @@ void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
 }
 
 // Curves and their errors per a/b and ray: exact, classic, calibrated.
-void writeCurves(const Options& o, ExactCache* exact, const SteadyCalibration& meshes) {
-  const SteadyCalibration table = meshes.forMesh(o.nx);
+void writeCurves(const Options& o, ExactCache* exact, const CalibrationTable& meshes) {
+  const CalibrationTable table = meshes.forMesh(o.nx);
   std::ofstream out;
   if (!o.curves.empty()) {
     out = tools::writeFile(o.curves);
     out << "# Steady creep curves, exact (" << o.grid << "x" << o.grid << ") / classic FastSim / "
-        << "calibrated FastSim (" << o.nx << "x" << o.nx << "); made by identify_steady --curves\n"
+        << "calibrated FastSim (" << o.nx << "x" << o.nx
+        << "); made by identify_calibration --curves\n"
         << "# fx, fy over mu fz; mz over mu fz sqrt(ab); epsilon: normalised creepage\n"
         << "a_over_b,ray,epsilon,xi,eta,phi,fx_exact,fy_exact,mz_exact,fx_classic,fy_classic,"
            "mz_classic,fx_calibrated,fy_calibrated,mz_calibrated\n";
@@ -1275,13 +1275,13 @@ void writeCurves(const Options& o, ExactCache* exact, const SteadyCalibration& m
   std::printf("%-5s %-5s %9s %9s %9s %9s   (force: max |dF| / mu fz; Mz: max |dMz| / peak |Mz|)\n",
               "a/b", "ray", "F clas", "F cal", "Mz clas", "Mz cal");
   for (double g : o.ratios) {
-    const FlexibilityCalibration cal = table.at(g);
+    const PatchCalibration cal = table.at(g);
     for (const Ray& r : kRays) {
       double fErr[2] = {0, 0}, mErr[2] = {0, 0}, peak = 0.0;
       std::vector<Point> x, c[2];
       for (double e : o.points) {
         x.push_back(exact->at(g, r, e));
-        c[0].push_back(fastsimAt(o, g, r, e, FlexibilityCalibration()));
+        c[0].push_back(fastsimAt(o, g, r, e, PatchCalibration()));
         c[1].push_back(fastsimAt(o, g, r, e, cal));
         peak = std::max(peak, std::abs(x.back().mz));
       }
@@ -1329,8 +1329,8 @@ struct StudyTerms {
   double beta = 0.0, couple = 0.0;
 };
 
-Point studyFastSim(const Options& o, double g, const Ray& r, double e,
-                   const FlexibilityCalibration& base, const StudyTerms& t) {
+Point studyFastSim(const Options& o, double g, const Ray& r, double e, const PatchCalibration& base,
+                   const StudyTerms& t) {
   const Setup s(o, g);
   const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
   TractionField f;
@@ -1340,7 +1340,7 @@ Point studyFastSim(const Options& o, double g, const Ray& r, double e,
   const double shape =
       step.boundShape > 0.0 ? step.boundShape * std::exp(t.l[3]) : std::exp(t.l[3]) - 1.0;
   flattenedBound(mesh, s.a, s.b, s.fz, s.mu,
-                 std::min(FlexibilityCalibration::kMaxBoundShape, std::max(0.0, shape)), &f);
+                 std::min(PatchCalibration::kMaxBoundShape, std::max(0.0, shape)), &f);
   const double L1 = step.L.L1 * std::exp(t.l[0]), L2 = step.L.L2 * std::exp(t.l[1]),
                L3 = step.L.L3 * std::exp(t.l[2]), L3x = step.L.spinX() * std::exp(t.l[2]);
   const double gy = c.eta / L2 / (1.0 - t.beta / 3.0), gphi = c.phi / L3;
@@ -1375,7 +1375,7 @@ struct RayError {
 // norm and pull, identifyDirection), by pattern search from t: l[0..3], with `beta` the eta
 // drive's slope as well; the coupling as given.
 StudyTerms fitPoint(const Options& o, double g, const Ray& r, double e, const Point& x,
-                    double mzPeak, const FlexibilityCalibration& base, StudyTerms t, bool beta) {
+                    double mzPeak, const PatchCalibration& base, StudyTerms t, bool beta) {
   // The search's point: l[0..3], then beta when it is searched too.
   const int dims = beta ? 5 : 4;
   auto terms = [&](const double* v) {
@@ -1405,7 +1405,7 @@ StudyTerms fitPoint(const Options& o, double g, const Ray& r, double e, const Po
 // The coupling (and L2's multiplier, on a grid; with `all` one multiplier of L1, L2 and L3) that
 // fits ray 22's exact point x best: the larger of max(|dFx|, |dFy|) and 0.2 |dMz| / peak.
 StudyTerms fitCoupling(const Options& o, double g, double e, const Point& x, double mzPeak,
-                       const FlexibilityCalibration& base, bool all) {
+                       const PatchCalibration& base, bool all) {
   double best = 1e300;
   StudyTerms fit;
   for (int ic = -150; ic <= 50; ++ic)
@@ -1428,12 +1428,12 @@ StudyTerms fitCoupling(const Options& o, double g, double e, const Point& x, dou
 // coupling and one multiplier of L1, L2, L3 fitted on 22 at the table's knots (--knots),
 // interpolated linearly in e, the multiplier weighed by eta's share of e^2 (as 22's ratio acts in
 // the table), nothing else refitted: what a table kind would give on the rays off its knots.
-void momentStudy(const Options& o, ExactCache* exact, const SteadyCalibration& meshes) {
-  const SteadyCalibration table = meshes.forMesh(o.nx);
+void momentStudy(const Options& o, ExactCache* exact, const CalibrationTable& meshes) {
+  const CalibrationTable table = meshes.forMesh(o.nx);
   std::printf("FastSim %dx%d; force: max |dF| / mu fz, Mz: max |dMz| / peak |Mz|, over --points\n",
               o.nx, o.nx);
   for (double g : o.ratios) {
-    const FlexibilityCalibration cal = table.at(g);
+    const PatchCalibration cal = table.at(g);
     auto peakOf = [&](const Ray& r) { return peakMoment(exact, g, r, o.points); };
     // The couplings of ray 22 at the points, and how far the study's march is from the core's.
     const double peak22 = peakOf(kRays[1]);
@@ -1569,16 +1569,16 @@ int run(const Options& o, int argc, char** argv) {
     Options m = o;
     m.nx = o.meshes.front();
     momentStudy(m, &exact,
-                o.table == "classic" ? SteadyCalibration()
-                : o.table.empty()    ? SteadyCalibration::shipped()
-                                     : SteadyCalibration::load(o.table));
+                o.table == "classic" ? CalibrationTable()
+                : o.table.empty()    ? CalibrationTable::shipped()
+                                     : CalibrationTable::load(o.table));
     return 0;
   }
   if (!o.out.empty()) writeTable(o, &exact, argc, argv);
   const std::string path = !o.out.empty() ? o.out : o.table;  // empty: the shipped table
-  const SteadyCalibration table = path == "classic" ? SteadyCalibration()
-                                  : path.empty()    ? SteadyCalibration::shipped()
-                                                    : SteadyCalibration::load(path);
+  const CalibrationTable table = path == "classic" ? CalibrationTable()
+                                 : path.empty()    ? CalibrationTable::shipped()
+                                                   : CalibrationTable::load(path);
   for (int nx : o.meshes) {
     Options m = o;
     m.nx = nx;
@@ -1591,6 +1591,6 @@ int run(const Options& o, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return tools::runMain<Options>("identify_steady", kUsage, argc, argv, readOption,
+  return tools::runMain<Options>("identify_calibration", kUsage, argc, argv, readOption,
                                  [&](const Options& o) { return run(o, argc, argv); });
 }

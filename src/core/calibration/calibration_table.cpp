@@ -1,4 +1,4 @@
-#include "core/fastsim/steady_calibration.hpp"
+#include "core/calibration/calibration_table.hpp"
 
 #include "core/csv_fields.hpp"
 #include "core/fastsim/avx_lanes.hpp"
@@ -68,12 +68,12 @@ inline double stepExp(double x, const Exp2Table& table) {
   return scale + scale * p;
 }
 
-// The combined correction's ln multiplier p in a cell (FlexibilityCalibration::correctionCell):
+// The combined correction's ln multiplier p in a cell (PatchCalibration::correctionCell):
 // `l0` its first corner, alongT and alongS the strides to the next xi share and spin share, we,
 // wt, ws the weights along e, xi's share and spin's share.
 inline double inCell(const double* l0, std::size_t alongT, std::size_t alongS, double we, double wt,
                      double ws, int p) {
-  constexpr std::size_t P = FlexibilityCalibration::kCorrections;
+  constexpr std::size_t P = PatchCalibration::kCorrections;
   auto along = [we](const double* x) { return x[0] + we * (x[P] - x[0]); };
   const double* h0 = l0 + alongS;
   const double l = (1.0 - wt) * along(l0 + p) + wt * along(l0 + alongT + p);
@@ -94,7 +94,7 @@ inline double inCell(const double* l0, std::size_t alongT, std::size_t alongS, d
                                           double opposed, double logRho, double logShape,
                                           const Exp2Table& table, double* r, double* lm4) {
   using namespace avx;
-  constexpr std::size_t P = FlexibilityCalibration::kCorrections;
+  constexpr std::size_t P = PatchCalibration::kCorrections;
   const V weV = _mm256_set1_pd(we), wtV = _mm256_set1_pd(wt), restT = _mm256_set1_pd(1.0 - wt),
           wsV = _mm256_set1_pd(ws), restS = _mm256_set1_pd(1.0 - ws);
   auto along = [&](const double* x) __attribute__((always_inline, target("avx"))) {
@@ -146,7 +146,7 @@ inline double inCell(const double* l0, std::size_t alongT, std::size_t alongS, d
 }
 #endif
 
-// e1^2, e2^2, e3^2 and e (FlexibilityCalibration::normalisedCreepage), here with internal linkage
+// e1^2, e2^2, e3^2 and e (PatchCalibration::normalisedCreepage), here with internal linkage
 // so that step() inlines it.
 inline double creepageSquares(double a, double b, double G, const CreepCoefficients& k, double muFz,
                               const Creepages& c, double* squares) {
@@ -164,28 +164,29 @@ inline double creepageSquares(double a, double b, double G, const CreepCoefficie
 
 }  // namespace
 
-double FlexibilityCalibration::normalisedCreepage(double a, double b, double G,
-                                                  const CreepCoefficients& k, double muFz,
-                                                  const Creepages& c, double* squares) {
+double PatchCalibration::normalisedCreepage(double a, double b, double G,
+                                            const CreepCoefficients& k, double muFz,
+                                            const Creepages& c, double* squares) {
   return creepageSquares(a, b, G, k, muFz, c, squares);
 }
 
-inline FlexibilityCalibration::KnotCell FlexibilityCalibration::cell(
-    const std::vector<double>& x, const std::vector<double>& perWidth, double e) {
+inline PatchCalibration::KnotCell PatchCalibration::cell(const std::vector<double>& x,
+                                                         const std::vector<double>& perWidth,
+                                                         double e) {
   if (!(e < x.back())) return {x.size(), 1.0};  // beyond the last knot (or NaN): held
   // A short table (17 knots): a forward scan is as fast as bisection and branch-predictable.
   const std::size_t i = knotAbove(x, e, 1);
   return {i, (e - x[i - 1]) * perWidth[i]};
 }
 
-inline FlexibilityCalibration::KnotCell FlexibilityCalibration::kindCell(double e) const {
+inline PatchCalibration::KnotCell PatchCalibration::kindCell(double e) const {
   const std::vector<double>& x = eps_[0];
   if (!(e < x.back())) return {x.size(), 1.0};
   const std::size_t i = knotAbove(x, e, knotStart_.at(e));
   return {i, (e - x[i - 1]) * perWidth_[0][i]};
 }
 
-void FlexibilityCalibration::setSearchStarts() {
+void PatchCalibration::setSearchStarts() {
   if (eps_[0].size() >= 2)
     knotStart_.set(eps_[0].back(), [&](double v) { return knotAbove(eps_[0], v, 1); });
   if (corrS3_.empty()) return;
@@ -194,25 +195,25 @@ void FlexibilityCalibration::setSearchStarts() {
   corrEpsStart_.set(corrEps_.back(), [&](double v) { return epsCell(v, 1); });
 }
 
-double FlexibilityCalibration::logRatio(int kind, double e) const {
+double PatchCalibration::logRatio(int kind, double e) const {
   if (eps_[kind].empty()) return 0.0;
   return at(logRatio_[kind], cell(kind, e));
 }
 
-double FlexibilityCalibration::boundShape(double a, double b, double G, const CreepCoefficients& k,
-                                          double muFz, const Creepages& c) const {
+double PatchCalibration::boundShape(double a, double b, double G, const CreepCoefficients& k,
+                                    double muFz, const Creepages& c) const {
   return step(a, b, G, k, muFz, c).boundShape;
 }
 
-void FlexibilityCalibration::correction(const double* e2, double e, bool opposed, int first,
-                                        int last, double* m) const {
+void PatchCalibration::correction(const double* e2, double e, bool opposed, int first, int last,
+                                  double* m) const {
   for (int p = first; p < last; ++p) m[p] = 1.0;
   if (logCorrection(e2, e, opposed ? 1.0 : 0.0, first, last, m))
     for (int p = first; p < last; ++p) m[p] = std::exp(m[p]);
 }
 
-bool FlexibilityCalibration::logCorrection(const double* e2, double e, double opposed, int first,
-                                           int last, double* lm) const {
+bool PatchCalibration::logCorrection(const double* e2, double e, double opposed, int first,
+                                     int last, double* lm) const {
   if (corrS3_.empty() || !(e > 0.0) || !std::isfinite(e)) return false;
   const double rest = e2[0] + e2[1];
   if (!(rest > 0.0) || !(e2[2] > 0.0)) return false;  // one kind, or xi with eta: the rule alone
@@ -220,8 +221,8 @@ bool FlexibilityCalibration::logCorrection(const double* e2, double e, double op
   return true;
 }
 
-inline FlexibilityCalibration::CorrectionCell FlexibilityCalibration::correctionCell(
-    double s3, double t, double e) const {
+inline PatchCalibration::CorrectionCell PatchCalibration::correctionCell(double s3, double t,
+                                                                         double e) const {
   const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
   CorrectionCell c;
   // Spin's share between its knots, the ends 0 and 1 implicit: the cell is [row i - 1, row i].
@@ -249,8 +250,8 @@ inline FlexibilityCalibration::CorrectionCell FlexibilityCalibration::correction
   return c;
 }
 
-inline void FlexibilityCalibration::lookUpCorrection(double s3, double t, double e, double opposed,
-                                                     int first, int last, double* lm) const {
+inline void PatchCalibration::lookUpCorrection(double s3, double t, double e, double opposed,
+                                               int first, int last, double* lm) const {
   const CorrectionCell c = correctionCell(s3, t, e);
   auto multiplier = [&](const double* l0, int p) {
     return inCell(l0, c.alongT, c.alongS, c.we, c.wt, c.ws, p);
@@ -265,33 +266,31 @@ inline void FlexibilityCalibration::lookUpCorrection(double s3, double t, double
   }
 }
 
-double FlexibilityCalibration::coupling(double e) const {
+double PatchCalibration::coupling(double e) const {
   return logRatio(kCouplingKind, e);  // stored as it is, not as a logarithm
 }
 
-double FlexibilityCalibration::etaSlope(double e) const {
+double PatchCalibration::etaSlope(double e) const {
   return logRatio(kEtaSlopeKind, e);  // stored as it is
 }
 
-double FlexibilityCalibration::ratio(int kind, double e) const {
+double PatchCalibration::ratio(int kind, double e) const {
   return std::exp(logRatio(kind, e));
 }
 
-Flexibilities FlexibilityCalibration::flexibilities(double a, double b, double G,
-                                                    const CreepCoefficients& k, double muFz,
-                                                    const Creepages& c) const {
+Flexibilities PatchCalibration::flexibilities(double a, double b, double G,
+                                              const CreepCoefficients& k, double muFz,
+                                              const Creepages& c) const {
   return step(a, b, G, k, muFz, c).L;
 }
 
-CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
-                                            const CreepCoefficients& k, double muFz,
-                                            const Creepages& c) const {
+CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepCoefficients& k,
+                                      double muFz, const Creepages& c) const {
   return step(a, b, G, k, muFz, c, opposedBranch(c));
 }
 
-CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
-                                            const CreepCoefficients& k, double muFz,
-                                            const Creepages& c, double opposed) const {
+CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepCoefficients& k,
+                                      double muFz, const Creepages& c, double opposed) const {
   CalibratedStep s;
   Flexibilities& L = s.L;
   L = kalkerFlexibilities(a, b, G, k);
@@ -347,7 +346,7 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   }
   // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
-  // curves better than the arithmetic one (identify_steady's combined rays,
+  // curves better than the arithmetic one (identify_calibration's combined rays,
   // doc/calibrated_fastsim.md).
   const double logRho = finite ? share[0] * logRatioOf(0) +
                                      share[1] * towardsNoSpin(logRatioOf(1), kEtaNoSpinKind) +
@@ -427,12 +426,11 @@ CalibratedStep FlexibilityCalibration::step(double a, double b, double G,
   return s;
 }
 
-double FlexibilityCalibration::towardsFullSlip(double shape, double e, double s3,
-                                               double aOverB) const {
+double PatchCalibration::towardsFullSlip(double shape, double e, double s3, double aOverB) const {
   return corrS3_.empty() ? shape : hertzShapeBlend(shape, e, s3, aOverB);
 }
 
-double FlexibilityCalibration::hertzShapeBlend(double shape, double e, double s3, double aOverB) {
+double PatchCalibration::hertzShapeBlend(double shape, double e, double s3, double aOverB) {
   constexpr double kSpinShare = 0.01;
   if (!(s3 > 0.0) || !(s3 < kSmallSpinShare)) return shape;
   const double from = fullSlipFrom(s3, aOverB);
@@ -470,7 +468,7 @@ enum Column { kFitError, kFastsimNx, kSpinShare, kXiShare, kSign, kColumns };
 const char* const kColumnNames[kColumns] = {"fit_error", "fastsim_nx", "spin_share", "xi_share",
                                             "sign"};
 
-// 1 / (x[i] - x[i - 1]) into w[i], w[0] = 0 (FlexibilityCalibration's cell weights).
+// 1 / (x[i] - x[i - 1]) into w[i], w[0] = 0 (PatchCalibration's cell weights).
 void reciprocalWidths(const std::vector<double>& x, std::vector<double>* w) {
   w->resize(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) (*w)[i] = i == 0 ? 0.0 : 1.0 / (x[i] - x[i - 1]);
@@ -478,7 +476,7 @@ void reciprocalWidths(const std::vector<double>& x, std::vector<double>* w) {
 
 }  // namespace
 
-const SteadyCalibration& SteadyCalibration::shipped() {
+const CalibrationTable& CalibrationTable::shipped() {
   // Parsed once: every calibrated model is built from it (five meshes, some 650 000 lines), read
   // in place from the library's data rather than from a copy of its 27 MB of text.
   struct InPlace : std::streambuf {
@@ -487,7 +485,7 @@ const SteadyCalibration& SteadyCalibration::shipped() {
       setg(begin, begin, begin + text.size());
     }
   };
-  static const SteadyCalibration table = [] {
+  static const CalibrationTable table = [] {
     InPlace text(shippedTable("steady_calibration"));
     std::istream in(&text);
     return parse(in, "(shipped) steady_calibration.csv");
@@ -495,14 +493,14 @@ const SteadyCalibration& SteadyCalibration::shipped() {
   return table;
 }
 
-SteadyCalibration SteadyCalibration::load(const std::string& path) {
+CalibrationTable CalibrationTable::load(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("steady calibration " + path + ": cannot open");
   return parse(in, path);
 }
 
-SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& path) {
-  SteadyCalibration t;
+CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& path) {
+  CalibrationTable t;
   std::string line;
   long n = 0;
   bool header = false;
@@ -610,18 +608,18 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
       continue;
     }
     Row& row = rows.back();
-    const int slot = kind == 10   ? FlexibilityCalibration::kCouplingKind
-                     : kind == 11 ? FlexibilityCalibration::kEtaSlopeKind
-                     : kind == 12 ? FlexibilityCalibration::kEtaNoSpinKind
-                     : kind == 13 ? FlexibilityCalibration::kCouplingNoSpinKind
-                     : kind == 14 ? FlexibilityCalibration::kEtaShapeKind
+    const int slot = kind == 10   ? PatchCalibration::kCouplingKind
+                     : kind == 11 ? PatchCalibration::kEtaSlopeKind
+                     : kind == 12 ? PatchCalibration::kEtaNoSpinKind
+                     : kind == 13 ? PatchCalibration::kCouplingNoSpinKind
+                     : kind == 14 ? PatchCalibration::kEtaShapeKind
                                   : kind;
     std::vector<double>& x = row.eps[slot];
     if (kind == 4 && !(r <= 1.0)) fail(path, n, "a bound shape (23s) must be in (0, 1]");
-    if (kind == 11 && !(std::abs(r) <= FlexibilityCalibration::kMaxEtaSlope))
+    if (kind == 11 && !(std::abs(r) <= PatchCalibration::kMaxEtaSlope))
       fail(path, n, "eta's drive's slope (22b) must be in [-2.5, 2.5]");
     if (kind == 14 &&
-        !(r >= FlexibilityCalibration::kMinEtaShape && r <= FlexibilityCalibration::kMaxBoundShape))
+        !(r >= PatchCalibration::kMinEtaShape && r <= PatchCalibration::kMaxBoundShape))
       fail(path, n, "eta's bound shape (22s) must be in [-1, 2]");
     // 23s, 22c, 22b, 22cn and 22s take any value at knot 0 (a shape, a coupling, a slope: not
     // ratios to Kalker's), and 23x its linear value (L3x over L3 for exact theory's linear spin
@@ -638,12 +636,12 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
                                  ? " (fastsim_nx " + std::to_string(t.meshes_[m].nx) + ")"
                                  : std::string();
     for (const Row& row : rows)
-      for (int k = 0; k < FlexibilityCalibration::kKinds; ++k)
+      for (int k = 0; k < PatchCalibration::kKinds; ++k)
         if ((k < 3 && row.eps[k].empty()) || row.eps[k] != rows.front().eps[k])
           fail(path, n, "every a/b must hold every kind, with the same epsilon knots" + mesh);
     // Eta without spin replaces the pair 22, 22c: its three kinds together, and with 22c.
     {
-      using F = FlexibilityCalibration;
+      using F = PatchCalibration;
       const Row& row = rows.front();
       const bool any = !row.eps[F::kEtaNoSpinKind].empty() ||
                        !row.eps[F::kCouplingNoSpinKind].empty() ||
@@ -680,8 +678,8 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
       if (row.corrT.size() < 2 || row.corrT.front() != 0.0 || row.corrT.back() != 1.0)
         fail(path, n, "the combined correction's xi shares must run from 0 to 1" + mesh);
       const std::size_t nS = row.corrS3.size(), nT = row.corrT.size(), nE = row.corrEps.size();
-      row.corr.assign(FlexibilityCalibration::kCorrections * 2 * nS * nT * nE, 1.0);
-      for (int p = 0; p < FlexibilityCalibration::kCorrections; ++p)
+      row.corr.assign(PatchCalibration::kCorrections * 2 * nS * nT * nE, 1.0);
+      for (int p = 0; p < PatchCalibration::kCorrections; ++p)
         for (int o = 0; o < 2; ++o)
           for (std::size_t i = 0; i < nS; ++i)
             for (std::size_t j = 0; j < nT; ++j) {
@@ -701,22 +699,22 @@ SteadyCalibration SteadyCalibration::parse(std::istream& in, const std::string& 
   return t;
 }
 
-bool SteadyCalibration::sameKnots(const std::vector<Row>& x, const std::vector<Row>& y) {
+bool CalibrationTable::sameKnots(const std::vector<Row>& x, const std::vector<Row>& y) {
   if (x.size() != y.size()) return false;
   for (std::size_t i = 0; i < x.size(); ++i) {
     const Row &p = x[i], &q = y[i];
     if (p.logAB != q.logAB || p.corrS3 != q.corrS3 || p.corrT != q.corrT ||
         p.corrEps != q.corrEps || p.corr.size() != q.corr.size())
       return false;
-    for (int k = 0; k < FlexibilityCalibration::kKinds; ++k)
+    for (int k = 0; k < PatchCalibration::kKinds; ++k)
       if (p.eps[k] != q.eps[k] || p.ratio[k].size() != q.ratio[k].size()) return false;
   }
   return true;
 }
 
-SteadyCalibration SteadyCalibration::forMesh(int nx) const {
+CalibrationTable CalibrationTable::forMesh(int nx) const {
   if (meshes_.size() <= 1) return *this;
-  SteadyCalibration t;
+  CalibrationTable t;
   // Between two identified meshes the ratios are interpolated in 1/nx (ln ratio; the coupling
   // itself), where both hold the same knots; on an identified mesh, beyond the table's meshes or
   // between tables of other knots, the nearest mesh.
@@ -734,9 +732,9 @@ SteadyCalibration SteadyCalibration::forMesh(int nx) const {
   for (std::size_t r = 0; r < m.rows.size(); ++r) {
     Row& row = m.rows[r];
     const Row& h = hi->rows[r];
-    for (int k = 0; k < FlexibilityCalibration::kKinds; ++k)
+    for (int k = 0; k < PatchCalibration::kKinds; ++k)
       for (std::size_t j = 0; j < row.ratio[k].size(); ++j)
-        row.ratio[k][j] = FlexibilityCalibration::heldAsIs(k)
+        row.ratio[k][j] = PatchCalibration::heldAsIs(k)
                               ? row.ratio[k][j] + w * (h.ratio[k][j] - row.ratio[k][j])
                               : blend(row.ratio[k][j], h.ratio[k][j]);
     for (std::size_t j = 0; j < row.corr.size(); ++j) row.corr[j] = blend(row.corr[j], h.corr[j]);
@@ -745,23 +743,23 @@ SteadyCalibration SteadyCalibration::forMesh(int nx) const {
   return t;
 }
 
-std::vector<int> SteadyCalibration::meshes() const {
+std::vector<int> CalibrationTable::meshes() const {
   return nodeCounts(meshes_);
 }
 
-FlexibilityCalibration SteadyCalibration::at(double a_over_b) const {
-  FlexibilityCalibration c;
+PatchCalibration CalibrationTable::at(double a_over_b) const {
+  PatchCalibration c;
   at(a_over_b, &c);
   return c;
 }
 
-void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
+void CalibrationTable::at(double a_over_b, PatchCalibration* c) const {
   if (meshes_.empty()) {
-    *c = FlexibilityCalibration();
+    *c = PatchCalibration();
     return;
   }
   if (meshes_.size() != 1)
-    throw std::logic_error("SteadyCalibration: a table of " + std::to_string(meshes_.size()) +
+    throw std::logic_error("CalibrationTable: a table of " + std::to_string(meshes_.size()) +
                            " FastSim meshes: narrow it with forMesh() first");
   const std::vector<Row>& rows = meshes_.front().rows;
   const double x = std::log(a_over_b);
@@ -771,17 +769,17 @@ void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
   const Row& hi = rows[std::min(i + 1, rows.size() - 1)];
   const double t =
       (&lo == &hi || !(x > lo.logAB)) ? 0.0 : std::min(1.0, (x - lo.logAB) / (hi.logAB - lo.logAB));
-  for (int k = 0; k < FlexibilityCalibration::kKinds; ++k) {
+  for (int k = 0; k < PatchCalibration::kKinds; ++k) {
     c->eps_[k] = lo.eps[k];  // every row has the same knots: the storage c holds is reused
     c->logRatio_[k].resize(lo.ratio[k].size());
     for (std::size_t j = 0; j < lo.ratio[k].size(); ++j) {
       const double v = lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]);
-      c->logRatio_[k][j] = FlexibilityCalibration::heldAsIs(k) ? v : std::log(v);
+      c->logRatio_[k][j] = PatchCalibration::heldAsIs(k) ? v : std::log(v);
     }
     reciprocalWidths(c->eps_[k], &c->perWidth_[k]);
   }
   c->sharedKnots_ = true;
-  for (int k = 1; k < FlexibilityCalibration::kKinds; ++k)
+  for (int k = 1; k < PatchCalibration::kKinds; ++k)
     if (!c->eps_[k].empty() && c->eps_[k] != c->eps_[0]) c->sharedKnots_ = false;
   c->corrS3_ = lo.corrS3;
   c->corrT_ = lo.corrT;
@@ -796,9 +794,9 @@ void SteadyCalibration::at(double a_over_b, FlexibilityCalibration* c) const {
   reciprocalWidths(c->corrEps_, &c->corrEpsPerWidth_);
   c->setSearchStarts();
   c->vectorised_ = fourStripLanesAvailable();
-  // Row's layout ((((p * 2 + opposed) * nS + q) * nT + j) * nE + k) into FlexibilityCalibration's
+  // Row's layout ((((p * 2 + opposed) * nS + q) * nT + j) * nE + k) into PatchCalibration's
   // (grid point by grid point, the end rows 0).
-  constexpr int P = FlexibilityCalibration::kCorrections;
+  constexpr int P = PatchCalibration::kCorrections;
   c->corrLog_.assign(nS == 0 ? 0 : 2 * (nS + 2) * nT * nE * P, 0.0);
   for (int p = 0; p < P; ++p)
     for (std::size_t o = 0; o < (nS == 0 ? 0 : 2); ++o)
