@@ -48,8 +48,8 @@ enum class VerticalAxis {
 /// Default smoothing length L [m]: 0.1 mm. It damps features shorter than about 0.6 mm, i.e. a
 /// profile gauge's point-to-point noise, and moves the benchmark's S1002 and UIC60 (exact shapes,
 /// printed to 1e-6 mm) by less than 0.1 micrometre, far below the elastic approach of a loaded
-/// wheel (tens of micrometres) that the gap functions feed. Measured profiles with more noise want
-/// 0.5 to 1 mm (doc/profiles.md).
+/// wheel (tens of micrometres) that the gap functions feed. A measured profile's noise wants more,
+/// about 0.5 mm (doc/profiles.md).
 constexpr double kDefaultProfileSmoothingLength = 1.0e-4;
 
 struct ProfileReadOptions {
