@@ -147,7 +147,7 @@ void sceneErrors(const Options& o) {
     for (const auto& m : models) {
       const bool calibrated = std::string(m.first) == "nss-calibrated";
       p.model = calibrated ? "nss" : m.first;
-      p.fastsim = calibrated ? "calibrated" : "classic";
+      p.fastsim = calibrated ? FastSimVariant::kCalibrated : FastSimVariant::kClassic;
       p.mesh = m.second;
       p.nx = o.nx;
       p.ny = o.ny;

@@ -264,7 +264,7 @@ struct Sweep {
     p.model = m.model;
     p.mesh = m.mesh;
     p.nx = p.ny = meshN;
-    p.fastsim = m.fastsim;
+    if (!m.fastsim.empty()) setParameter(&p, "fastsim", m.fastsim);  // the exact model: none
     if (m.varyingLoad) p.fz_max = p.fz0 * (1.0 + kLoadSwing);
     const CreepCoefficients kalker = kalkerCoefficients(p.a0 / p.b0, p.nu);
     const double c0 = kalker.c11, c1 = kalker.c22;
