@@ -23,8 +23,8 @@ struct ContactParameters {
   double a0 = 6.0e-3;  ///< reference semi-axis along x at fz0 [m]
   double b0 = 4.0e-3;  ///< reference semi-axis along y at fz0 [m]
   double fz0 = 8.0e4;  ///< reference normal load [N]
-  int nx = 20;         ///< FastSim nodes per strip [-]
-  int ny = 20;         ///< FastSim strips [-]
+  int nx = 20;         ///< FastSim nodes per strip; exact: grid elements along x [-]
+  int ny = 20;         ///< FastSim strips; exact: grid elements along y [-]
   /// steady | shen-li | nss | exact | auto; nss (NSS-FastSim) is the package's method.
   std::string model = "nss";
   std::string mesh = "fixed";  ///< fixed | adaptive
