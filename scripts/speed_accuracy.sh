@@ -9,7 +9,7 @@
 # The exact reference histories are cached in doc/data/speed_accuracy_reference.csv (15 min
 # here on a busy machine; --refresh forces it, and is needed after a change to the exact solver or
 # the paper scenes). Needs a Release build of speed_accuracy.
-# usage: scripts/speed_accuracy.sh [speed_accuracy options, e.g. --models nss:fixed,auto:auto]
+# usage: scripts/speed_accuracy.sh [speed_accuracy options, e.g. --models nss:fixed,auto:adaptive]
 set -eo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"

@@ -2,10 +2,19 @@
 /// ~NAME): one name, one default, one validity rule for each. Units: G Pa, lengths m, forces N.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace wheel_rail_contact {
+
+/// FastSim's steady part (ContactParameters::fastsim).
+enum class FastSimVariant {
+  kCalibrated,  ///< flexibilities identified against the exact solver (the calibration table)
+  kClassic,     ///< Kalker's 1982 FastSim
+};
+/// "calibrated" or "classic": the parameter's values.
+const char* toString(FastSimVariant v);
 
 struct ContactParameters {
   double G = 8.2e10;   ///< shear modulus of wheel and rail [Pa]
@@ -14,11 +23,11 @@ struct ContactParameters {
   double a0 = 6.0e-3;  ///< reference semi-axis along x at fz0 [m]
   double b0 = 4.0e-3;  ///< reference semi-axis along y at fz0 [m]
   double fz0 = 8.0e4;  ///< reference normal load [N]
-  int nx = 20;         ///< FastSim nodes per strip [-]
-  int ny = 20;         ///< FastSim strips [-]
+  int nx = 20;         ///< FastSim nodes per strip; exact: grid elements along x [-]
+  int ny = 20;         ///< FastSim strips; exact: grid elements along y [-]
   /// steady | shen-li | nss | exact | auto; nss (NSS-FastSim) is the package's method.
   std::string model = "nss";
-  std::string mesh = "fixed";  ///< fixed | adaptive | auto
+  std::string mesh = "fixed";  ///< fixed | adaptive
   /// Error the "auto" model may spend, as a fraction of the peak force [-]: it sets the mesh size
   /// (nx, ny are then chosen, not read) and when steady FastSim is enough.
   double tolerance = 0.05;
@@ -27,11 +36,11 @@ struct ContactParameters {
   /// chi table file for nss; empty = the table shipped in the library (config/chi_table.csv,
   /// compiled in).
   std::string chi_table;
-  /// FastSim's steady part in steady, shen-li, nss and auto: "calibrated" (flexibilities
-  /// identified against the exact solver, config/steady_calibration.csv) or "classic" (Kalker's
-  /// 1982 FastSim); empty = calibrated for nss and auto, classic for the baselines steady and
-  /// shen-li (see calibratedFastSim).
-  std::string fastsim;
+  /// FastSim's steady part in steady, shen-li, nss and auto; exact ignores it. Not set: the
+  /// model's own, calibrated for nss and auto, classic for the baselines steady and shen-li (as
+  /// their peers run them). Unset rather than a default value because that default depends on
+  /// model, which may be set after it; makeContactModel resolves it (resolvedFastSim).
+  std::optional<FastSimVariant> fastsim;
 };
 
 /// One parameter's name, default and meaning, for --help and the node's documentation.
@@ -53,8 +62,9 @@ void setParameter(ContactParameters* p, const std::string& name, const std::stri
 /// fz_max resolved (0 -> 1.5 fz0).
 double effectiveFzMax(const ContactParameters& p);
 
-/// fastsim resolved: true when the model runs the calibrated FastSim (see ContactParameters).
-bool calibratedFastSim(const ContactParameters& p);
+/// The FastSim variant p.model runs: p.fastsim if set, else the model's own (see
+/// ContactParameters::fastsim).
+FastSimVariant resolvedFastSim(const ContactParameters& p);
 
 /// The FastSim variant the model runs, for start-up lines: "calibrated FastSim", "classic
 /// FastSim", or "no FastSim" (model exact).

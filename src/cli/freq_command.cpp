@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "wheel_rail_contact/contact_parameters.hpp"
 #include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
@@ -65,23 +66,15 @@ FrequencyResponse frequencyResponse(const ContactParameters& p, CreepageKind kin
 
 }  // namespace
 
-int freqCommand(const std::map<std::string, std::string>& values,
-                const std::vector<std::string>& names, std::ostream& out) {
-  ContactParameters p;
-  for (const char* req : {"kind", "ab", "lambda-over-a"})
-    if (!values.count(req))
-      throw std::invalid_argument(std::string("freq: --") + req + " is required");
-  for (const auto& name : names)
-    if (name != "kind" && name != "ab" && name != "lambda-over-a")
-      setParameter(&p, name, values.at(name));
-  validate(p);
-  const CreepageKind kind = parseCreepageKind(values.at("kind"));
-  const std::vector<double> abs = parseList("ab", values.at("ab"));
+int freqCommand(const ContactParameters& p, const std::string& kindText, const std::string& abText,
+                const std::string& lambdaOverA, std::ostream& out) {
+  const CreepageKind kind = parseCreepageKind(kindText);
+  const std::vector<double> abs = parseList("ab", abText);
   if (abs.size() != 1) throw std::invalid_argument("ab: expected one value");
   const double ab = abs[0];
   if (!(ab >= 0.05 && ab <= 20.0)) throw std::invalid_argument("ab: must be in [0.05, 20]");
   if (p.nx * p.ny > 3600) throw std::invalid_argument("nx: at most nx * ny = 3600 elements");
-  const std::vector<double> lambdas = parseList("lambda-over-a", values.at("lambda-over-a"));
+  const std::vector<double> lambdas = parseList("lambda-over-a", lambdaOverA);
   const FrequencyResponse r = frequencyResponse(p, kind, ab, lambdas);
   out << "lambda_over_a,c_real,c_imag,magnitude,phase_deg,c_steady,magnitude_over_steady\n";
   for (size_t k = 0; k < lambdas.size(); ++k) {

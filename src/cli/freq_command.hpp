@@ -2,16 +2,16 @@
 #pragma once
 
 #include <iosfwd>
-#include <map>
 #include <string>
-#include <vector>
+
+#include "wheel_rail_contact/contact_parameters.hpp"
 
 namespace wheel_rail_contact {
 
-/// Options as parsed by contact_cli (--name value, names in order). Writes the CSV to `out`;
-/// throws std::invalid_argument naming the option on bad input or for a model without a
-/// frequency response.
-int freqCommand(const std::map<std::string, std::string>& values,
-                const std::vector<std::string>& names, std::ostream& out);
+/// freq with the parameters p (validated) and its options' text (--kind, --ab, --lambda-over-a).
+/// Writes the CSV to `out`; throws std::invalid_argument naming the option on bad input or for a
+/// model without a frequency response.
+int freqCommand(const ContactParameters& p, const std::string& kind, const std::string& ab,
+                const std::string& lambdaOverA, std::ostream& out);
 
 }  // namespace wheel_rail_contact

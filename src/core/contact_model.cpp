@@ -81,11 +81,11 @@ bool screenStep(const StepInput& in, StepOutput* out) {
 
 namespace {
 
-// The calibrated FastSim's table when p asks for it (calibratedFastSim), else empty (classic): the
+// The calibrated FastSim's table when p runs it (resolvedFastSim), else empty (classic): the
 // parsed shipped table itself, not a copy (each model keeps only its own mesh's part).
 const CalibrationTable& steadyCalibration(const ContactParameters& p) {
   static const CalibrationTable classic;
-  if (p.model == "exact" || !calibratedFastSim(p)) return classic;
+  if (p.model == "exact" || resolvedFastSim(p) == FastSimVariant::kClassic) return classic;
   try {
     return CalibrationTable::shipped();
   } catch (const std::runtime_error& e) {
@@ -95,8 +95,10 @@ const CalibrationTable& steadyCalibration(const ContactParameters& p) {
 
 }  // namespace
 
-std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& p) {
-  validate(p);
+std::unique_ptr<ContactModel> makeContactModel(const ContactParameters& given) {
+  validate(given);
+  ContactParameters p = given;  // what the model runs: fastsim resolved (exact ignores it)
+  if (p.model != "exact") p.fastsim = resolvedFastSim(given);
   const CalibrationTable& calibration = steadyCalibration(p);
   if (p.model == "steady")
     return std::make_unique<SteadyModel>(p, SteadyModel::Mesh::kFittedToPatch, calibration);

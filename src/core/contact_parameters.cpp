@@ -48,24 +48,34 @@ std::vector<ParameterDoc> parameterDocs() {
       {"a0", "m", str(d.a0), "reference semi-axis along the rolling direction at fz0, [1e-6, 1]"},
       {"b0", "m", str(d.b0), "reference lateral semi-axis at fz0, [1e-6, 1]; a0/b0 in [0.1, 10]"},
       {"fz0", "N", str(d.fz0), "reference normal load, [1e-6, 1e9]; a, b scale as (fz/fz0)^(1/3)"},
-      {"nx", "-", std::to_string(d.nx), "FastSim nodes per strip, [2, 400]"},
-      {"ny", "-", std::to_string(d.ny), "FastSim strips, [1, 400]"},
+      {"nx", "-", std::to_string(d.nx),
+       "FastSim nodes per strip (exact: elements along x), [2, 400]"},
+      {"ny", "-", std::to_string(d.ny), "FastSim strips (exact: elements along y), [1, 400]"},
       {"model", "", d.model,
        "nss (NSS-FastSim) | steady | shen-li | exact | auto (steady or nss, as needed)"},
-      {"mesh", "", d.mesh,
-       "fixed (grid for fz_max) | adaptive (grid follows the patch) | auto (= adaptive)"},
+      {"mesh", "", d.mesh, "fixed (grid for fz_max) | adaptive (grid follows the patch)"},
       {"tolerance", "-", str(d.tolerance),
        "model auto: force error allowed, fraction of the peak force, (0, 1)"},
       {"fz_max", "N", str(d.fz_max), "largest load the fixed mesh covers; 0 = 1.5 fz0"},
       {"chi_table", "", "(shipped)",
        "chi table CSV for nss; empty = the shipped config/chi_table.csv"},
       {"fastsim", "", "(per model)",
-       "calibrated | classic: FastSim's steady part for steady, shen-li, nss and auto; "
-       "empty = calibrated for nss and auto, classic (Kalker 1982) for steady and shen-li"},
+       "calibrated | classic (Kalker 1982): FastSim's steady part; default calibrated for nss "
+       "and auto, classic for steady and shen-li"},
   };
 }
 
 namespace {
+
+FastSimVariant parseFastSim(const std::string& text) {
+  if (text == "calibrated") return FastSimVariant::kCalibrated;
+  if (text == "classic") return FastSimVariant::kClassic;
+  // An empty value used to mean the model's own variant: now the parameter is left out for that.
+  fail("fastsim",
+       "must be calibrated or classic (leave it out for the model's own: calibrated "
+       "for nss and auto, classic for steady and shen-li), got '" +
+           text + "'");
+}
 
 // A physical range, wide enough for any wheel-rail or laboratory contact; beyond it (e.g. a
 // subnormal mu, G = 1e200 Pa) the solvers' arithmetic under- or overflows into NaN.
@@ -91,14 +101,14 @@ void validate(const ContactParameters& p) {
   if (p.model != "steady" && p.model != "shen-li" && p.model != "nss" && p.model != "exact" &&
       p.model != "auto")
     fail("model", "must be one of steady, shen-li, nss, exact, auto; got '" + p.model + "'");
-  if (p.mesh != "fixed" && p.mesh != "adaptive" && p.mesh != "auto")
-    fail("mesh", "must be fixed, adaptive or auto, got '" + p.mesh + "'");
+  // The adaptive mesh's old name, refused with its new one (it read like model auto).
+  if (p.mesh == "auto") fail("mesh", "'auto' was renamed 'adaptive'");
+  if (p.mesh != "fixed" && p.mesh != "adaptive")
+    fail("mesh", "must be fixed or adaptive, got '" + p.mesh + "'");
   if (!(p.tolerance > 0.0 && p.tolerance < 1.0))
     fail("tolerance", "must be in (0, 1), got " + str(p.tolerance));
   if (!(p.fz_max >= 0.0) || !std::isfinite(p.fz_max))
     fail("fz_max", "must be >= 0 (0 = 1.5 fz0), got " + str(p.fz_max));
-  if (!p.fastsim.empty() && p.fastsim != "calibrated" && p.fastsim != "classic")
-    fail("fastsim", "must be calibrated or classic (or empty), got '" + p.fastsim + "'");
 }
 
 void setParameter(ContactParameters* p, const std::string& name, const std::string& value) {
@@ -129,7 +139,7 @@ void setParameter(ContactParameters* p, const std::string& name, const std::stri
   else if (name == "chi_table")
     p->chi_table = value;
   else if (name == "fastsim")
-    p->fastsim = value;
+    p->fastsim = parseFastSim(value);
   else
     fail(name, "unknown parameter");
 }
@@ -138,17 +148,23 @@ double effectiveFzMax(const ContactParameters& p) {
   return p.fz_max > 0.0 ? p.fz_max : 1.5 * p.fz0;
 }
 
-bool calibratedFastSim(const ContactParameters& p) {
-  // Not given: calibrated for the transient models the package recommends (nss, auto), classic
-  // for steady and shen-li, the baselines every chart compares against (Kalker's FastSim and
-  // Shen-Li as published).
-  if (p.fastsim.empty()) return p.model == "nss" || p.model == "auto";
-  return p.fastsim == "calibrated";
+const char* toString(FastSimVariant v) {
+  return v == FastSimVariant::kCalibrated ? "calibrated" : "classic";
+}
+
+FastSimVariant resolvedFastSim(const ContactParameters& p) {
+  if (p.fastsim) return *p.fastsim;
+  // The model's own: calibrated for the transient models the package recommends (nss, auto),
+  // classic for steady and shen-li, the baselines every chart compares against (Kalker's FastSim
+  // and Shen-Li as published).
+  return p.model == "nss" || p.model == "auto" ? FastSimVariant::kCalibrated
+                                               : FastSimVariant::kClassic;
 }
 
 const char* fastsimVariantName(const ContactParameters& p) {
   if (p.model == "exact") return "no FastSim";
-  return calibratedFastSim(p) ? "calibrated FastSim" : "classic FastSim";
+  return resolvedFastSim(p) == FastSimVariant::kCalibrated ? "calibrated FastSim"
+                                                           : "classic FastSim";
 }
 
 }  // namespace wheel_rail_contact

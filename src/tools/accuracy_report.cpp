@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "tool_args.hpp"
+#include "tool_options.hpp"
 #include "validation/paper_scenes.hpp"
 #include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
 #include "wheel_rail_contact/fastsim/chi_table.hpp"
@@ -147,7 +147,7 @@ void sceneErrors(const Options& o) {
     for (const auto& m : models) {
       const bool calibrated = std::string(m.first) == "nss-calibrated";
       p.model = calibrated ? "nss" : m.first;
-      p.fastsim = calibrated ? "calibrated" : "classic";
+      p.fastsim = calibrated ? FastSimVariant::kCalibrated : FastSimVariant::kClassic;
       p.mesh = m.second;
       p.nx = o.nx;
       p.ny = o.ny;
@@ -165,32 +165,20 @@ void sceneErrors(const Options& o) {
   }
 }
 
-const char* const kUsage =
-    "usage: accuracy_report [--out doc/data] [--grid 30] [--load-grid 30] [--nx 20 --ny 20]\n"
-    "                       [--periods 3] [--parts all|freq|scenes] [--scenes all|load|combined]\n"
-    "                       [--exact-from DIR]\n";
-
-void readOption(tools::Args& a, Options* o) {
-  if (a.is("--out"))
-    o->out = a.text();
-  else if (a.is("--grid"))
-    o->grid = a.integer();
-  else if (a.is("--nx"))
-    o->nx = a.integer();
-  else if (a.is("--ny"))
-    o->ny = a.integer();
-  else if (a.is("--periods"))
-    o->periods = a.integer();
-  else if (a.is("--load-grid"))
-    o->loadGrid = a.integer();
-  else if (a.is("--parts"))
-    o->parts = a.text();
-  else if (a.is("--scenes"))
-    o->scenes = a.text();
-  else if (a.is("--exact-from"))
-    o->exactFrom = a.text();
-  else
-    a.unknown();
+void addOptions(CLI::App& app, Options* o) {
+  app.description(
+      "Every accuracy figure of NSS-FastSim against the exact half-space solver, as CSV.");
+  tools::option(app, "--out", &o->out, "output folder (must exist)");
+  tools::option(app, "--grid", &o->grid,
+                "exact grid N x N of the frequency curves and combined scenes");
+  tools::option(app, "--load-grid", &o->loadGrid, "exact grid of the varying-load scenes");
+  tools::option(app, "--nx", &o->nx, "FastSim nodes per strip");
+  tools::option(app, "--ny", &o->ny, "FastSim strips");
+  tools::option(app, "--periods", &o->periods, "periods of each scene");
+  tools::option(app, "--parts", &o->parts, "all | freq | scenes");
+  tools::option(app, "--scenes", &o->scenes, "all | load | combined");
+  tools::option(app, "--exact-from", &o->exactFrom,
+                "folder of an earlier run's scene_*.csv: its exact histories (empty: solve)");
 }
 
 int run(const Options& o) {
@@ -204,5 +192,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return tools::runMain<Options>("accuracy_report", kUsage, argc, argv, readOption, run);
+  return tools::runMain<Options>("accuracy_report", argc, argv, addOptions, run);
 }

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "tool_args.hpp"
+#include "tool_options.hpp"
 #include "validation/varying_geometry.hpp"
 
 using namespace wheel_rail_contact;
@@ -33,17 +33,11 @@ const Variant kVariants[] = {{"steady", "steady", "fixed"},
                              {"nss_adaptive", "nss", "adaptive"},
                              {"auto", "auto", "fixed"}};
 
-const char* const kUsage = "usage: geometry_accuracy [--out doc/data] [--grid 30] [--n 20]\n";
-
-void readOption(tools::Args& a, Options* o) {
-  if (a.is("--out"))
-    o->out = a.text();
-  else if (a.is("--grid"))
-    o->grid = a.integer();
-  else if (a.is("--n"))
-    o->n = a.integer();
-  else
-    a.unknown();
+void addOptions(CLI::App& app, Options* o) {
+  app.description("The FastSim models under a changing patch shape against the exact solver.");
+  tools::option(app, "--out", &o->out, "output folder (must exist)");
+  tools::option(app, "--grid", &o->grid, "exact grid nx = ny");
+  tools::option(app, "--n", &o->n, "FastSim mesh nx = ny");
 }
 
 int run(const Options& o) {
@@ -98,5 +92,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return tools::runMain<Options>("geometry_accuracy", kUsage, argc, argv, readOption, run);
+  return tools::runMain<Options>("geometry_accuracy", argc, argv, addOptions, run);
 }

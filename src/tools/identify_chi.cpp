@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "tool_args.hpp"
+#include "tool_options.hpp"
 #include "validation/chi_fit.hpp"
 #include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
 
@@ -33,35 +33,21 @@ struct Options {
   bool secondOrderSpin = false;
 };
 
-const char* const kUsage =
-    "usage: identify_chi [--out config/chi_table.csv] [--curves doc/data/exact_curves.csv]\n"
-    "                    [--meshes 5,10,20,30,40] [--grid 30] [--nu 0.28] [--points 25]\n"
-    "                    [--ab 0.2,0.3,0.5,0.7,1,1.4,2,3,5] [--spin-out FILE]\n"
-    "                    [--second-order-spin]\n"
-    "--meshes: the FastSim meshes N x N to fit at (chi absorbs the march's discretisation; the\n"
-    "          table's fastsim_nx column, NssModel takes the mesh nearest its nx)\n";
-
-void readOption(tools::Args& a, Options* o) {
-  if (a.is("--out"))
-    o->out = a.text();
-  else if (a.is("--curves"))
-    o->curves = a.text();
-  else if (a.is("--spin-out"))
-    o->spinOut = a.text();
-  else if (a.is("--second-order-spin"))
-    o->secondOrderSpin = true;
-  else if (a.is("--meshes"))
-    o->meshes = a.integers();
-  else if (a.is("--grid"))
-    o->grid = a.integer();
-  else if (a.is("--points"))
-    o->points = a.integer();
-  else if (a.is("--nu"))
-    o->nu = a.real();
-  else if (a.is("--ab"))
-    o->ratios = a.reals();
-  else
-    a.unknown();
+void addOptions(CLI::App& app, Options* o) {
+  app.description("Fits the NSS-FastSim chi table against the exact half-space solver.");
+  tools::option(app, "--out", &o->out, "the chi table written");
+  tools::option(app, "--curves", &o->curves, "every exact curve, for plots");
+  tools::option(app, "--meshes", &o->meshes,
+                "the FastSim meshes N x N to fit at (chi absorbs the march's discretisation; the "
+                "table's fastsim_nx column, NssModel takes the mesh nearest its nx)");
+  tools::option(app, "--grid", &o->grid, "exact grid N x N");
+  tools::option(app, "--nu", &o->nu, "Poisson ratio");
+  tools::option(app, "--points", &o->points, "lambda/a points in [1, 100], log-spaced");
+  tools::option(app, "--ab", &o->ratios, "a/b of the table's rows");
+  tools::option(app, "--spin-out", &o->spinOut,
+                "also fit a second-order F to kind 23 and write it here (empty: no)");
+  tools::flag(app, "--second-order-spin", &o->secondOrderSpin,
+              "the second-order fit of kind 23 in the table itself (columns chi4, chi5)");
 }
 
 std::string meshList(const std::vector<int>& meshes) {
@@ -182,5 +168,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return tools::runMain<Options>("identify_chi", kUsage, argc, argv, readOption, run);
+  return tools::runMain<Options>("identify_chi", argc, argv, addOptions, run);
 }

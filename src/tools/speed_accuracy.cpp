@@ -16,11 +16,11 @@
 // Writes <out>/speed_accuracy.csv (one row per model and mesh) and speed_accuracy_scenes.csv.
 // Options: speed_accuracy --help.
 // LIST: NAME[:MESH[:FASTSIM]],... (mesh fixed when left out), by default
-// steady,shen-li,nss:fixed,nss:adaptive,exact,auto:auto; a model this build lacks is skipped, with
-// a note. auto runs once per tolerance, on the mesh it chooses.
-// Every FastSim model (all but exact) runs once per variant of --fastsim (classic,calibrated by
-// default) unless its spec names one, and the variant is set on every run and written in every
-// row: the parameters' default variant may change, the chart's rows must not.
+// steady,shen-li,nss:fixed,nss:adaptive,exact,auto:adaptive; a model this build lacks is skipped,
+// with a note. auto runs once per tolerance, on the mesh it chooses. Every FastSim model (all but
+// exact) runs once per variant of --fastsim (classic,calibrated by default) unless its spec names
+// one, and the variant is set on every run and written in every row: the parameters' default
+// variant may change, the chart's rows must not.
 // --set passes any ContactParameters field (setParameter) to every model run, e.g. a tolerance;
 // the exact reference keeps the scene's own parameters.
 #include <algorithm>
@@ -37,7 +37,7 @@
 #include <vector>
 
 #include "core/models/auto_model.hpp"
-#include "tool_args.hpp"
+#include "tool_options.hpp"
 #include "validation/harmonic_scenes.hpp"
 #include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
 
@@ -49,13 +49,14 @@ struct Options {
   std::string out = "doc/data";
   // auto runs once per tolerance (--tolerances) on the mesh it chooses.
   std::vector<std::string> models = {"steady",       "shen-li", "nss:fixed",
-                                     "nss:adaptive", "exact",   "auto:auto"};
+                                     "nss:adaptive", "exact",   "auto:adaptive"};
   std::vector<int> meshes = {5, 10, 20, 30, 40}, exactMeshes = {10, 20};
   // auto picks its own mesh: it runs once per tolerance instead of once per mesh.
   std::vector<double> tolerances = {0.1, 0.05};
   std::vector<std::string> fastsims = {"classic", "calibrated"};  // variants of every FastSim model
   int grid = 40, loadGrid = 30, periods = 3, repeats = 7, rounds = 3;
-  std::vector<std::pair<std::string, std::string>> overrides;  // --set NAME=VALUE
+  std::vector<std::string> sets;                               // --set NAME=VALUE, as given
+  std::vector<std::pair<std::string, std::string>> overrides;  // the same, split
   bool refresh = false;
 };
 
@@ -190,7 +191,7 @@ ContactParameters paramsFor(const Options& o, const Variant& v, const PaperScene
   if (v.n > 0) p.nx = p.ny = v.n;  // auto chooses its own (n = 0)
   for (const auto& kv : o.overrides) setParameter(&p, kv.first, kv.second);
   if (v.tolerance > 0.0) p.tolerance = v.tolerance;
-  if (v.fastsim != kNoFastSim) p.fastsim = v.fastsim;
+  if (v.fastsim != kNoFastSim) setParameter(&p, "fastsim", v.fastsim);
   return p;
 }
 
@@ -343,53 +344,51 @@ void writeResults(const Options& o, const std::vector<Result>& results,
   }
 }
 
-const char* const kUsage =
-    "usage: speed_accuracy [--out doc/data] [--models LIST] [--meshes 5,10,20,30,40]\n"
-    "                      [--exact-meshes 10,20] [--grid 40] [--load-grid 30] [--periods 3]\n"
-    "                      [--repeats 7] [--rounds 3] [--tolerances 0.1,0.05]\n"
-    "                      [--fastsim classic,calibrated] [--set NAME=VALUE]... [--refresh]\n"
-    "  --models NAME[:MESH[:FASTSIM]],...  a FASTSIM pins one variant of that entry\n";
-
-void readOption(tools::Args& a, Options* o) {
-  if (a.is("--refresh")) {
-    o->refresh = true;
-  } else if (a.is("--out")) {
-    o->out = a.text();
-  } else if (a.is("--models")) {
-    o->models = split(a.text(), ',');
-  } else if (a.is("--meshes")) {
-    o->meshes = a.integers();
-  } else if (a.is("--exact-meshes")) {
-    o->exactMeshes = a.integers();
-  } else if (a.is("--fastsim")) {
-    o->fastsims = split(a.text(), ',');
-    for (const std::string& f : o->fastsims)
-      if (f != "classic" && f != "calibrated")
-        throw std::invalid_argument("--fastsim: classic or calibrated, got '" + f + "'");
-  } else if (a.is("--tolerances")) {
-    o->tolerances = a.reals();
-  } else if (a.is("--grid")) {
-    o->grid = a.integer();
-  } else if (a.is("--load-grid")) {
-    o->loadGrid = a.integer();
-  } else if (a.is("--periods")) {
-    o->periods = a.integer();
-  } else if (a.is("--repeats")) {
-    o->repeats = std::max(1, a.integer());
-  } else if (a.is("--rounds")) {
-    o->rounds = std::max(1, a.integer());
-  } else if (a.is("--set")) {
-    const std::string v = a.text();
-    const size_t eq = v.find('=');
-    if (eq == std::string::npos) throw std::invalid_argument("--set needs NAME=VALUE, got " + v);
-    if (v.substr(0, eq) == "fastsim")  // each row names its variant: set it per row instead
-      throw std::invalid_argument("--set fastsim: use --fastsim or --models NAME:MESH:FASTSIM");
-    o->overrides.push_back({v.substr(0, eq), v.substr(eq + 1)});
-    ContactParameters probe;  // an unknown name fails here, not as a skip of every model
-    setParameter(&probe, o->overrides.back().first, o->overrides.back().second);
-  } else {
-    a.unknown();
-  }
+void addOptions(CLI::App& app, Options* o) {
+  app.description("Cost per step against accuracy for every model and mesh.");
+  tools::option(app, "--out", &o->out, "output folder (must exist)");
+  tools::option(
+      app, "--models", &o->models,
+      "NAME[:MESH[:FASTSIM]],...: mesh fixed when left out; a FASTSIM pins one variant of "
+      "that entry");
+  tools::option(app, "--meshes", &o->meshes, "FastSim meshes N x N");
+  tools::option(app, "--exact-meshes", &o->exactMeshes, "grids N x N of the exact model");
+  tools::option(app, "--tolerances", &o->tolerances, "auto: one run per tolerance");
+  tools::option(app, "--fastsim", &o->fastsims, "the variants every FastSim model runs",
+                {"classic", "calibrated"});
+  tools::option(app, "--grid", &o->grid,
+                "exact reference grid of the harmonic and combined scenes");
+  tools::option(app, "--load-grid", &o->loadGrid,
+                "exact reference grid of the varying-load scenes");
+  tools::option(app, "--periods", &o->periods, "periods of each paper scene");
+  tools::option(app, "--repeats", &o->repeats, "timed passes per scene (at least 1)");
+  tools::option(app, "--rounds", &o->rounds, "sweeps of every model timed (at least 1)");
+  app.add_option("--set", o->sets,
+                 "a ContactParameters field for every model run (repeatable; not fastsim)")
+      ->allow_extra_args(false)  // one NAME=VALUE a word, commas included; each --set adds one
+      ->option_text("NAME=VALUE")
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            const size_t eq = v.find('=');
+            if (eq == std::string::npos) return "needs NAME=VALUE, got " + v;
+            if (v.substr(0, eq) == "fastsim")  // each row names its variant: set it per row
+              return "fastsim: use --fastsim or --models NAME:MESH:FASTSIM";
+            ContactParameters probe;  // an unknown name fails here, not as a skip of every model
+            try {
+              setParameter(&probe, v.substr(0, eq), v.substr(eq + 1));
+            } catch (const std::invalid_argument& e) {
+              return e.what();
+            }
+            return "";
+          },
+          "NAME=VALUE"));
+  tools::flag(app, "--refresh", &o->refresh, "recompute the cached exact reference");
+  app.callback([o] {
+    o->repeats = std::max(1, o->repeats);
+    o->rounds = std::max(1, o->rounds);
+    for (const std::string& v : o->sets)
+      o->overrides.push_back({v.substr(0, v.find('=')), v.substr(v.find('=') + 1)});
+  });
 }
 
 int run(const Options& o) {
@@ -420,5 +419,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return tools::runMain<Options>("speed_accuracy", kUsage, argc, argv, readOption, run);
+  return tools::runMain<Options>("speed_accuracy", argc, argv, addOptions, run);
 }

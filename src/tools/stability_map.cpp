@@ -39,7 +39,7 @@
 #include <string>
 #include <vector>
 
-#include "tool_args.hpp"
+#include "tool_options.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
 #include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
@@ -51,7 +51,7 @@ namespace {
 struct Options {
   std::string out = "doc/data";
   int nx = 20, lambdas = 10, ratios = 7, refGrid = 30, exactGrid = 12;
-  bool exact = true;
+  bool noExact = false;
   std::vector<std::string> fastsims = {"classic", "calibrated"};
   double tol = 0.1, slipTol = 0.05, oscTol = 0.02;
 };
@@ -264,7 +264,7 @@ struct Sweep {
     p.model = m.model;
     p.mesh = m.mesh;
     p.nx = p.ny = meshN;
-    p.fastsim = m.fastsim;
+    if (!m.fastsim.empty()) setParameter(&p, "fastsim", m.fastsim);  // the exact model: none
     if (m.varyingLoad) p.fz_max = p.fz0 * (1.0 + kLoadSwing);
     const CreepCoefficients kalker = kalkerCoefficients(p.a0 / p.b0, p.nu);
     const double c0 = kalker.c11, c1 = kalker.c22;
@@ -297,52 +297,24 @@ struct Sweep {
   }
 };
 
-std::vector<std::string> fastsimList(const std::string& text) {
-  std::vector<std::string> out;
-  for (size_t from = 0; from <= text.size();) {
-    const size_t comma = std::min(text.find(',', from), text.size());
-    out.push_back(text.substr(from, comma - from));
-    if (out.back() != "classic" && out.back() != "calibrated")
-      throw std::invalid_argument("--fastsim: classic or calibrated, got '" + out.back() + "'");
-    from = comma + 1;
-  }
-  return out;
-}
-
 bool runs(const Options& o, const std::string& fastsim) {
   return std::find(o.fastsims.begin(), o.fastsims.end(), fastsim) != o.fastsims.end();
 }
 
-const char* const kUsage =
-    "usage: stability_map [--out doc/data] [--nx 20] [--lambdas 10] [--ratios 7] [--ref-grid 30]\n"
-    "                     [--exact-grid 12] [--no-exact] [--tol 0.1] [--slip-tol 0.05]\n"
-    "                     [--osc-tol 0.02] [--fastsim classic,calibrated]\n";
-
-void readOption(tools::Args& a, Options* o) {
-  if (a.is("--out"))
-    o->out = a.text();
-  else if (a.is("--nx"))
-    o->nx = a.integer();
-  else if (a.is("--lambdas"))
-    o->lambdas = a.integer();
-  else if (a.is("--ratios"))
-    o->ratios = a.integer();
-  else if (a.is("--ref-grid"))
-    o->refGrid = a.integer();
-  else if (a.is("--exact-grid"))
-    o->exactGrid = a.integer();
-  else if (a.is("--no-exact"))
-    o->exact = false;
-  else if (a.is("--tol"))
-    o->tol = a.real();
-  else if (a.is("--slip-tol"))
-    o->slipTol = a.real();
-  else if (a.is("--osc-tol"))
-    o->oscTol = a.real();
-  else if (a.is("--fastsim"))
-    o->fastsims = fastsimList(a.text());
-  else
-    a.unknown();
+void addOptions(CLI::App& app, Options* o) {
+  app.description("Where each creep-force model breaks down or stops being accurate.");
+  tools::option(app, "--out", &o->out, "output folder (must exist)");
+  tools::option(app, "--nx", &o->nx, "FastSim mesh nx = ny");
+  tools::option(app, "--lambdas", &o->lambdas, "wavelengths lambda/a in [0.5, 200], log-spaced");
+  tools::option(app, "--ratios", &o->ratios, "steps V dt/dx in [0.01, 10], log-spaced");
+  tools::option(app, "--ref-grid", &o->refGrid, "exact grid of the linear reference");
+  tools::option(app, "--exact-grid", &o->exactGrid, "grid of the exact model's own rows");
+  tools::flag(app, "--no-exact", &o->noExact, "leave the exact model's rows out");
+  tools::option(app, "--tol", &o->tol, "adhesion: error above this is inaccurate");
+  tools::option(app, "--slip-tol", &o->slipTol, "slip and varying load: likewise");
+  tools::option(app, "--osc-tol", &o->oscTol, "non-periodic residual above this: oscillation");
+  tools::option(app, "--fastsim", &o->fastsims, "the FastSim variants mapped",
+                {"classic", "calibrated"});
 }
 
 int run(const Options& o) {
@@ -369,7 +341,7 @@ int run(const Options& o) {
     m.label += " (" + m.fastsim + ")";
     sweep.model(m, lambdas, ratios, o.nx);
   }
-  if (o.exact) {
+  if (!o.noExact) {
     // Every other wavelength; steps no shorter than the exact grid's element (2.2 a / grid), as
     // the exact model holds its output between its one-element sub-steps.
     std::vector<double> el, er;
@@ -385,5 +357,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return tools::runMain<Options>("stability_map", kUsage, argc, argv, readOption, run);
+  return tools::runMain<Options>("stability_map", argc, argv, addOptions, run);
 }

@@ -9,6 +9,7 @@
 
 #include "../../src/cli/cli.hpp"
 #include "csv_rows.hpp"
+#include "wheel_rail_contact/contact_parameters.hpp"
 #include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 using namespace wheel_rail_contact;
@@ -82,6 +83,10 @@ TEST(ContactCli, BadOptionsExitNonZeroNamingTheOption) {
       {{"run", "--scenario", f, "--ny", "x"}, "ny: expected an integer"},
       {{"run", "--scenario", f, "--G", "abc"}, "G: expected a finite number"},
       {{"run", "--scenario", f, "--model", "magic"}, "model: must be one of"},
+      {{"run", "--scenario", f, "--mesh", "auto"}, "mesh: 'auto' was renamed 'adaptive'"},
+      {{"run", "--scenario", f, "--mesh", "moving"}, "mesh: must be fixed or adaptive"},
+      {{"run", "--scenario", f, "--fastsim", ""}, "fastsim: must be calibrated or classic"},
+      {{"run", "--scenario", f, "--fastsim", "fast"}, "fastsim: must be calibrated or classic"},
       {{"run", "--scenario", f, "--bogus", "1"}, "bogus: unknown parameter"},
       {{"run", "--scenario", f, "--nu"}, "--nu: missing value"},
       {{"run"}, "--scenario FILE is required"},
@@ -94,6 +99,45 @@ TEST(ContactCli, BadOptionsExitNonZeroNamingTheOption) {
     EXPECT_NE(r.err.find(c.mention), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty() || r.out.find("nan") == std::string::npos);
   }
+}
+
+TEST(ContactCli, HelpListsEveryParameterWithItsDefault) {
+  // The options are made from parameterDocs(): a parameter added there is an option, documented.
+  const Result r = cli({"run", "--help"});  // after a command too: the whole help
+  EXPECT_EQ(r.code, 0);
+  for (const auto& d : parameterDocs()) {
+    const size_t at = r.out.find("\n  --" + d.name + " ");
+    ASSERT_NE(at, std::string::npos) << d.name << "\n" << r.out;
+    const std::string line = r.out.substr(at + 1, r.out.find('\n', at + 1) - at - 1);
+    EXPECT_NE(line.find("default " + d.default_value), std::string::npos) << line;
+    EXPECT_NE(line.find(d.meaning), std::string::npos) << line;
+  }
+  for (const char* opt : {"--config ", "--kind ", "--ab ", "--lambda-over-a "})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+}
+
+TEST(ContactCli, CommandLineErrorsExitTwoRefusedValuesOne) {
+  const std::string f = writeTemp("ok2.csv", "t,V,xi,eta,phi,fz\n0,20,1e-3,0,0,8e4\n");
+  for (const auto& args :
+       std::vector<std::vector<std::string>>{{"run", "--scenario", f, "--bogus", "1"},
+                                             {"run", "--scenario", f, "--nu"},
+                                             {"run", "--scenario", f, "stray"},
+                                             {"run"},
+                                             {"freq", "--kind", "xi", "--ab", "1"},
+                                             {"fly"},
+                                             {}})
+    EXPECT_EQ(cli(args).code, 2) << (args.empty() ? "(none)" : args.back());
+  for (const auto& args :
+       std::vector<std::vector<std::string>>{{"run", "--scenario", f, "--nu", "0.7"},
+                                             {"run", "--scenario", f, "--mesh", "auto"},
+                                             {"run", "--scenario", f, "--fastsim", ""},
+                                             {"run", "--scenario", "/nonexistent/x.csv"}})
+    EXPECT_EQ(cli(args).code, 1) << args.back();
+  // Given twice, an option's last value counts; --name=value reads as --name value.
+  const Result twice = cli({"run", "--scenario", f, "--model", "exact", "--model", "steady"});
+  const Result once = cli({"run", "--scenario=" + f, "--model=steady"});
+  ASSERT_EQ(twice.code, 0) << twice.err;
+  EXPECT_EQ(twice.out, once.out);
 }
 
 TEST(ContactCli, BadScenarioExitsNonZeroNamingLineAndField) {

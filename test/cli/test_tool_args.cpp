@@ -1,5 +1,6 @@
-// The offline tools' command line (src/tools/tool_args.hpp): a typo or a dangling option must stop
-// the tool before it runs for minutes with defaults and overwrites the committed results.
+// identify_calibration's command line (src/tools/tool_args.hpp; the other tools read theirs with
+// CLI11, test_tool_options.cpp): a typo or a dangling option must stop the tool before it runs for
+// minutes with defaults and overwrites the committed results.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -71,11 +72,4 @@ TEST(ToolArgs, BadCommandLinesStopWithCodeTwo) {
     EXPECT_FALSE(p.run) << words[0];
     EXPECT_EQ(p.code, 2) << words[0];
   }
-}
-
-TEST(ToolArgs, RunToolTurnsAnExceptionIntoCodeOne) {
-  EXPECT_EQ(tools::runTool("tool", [] { return 0; }), 0);
-  EXPECT_EQ(tools::runTool("tool", []() -> int { throw std::invalid_argument("nx must be >= 2"); }),
-            1);
-  EXPECT_THROW(tools::requireFolder("/nonexistent/folder"), std::runtime_error);
 }

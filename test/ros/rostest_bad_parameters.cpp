@@ -90,7 +90,12 @@ TEST(BadParameters, EveryParameterOutOfRange) {
   expectFatal("_nx:=401", "nx: must be in [2, 400], got 401");
   expectFatal("_ny:=0", "ny: must be in [1, 400], got 0");
   expectFatal("_ny:=10000000", "ny: expected an integer, got '10000000'");
-  expectFatal("_mesh:=moving", "mesh: must be fixed, adaptive or auto, got 'moving'");
+  expectFatal("_mesh:=moving", "mesh: must be fixed or adaptive, got 'moving'");
+  expectFatal("_mesh:=auto", "mesh: 'auto' was renamed 'adaptive'");
+  expectFatal("_fastsim:=''",
+              "fastsim: must be calibrated or classic (leave it out for the model's own: "
+              "calibrated for nss and auto, classic for steady and shen-li), got ''");
+  expectFatal("_fastsim:=fast", "fastsim: must be calibrated or classic");
   expectFatal("_tolerance:=0", "tolerance: must be in (0, 1), got 0");
   expectFatal("_tolerance:=1.5", "tolerance: must be in (0, 1), got 1.5");
   expectFatal("_fz_max:=-1", "fz_max: must be >= 0");
@@ -154,6 +159,8 @@ TEST(BadParameters, YamlLoadedWithRosparamIsCheckedTheSameWay) {
       {"mu: .inf\n", "mu: expected a finite number, got 'inf'"},
       {"model: nss\nmesh: yes\n", "mesh: expected a number or a name"},
       {"model: steady\nnxx: 3\n", "nxx: unknown parameter"},
+      {"model: auto\nmesh: auto\n", "mesh: 'auto' was renamed 'adaptive'"},
+      {"model: nss\nfastsim: ''\n", "fastsim: must be calibrated or classic"},
       {"max_dt: '0.5 s'\n", "max_dt: expected a number, got '0.5 s'"},
   };
   for (const auto& c : cases) {

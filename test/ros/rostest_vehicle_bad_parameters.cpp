@@ -60,6 +60,10 @@ TEST(VehicleBadParameters, ValuesOutOfRangeNameTheContact) {
   expectFatal({{"contacts", two()}, {"right/mu", XmlRpc::XmlRpcValue(-1.0)}}, "right/mu");
   expectFatal({{"contacts", two()}, {"nu", XmlRpc::XmlRpcValue(0.7)}}, "left/nu");
   expectFatal({{"contacts", two()}, {"left/model", XmlRpc::XmlRpcValue("fastest")}}, "left/model");
+  expectFatal({{"contacts", two()}, {"left/mesh", XmlRpc::XmlRpcValue("auto")}},
+              "left/mesh: 'auto' was renamed 'adaptive'");
+  expectFatal({{"contacts", two()}, {"right/fastsim", XmlRpc::XmlRpcValue("")}},
+              "right/fastsim: must be calibrated or classic");
   expectFatal({{"contacts", two()}, {"right/max_dt", XmlRpc::XmlRpcValue(0.0)}}, "right/max_dt");
   expectFatal({{"contacts", two()}, {"queue_size", XmlRpc::XmlRpcValue(0)}}, "queue_size");
   expectFatal({{"contacts", two()}, {"diagnostic_period", XmlRpc::XmlRpcValue(-1.0)}},

@@ -24,7 +24,7 @@ ContactParameters autoParameters(const char* mesh = "adaptive") {
   ContactParameters p;
   p.model = "auto";
   p.mesh = mesh;
-  p.fastsim = "classic";
+  p.fastsim = FastSimVariant::kClassic;
   return p;
 }
 
@@ -79,7 +79,7 @@ TEST(AutoModel, MeshComesFromTheLadderOfTheVariantItRuns) {
   for (const char* fastsim : {"classic", "calibrated"})
     for (double tolerance : {0.2, 0.066, 0.05, 0.047, 0.03}) {
       ContactParameters p = autoParameters();
-      p.fastsim = fastsim;
+      setParameter(&p, "fastsim", fastsim);
       p.tolerance = tolerance;
       auto m = makeContactModel(p);
       const auto* a = dynamic_cast<const AutoModel*>(m.get());
@@ -136,7 +136,7 @@ TEST(AutoModel, FastInputsRunNssFastSim) {
 TEST(AutoModel, ChangingModelMidRunDoesNotJumpTheForce) {
   // Slow, then a burst of short waves, then slow again: auto must hand over both ways, and at
   // each hand-over the force changes by no more than it does over the steps around it.
-  const ContactParameters p = autoParameters("auto");
+  const ContactParameters p = autoParameters();
   auto m = makeContactModel(p);
   const auto* a = dynamic_cast<const AutoModel*>(m.get());
   const auto wave = [&](double q) {
@@ -198,7 +198,7 @@ void expectToleranceOnWavesTheChartDidNotSee(const char* fastsim) {
         const HarmonicScene h = harmonicScene(kind, lambda, 2.2 * 0.02 / kGrid);
         ContactParameters p = h.scene.params;
         p.model = "auto";
-        p.fastsim = fastsim;
+        setParameter(&p, "fastsim", fastsim);
         p.tolerance = tolerance;
         AutoModel m(p, ChiTable::shipped(), calibration);
         ASSERT_EQ(m.runsCalibratedFastSim(), calibrated);

@@ -869,23 +869,51 @@ TEST(FastSimParameter, CalibratedForNssAndAutoClassicForTheBaselinesUnlessNamed)
   ContactParameters p;
   for (const char* m : {"steady", "shen-li", "nss", "auto"}) {
     p.model = m;
-    p.fastsim.clear();
+    p.fastsim.reset();
     const bool recommended = p.model == "nss" || p.model == "auto";
-    EXPECT_EQ(calibratedFastSim(p), recommended) << m;
+    EXPECT_EQ(resolvedFastSim(p) == FastSimVariant::kCalibrated, recommended) << m;
     EXPECT_STREQ(fastsimVariantName(p), recommended ? "calibrated FastSim" : "classic FastSim");
     setParameter(&p, "fastsim", "calibrated");
-    EXPECT_TRUE(calibratedFastSim(p)) << m;
+    EXPECT_EQ(resolvedFastSim(p), FastSimVariant::kCalibrated) << m;
     setParameter(&p, "fastsim", "classic");
-    EXPECT_FALSE(calibratedFastSim(p)) << m;
+    EXPECT_EQ(resolvedFastSim(p), FastSimVariant::kClassic) << m;
+    EXPECT_STREQ(fastsimVariantName(p), "classic FastSim");
   }
   p.model = "exact";
   EXPECT_STREQ(fastsimVariantName(p), "no FastSim");
-  p.fastsim = "exact";
-  try {
-    validate(p);
-    FAIL() << "fastsim: exact accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("fastsim:", 0), 0u) << e.what();
+  // A value that is not a variant, the empty one included (it used to mean the model's own), is
+  // refused naming the parameter and its values, and leaves what was set.
+  for (const char* bad : {"exact", "", "Calibrated"}) {
+    try {
+      setParameter(&p, "fastsim", bad);
+      FAIL() << "fastsim: '" << bad << "' accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("fastsim: must be calibrated or classic", 0), 0u)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("got '" + std::string(bad) + "'"), std::string::npos)
+          << e.what();
+    }
+    EXPECT_EQ(p.fastsim, FastSimVariant::kClassic);
+  }
+}
+
+TEST(FastSimParameter, TheModelRunsTheResolvedVariant) {
+  // Unset, each model runs its own variant: nss's force is calibrated nss's, steady's classic's.
+  auto settled = [](const ContactParameters& p) {  // partial slip, where the variants differ
+    const auto m = makeContactModel(p);
+    StepOutput o;
+    for (int k = 0; k < 100; ++k) o = m->step({1e-4, 20.0, 3e-3, 1e-3, 0.5, p.fz0});
+    return o.fx;
+  };
+  for (const char* m : {"steady", "shen-li", "nss", "auto"}) {
+    ContactParameters p;
+    p.model = m;
+    const double unset = settled(p);
+    p.fastsim = resolvedFastSim(p);
+    EXPECT_EQ(settled(p), unset) << m;
+    p.fastsim = p.fastsim == FastSimVariant::kClassic ? FastSimVariant::kCalibrated
+                                                      : FastSimVariant::kClassic;
+    EXPECT_NE(settled(p), unset) << m;
   }
 }
 
@@ -898,9 +926,9 @@ TEST(FastSimParameter, CalibratedSteadyDiffersFromClassicOnlyBeyondLinearTheory)
   in.fz = p.fz0;
   for (double xi : {1e-6, 3e-3}) {  // linear; e = 1, partial slip
     in.xi = xi;
-    p.fastsim = "classic";
+    p.fastsim = FastSimVariant::kClassic;
     const double classic = makeContactModel(p)->step(in).fx;
-    p.fastsim = "calibrated";
+    p.fastsim = FastSimVariant::kCalibrated;
     const double calibrated = makeContactModel(p)->step(in).fx;
     if (xi < 1e-5)
       EXPECT_NEAR(calibrated, classic, 1e-3 * std::abs(classic));

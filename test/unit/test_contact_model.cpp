@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <limits>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -109,7 +110,7 @@ struct Case {
 
 TEST(ContactModel, StepAndResetAllocateNothingWhateverTheInput) {
   for (const Case& c : {Case{"steady", "fixed"}, Case{"shen-li", "fixed"}, Case{"nss", "fixed"},
-                        Case{"nss", "adaptive"}, Case{"auto", "auto"}}) {
+                        Case{"nss", "adaptive"}, Case{"auto", "adaptive"}}) {
     ContactParameters p;
     p.model = c.model;
     p.mesh = c.mesh;
@@ -136,7 +137,7 @@ TEST(ContactModel, CalibratedStepsWithAChangingAOverBAllocateNothing) {
   for (const char* model : {"steady", "nss", "auto"}) {
     ContactParameters p;
     p.model = model;
-    p.fastsim = "calibrated";
+    p.fastsim = FastSimVariant::kCalibrated;
     p.nx = p.ny = 10;
     const auto m = makeContactModel(p);
     std::vector<StepInput> in;
@@ -165,4 +166,21 @@ TEST(ContactModel, TheCounterSeesAnAllocation) {
   const CountAllocations counted;
   std::string grown(100, 'x');
   EXPECT_GE(counted.count(), 1) << grown;
+}
+
+TEST(ContactModel, TheAdaptiveMeshsOldNameIsRefusedNamingTheNewOne) {
+  // mesh "auto" was the adaptive mesh under a name that read like model auto.
+  for (const char* model : {"nss", "auto"}) {
+    ContactParameters p;
+    p.model = model;
+    p.mesh = "auto";
+    try {
+      makeContactModel(p);
+      FAIL() << model << ": mesh auto accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "mesh: 'auto' was renamed 'adaptive'");
+    }
+    p.mesh = "adaptive";
+    EXPECT_NO_THROW(makeContactModel(p)) << model;
+  }
 }

@@ -82,7 +82,7 @@ TEST(NssModel, CalibratedSettlesOnSteadyFastSimAtEveryStepLength) {
   // the settled force moved with the step (large spin: Fy 0.30 -> 0.38 mu Fz over 0.01 -> 10
   // elements). Its fixed point must be steady FastSim's at any step length.
   ContactParameters p = params("nss");
-  p.fastsim = "calibrated";
+  p.fastsim = FastSimVariant::kCalibrated;
   p.fz_max = p.fz0;  // fixed mesh exactly on the patch, as the steady model's
   ContactParameters sp = p;
   sp.model = "steady";
@@ -309,7 +309,7 @@ TEST(NssModel, SettledStateContinuesWithoutAJump) {
   // it where the patch adheres. At slipping nodes the march's own fixed point differs a little
   // where the two directions' filters differ (the time term tilts the slip direction): within 1e-6
   // mu fz at small creepage (only the trailing-edge nodes slip), 1e-3 mu fz in partial slip.
-  for (const char* mesh : {"fixed", "adaptive", "auto"})
+  for (const char* mesh : {"fixed", "adaptive"})
     for (const double scale : {0.01, 1.0}) {
       ContactParameters p;
       p.model = "nss";
@@ -335,7 +335,7 @@ TEST(NssModel, SecondOrderSpinSurvivesEveryStatePath) {
   std::ofstream(path) << "a_over_b,kind,chi1,chi2,chi3\n1.5,11,0.4,1.1,0.6\n1.5,22,0.5,1.0,0.7\n"
                          "1.5,23,0.744200,1.776235,0.511910\n";
   const ChiTable firstOrder = ChiTable::load(path);
-  for (const char* mesh : {"fixed", "adaptive", "auto"}) {
+  for (const char* mesh : {"fixed", "adaptive"}) {
     NssModel m(params("nss", mesh), table), first(params("nss", mesh), firstOrder);
     for (int k = 0; k < 600; ++k) {
       StepInput in = scene(k);

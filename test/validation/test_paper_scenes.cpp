@@ -16,11 +16,11 @@ using namespace wheel_rail_contact;
 namespace {
 
 SceneError errors(const PaperScene& s, const char* model, const std::vector<StepOutput>& exact,
-                  const char* mesh = "fixed", const char* fastsim = "") {
+                  const char* mesh = "fixed", const char* fastsim = nullptr) {
   ContactParameters p = s.params;
   p.model = model;
-  p.fastsim = fastsim;
-  p.mesh = std::string(model) == "auto" ? "auto" : mesh;
+  if (fastsim) setParameter(&p, "fastsim", fastsim);  // else the model's own
+  p.mesh = std::string(model) == "auto" ? "adaptive" : mesh;
   p.nx = p.ny = 20;
   auto m = makeContactModel(p);
   return sceneError(s, runScene(*m, s.rows), exact);

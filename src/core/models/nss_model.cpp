@@ -17,7 +17,7 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi,
       kalker_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
       calibrationTable_(calibration.forMesh(p.nx)),  // identified per mesh, as chi
       calibration_(calibrationTable_.at(p.a0 / p.b0)),
-      adaptive_(p.mesh != "fixed"),  // "auto": fitted to the patch, moved only when fz changes
+      adaptive_(p.mesh == "adaptive"),
       dynamic_(p.model == "nss"),
       forceWeightedFilters_(!calibration.empty()),
       chiTable_(dynamic_ ? chi.forMesh(p.nx) : ChiTable::uniform({})),  // chi is fitted per mesh

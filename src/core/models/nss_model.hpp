@@ -1,10 +1,9 @@
 /// The non-steady FastSim models behind ContactModel: "shen-li" (time term with the static
 /// flexibilities, F == 1) and "nss" (Alonso & Gimenez dynamic flexibility with the weighted chi of
-/// Guiral et al. 2013, eq. 15), on a fixed mesh (sized for fz_max) or an adaptive one (follows
-/// a(t), b(t), history carried along the strips). Mesh "auto" is the adaptive one: a fixed mesh
-/// fitted to the patch while the load is constant, moved only when it changes. V < 0 marches the
-/// mirror image, the history mirrored at each reversal (rolling_direction.hpp). Units as in
-/// contact_model.hpp.
+/// Guiral et al. 2013, eq. 15), on a fixed mesh (sized for fz_max) or an adaptive one (fitted to
+/// the patch, moved only when a(t), b(t) change, the history carried along the strips). V < 0
+/// marches the mirror image, the history mirrored at each reversal (rolling_direction.hpp). Units
+/// as in contact_model.hpp.
 #pragma once
 
 #include <vector>
