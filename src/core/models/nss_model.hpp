@@ -128,10 +128,6 @@ class NssModel : public ContactModel {
   /// the first-order step the second-order dispatch).
   FilterZ discretiseKind(int k, double a, double V, double dt) const;
   PatchMesh mesh_, spare_;
-  double sizedA_ = 0.0, sizedB_ = 0.0;  // the mesh's size at construction (reset() restores it)
-  // Fixed mesh: the largest patch it holds (its size, rounding allowed for), and how much larger
-  // than the patch that outgrows it the mesh grows.
-  double fitsA_ = 0.0, fitsB_ = 0.0, growthMargin_ = 1.0;
   TransientState state_, remapped_;  // the history; the next one while the patch moves
   AlongStripMap carry_;  // the history's path from the previous patch to this one (adaptive)
   TractionField field_, scratch_;
@@ -144,6 +140,10 @@ class NssModel : public ContactModel {
   RollingFrame frame_;        // the mirror while rolling backwards
   bool secondOrder_ = false;  // the last step marched s2: state_.s2x/s2y (remapped_'s) may be != 0
   bool handingOn_ = false;    // this step marches s2 only to hand it on into s1 (spin stopped)
+  double sizedA_ = 0.0, sizedB_ = 0.0;  // the mesh's size at construction (reset() restores it)
+  // Fixed mesh: the largest patch it holds (its size, rounding allowed for), and how much larger
+  // than the patch that outgrows it the mesh grows.
+  double fitsA_ = 0.0, fitsB_ = 0.0, growthMargin_ = 1.0;
 };
 
 }  // namespace wheel_rail_contact
