@@ -22,8 +22,9 @@ struct StepInput {
   /// Given, they must lie in the ranges the parameters a0, b0, a0/b0, mu accept (a, b in
   /// [1e-6, 1] m, a/b in [0.1, 10], mu in [1e-6, 1000]; a and b together), else kRejected. The
   /// FastSim models carry their history across a change of a, b, a/b (doc/varying_geometry.md),
-  /// and a change of mu only moves the traction bound; on the fixed mesh a patch beyond the mesh
-  /// (sized for fz_max at a0, b0) is clipped, with a message; exact rejects such a patch.
+  /// and a change of mu only moves the traction bound; a patch beyond the fixed mesh (sized for
+  /// fz_max at a0, b0) grows the mesh, the history carried over, with a message (status kOk);
+  /// exact rejects such a patch.
   double a = 0.0;   ///< patch semi-axis along x (rolling) [m]; given together with b
   double b = 0.0;   ///< patch semi-axis along y (lateral) [m]; given together with a
   double mu = 0.0;  ///< Coulomb friction coefficient [-]
@@ -47,7 +48,8 @@ struct StepOutput {
   double b = 0.0;                 ///< patch semi-axis along y [m]
   double adhesionFraction = 0.0;  ///< [-]
   StepStatus status = StepStatus::kOk;
-  /// Why, when status != kOk or an OK step has a caveat (clipped or coarse patch); "" if none.
+  /// Why, when status != kOk, or an OK step's note (the fixed mesh grew, or the patch covers few of
+  /// its nodes); "" if none.
   /// Static text, never null: a step allocates nothing, not even for its message.
   const char* message = "";
 };

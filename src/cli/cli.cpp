@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -31,7 +32,9 @@ const char* const kRunHelp =
     "column mu gives the friction per row (0 in a row: the parameters apply; an empty\n"
     "cell or an unknown column is an error; doc/varying_geometry.md).\n"
     "Rows the model refuses (e.g. fz above fz_max with --model exact) are written with zero\n"
-    "forces and their status. V < 0 rolls backwards (every model; doc/conventions.md).\n"
+    "forces and their status, the reason on stderr; so is an ok row's note (the fixed mesh grew\n"
+    "to hold the patch, or the patch covers few of its nodes) where it begins.\n"
+    "V < 0 rolls backwards (every model; doc/conventions.md).\n"
     "--model exact steps internally by one grid element (dq = dx = 2.2 a_max/nx, inputs\n"
     "interpolated linearly between rows, the remainder carried over) and still writes one\n"
     "row per scenario row, at its t (the state after the last internal step).";
@@ -164,11 +167,16 @@ int runScenario(const CommandLine& c, std::ostream& out, std::ostream& err) {
   const std::vector<ScenarioRow> rows = readScenario(in, file);
   auto model = makeContactModel(p);
   out << "t,fx,fy,mz,fz,a,b,adhesion_fraction,status\n";
+  // An ok row's note (the fixed mesh grew, a coarse patch) has no column: it goes to stderr where
+  // it begins, once for a run of rows that repeat it.
+  const char* note = "";
   for (size_t k = 0; k < rows.size(); ++k) {
     const ScenarioRow& r = rows[k];
     const StepOutput s = model->step(stepInputAt(rows, k));
-    if (s.status == StepStatus::kRejected)
+    const bool ok = s.status == StepStatus::kOk;
+    if (s.status == StepStatus::kRejected || (ok && *s.message && std::strcmp(s.message, note)))
       err << file << ": row at t = " << r.t << ": " << s.message << "\n";
+    if (ok) note = s.message;
     writeRow(out, r.t, s);
   }
   return 0;

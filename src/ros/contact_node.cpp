@@ -272,7 +272,8 @@ void ContactNode::report(const StepResult& r) {
     ROS_WARN_THROTTLE(1.0, "%s: model refused the step: %s", ns, r.message.c_str());
   else if (r.loadMatch == LoadMatch::kUnmatched)
     ROS_WARN_THROTTLE(5.0, "%s: %s", ns, r.message.c_str());
-  else if (r.out.status == StepStatus::kOk && !r.message.empty())  // clipped or coarse patch
+  else if (r.out.status == StepStatus::kOk &&
+           !r.message.empty())  // the fixed mesh grew, or a coarse patch
     ROS_WARN_THROTTLE(5.0, "%s: %s", ns, r.message.c_str());
   if (r.staleLoad)
     ROS_WARN_THROTTLE(5.0, "%s: the latest normal_load is %.3f s old (max_load_age)", ns,

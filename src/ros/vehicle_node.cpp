@@ -299,7 +299,8 @@ void VehicleNode::report(const VehicleContactResult& r, const std::string& name)
   } else if (r.step.event == StepEvent::kNoLoadYet) {
     ROS_WARN_THROTTLE(5.0, "%s: %s: no normal load yet: zero forces", ns, name.c_str());
   } else if (r.step.out.status == StepStatus::kOk && !r.step.message.empty()) {
-    ROS_WARN_THROTTLE(5.0, "%s: %s: %s", ns, name.c_str(), msg);  // clipped or coarse patch
+    ROS_WARN_THROTTLE(5.0, "%s: %s: %s", ns, name.c_str(),
+                      msg);  // the fixed mesh grew, or a coarse patch
   }
   if (r.step.staleLoad)
     ROS_WARN_THROTTLE(5.0, "%s: %s: the load is %.3f s old (max_load_age)", ns, name.c_str(),

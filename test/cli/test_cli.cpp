@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -165,6 +166,24 @@ TEST(ContactCli, RefusedRowsAreWrittenWithStatusNotNaN) {
   EXPECT_EQ(std::stod(rows[1][1]), 0.0);
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
   EXPECT_NE(r.err.find("fz above fz_max"), std::string::npos) << r.err;
+}
+
+TEST(ContactCli, AnOkRowsNoteGoesToStderrWhereItBegins) {
+  // Rows 2-4 give a patch twice a0, b0: the fixed mesh grows on row 2 (its note), and rows 3-4
+  // have nothing to say; the rows' status stays ok.
+  const std::string f =
+      writeTemp("grow.csv",
+                "t,V,xi,eta,phi,fz,a,b\n0,20,1e-5,0,0,8e4,6e-3,4e-3\n"
+                "1e-4,20,1e-5,0,0,8e4,12e-3,8e-3\n2e-4,20,1e-5,0,0,8e4,12e-3,8e-3\n"
+                "3e-4,20,1e-5,0,0,8e4,12e-3,8e-3\n");
+  const Result r = cli({"run", "--scenario", f, "--model", "nss"});
+  EXPECT_EQ(r.code, 0);
+  const auto rows = parseCsv(r.out);
+  ASSERT_EQ(rows.size(), 5u);
+  for (size_t k = 1; k < rows.size(); ++k) EXPECT_EQ(rows[k][8], "ok") << k;
+  EXPECT_EQ(r.err.find(f + ": row at t = 0.0001: the step's patch exceeds the fixed mesh"), 0u)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
 TEST(ContactCli, BackwardsRowsRollBackwards) {

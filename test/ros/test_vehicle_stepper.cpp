@@ -261,3 +261,33 @@ TEST(VehicleStepper, ConfigurationErrorsNameTheContact) {
     EXPECT_EQ(std::string(e.what()).rfind("y/mu", 0), 0u) << e.what();
   }
 }
+
+TEST(VehicleStepper, APatchBeyondTheFixedMeshGrowsItAndLosesNoForce) {
+  // As in the core (StepGeometry.APatchBeyondTheDefaultFixedMeshLosesNoForce): default parameters
+  // (nss on the fixed mesh sized for fz_max = 1.5 fz0), linear range; the ticks' patch doubled at
+  // the same a/b and load gives four times the force, and the tick that grows the mesh says so.
+  for (const char* model : {"nss", "auto"}) {
+    VehicleContactConfig c;
+    c.name = "w";
+    c.parameters.model = model;
+    VehicleStepper v({c});
+    const double a0 = c.parameters.a0, b0 = c.parameters.b0;
+    auto tick = [&](double scale) {
+      VehicleContactInput e = entry("w", 1e-5, c.parameters.fz0);
+      e.in.eta = e.in.phi = 0.0;
+      e.in.a = scale * a0;
+      e.in.b = scale * b0;
+      return std::vector<VehicleContactInput>{e};
+    };
+    std::vector<VehicleContactResult> out;
+    int64_t t = 0;
+    for (int k = 0; k < 200; ++k) v.step(t += kMs / 10, tick(1.0), &out);
+    const double before = out[0].step.out.fx;
+    v.step(t += kMs / 10, tick(2.0), &out);
+    EXPECT_EQ(out[0].step.out.status, StepStatus::kOk) << model;
+    EXPECT_NE(out[0].step.message.find("grew"), std::string::npos) << model;
+    for (int k = 0; k < 200; ++k) v.step(t += kMs / 10, tick(2.0), &out);
+    EXPECT_NEAR(out[0].step.out.fx / before, 4.0, 0.04) << model;
+    EXPECT_EQ(out[0].step.message, "") << model;
+  }
+}

@@ -54,7 +54,7 @@ struct CountAllocations {
 };
 
 // Every kind of step a run can bring: creepages of each kind with spin coming and going, a
-// varying load, the load above fz_max (clipped on the fixed mesh) and far below it (a coarse
+// varying load, the load above fz_max (the fixed mesh grows) and far below it (a coarse
 // patch), loss of contact, dt = 0, V = 0, rolling backwards and a reversal, rejected input.
 std::vector<StepInput> everyKindOfStep(const ContactParameters& p) {
   std::vector<StepInput> in;
@@ -70,7 +70,7 @@ std::vector<StepInput> everyKindOfStep(const ContactParameters& p) {
     switch (k % 50) {
       case 7:
         s.fz = 3.0 * effectiveFzMax(p);
-        break;  // clipped on the fixed mesh
+        break;  // the fixed mesh grows (back to its size at each loss of contact)
       case 8:
         s.fz = 1e-4 * p.fz0;
         break;  // a patch of a node or two on the fixed mesh

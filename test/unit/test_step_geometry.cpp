@@ -178,12 +178,91 @@ TEST(StepGeometry, AChangeOfMuRescalesTheBoundAndKeepsTheHistory) {
   EXPECT_GT(std::abs(low.fx), 0.95 * 0.01 * 8e4);
 }
 
-TEST(StepGeometry, FixedMeshClipsAPatchBeyondItWithAMessage) {
-  NssModel m(params("nss"), ChiTable::shipped());
-  const StepOutput out = m.step(withPatch(rolling(1e-3), 6e-3, 9e-3));
-  EXPECT_EQ(out.status, StepStatus::kOk);
-  EXPECT_NE(std::string(out.message).find("clipped"), std::string::npos);
-  EXPECT_TRUE(std::isfinite(out.fx));
+TEST(StepGeometry, APatchBeyondTheDefaultFixedMeshLosesNoForce) {
+  // Default parameters (fixed mesh sized for fz_max = 1.5 fz0), linear range, settled: a patch
+  // doubled at the same a/b and load gives four times the force (G a b C11 xi), as steady FastSim
+  // and the adaptive mesh do; clipped to the mesh it gave 0.75. A patch twice as wide, and a load
+  // three times fz0, give what steady FastSim's fitted mesh gives. The step that grows the mesh
+  // says so; the next ones have nothing to say.
+  struct Change {
+    const char* what;
+    StepInput before, after;
+  };
+  const double a0 = ContactParameters().a0, b0 = ContactParameters().b0,
+               fz0 = ContactParameters().fz0;
+  const std::vector<Change> changes = {
+      {"a, b doubled", withPatch(rolling(1e-5), a0, b0), withPatch(rolling(1e-5), 2 * a0, 2 * b0)},
+      {"b doubled", withPatch(rolling(0.0, 1e-5), a0, b0),
+       withPatch(rolling(0.0, 1e-5), a0, 2 * b0)},
+      {"load tripled", rolling(1e-5, 0.0, 0.0, fz0), rolling(1e-5, 0.0, 0.0, 3 * fz0)}};
+  for (const char* model : {"nss", "auto"}) {
+    for (const Change& c : changes) {
+      ContactParameters p;
+      p.model = model;
+      auto m = makeContactModel(p);
+      ContactParameters sp = p;
+      sp.model = "steady";
+      auto steady = makeContactModel(sp);
+      StepOutput before, grown, after;
+      for (int k = 0; k < 200; ++k) before = m->step(c.before);
+      grown = m->step(c.after);
+      for (int k = 0; k < 200; ++k) after = m->step(c.after);
+      const StepOutput steadyBefore = steady->step(c.before), steadyAfter = steady->step(c.after);
+      const bool alongX = c.before.xi != 0.0;
+      const double ratio = alongX ? after.fx / before.fx : after.fy / before.fy,
+                   want =
+                       alongX ? steadyAfter.fx / steadyBefore.fx : steadyAfter.fy / steadyBefore.fy;
+      EXPECT_NEAR(ratio, want, 0.01 * want) << model << ", " << c.what;
+      if (c.after.a == 2 * a0) {
+        EXPECT_NEAR(ratio, 4.0, 0.04) << model;
+      }
+      EXPECT_EQ(grown.status, StepStatus::kOk) << model << ", " << c.what;
+      EXPECT_NE(std::string(grown.message).find("grew"), std::string::npos)
+          << model << ", " << c.what << ": " << grown.message;
+      EXPECT_STREQ(after.message, "") << model << ", " << c.what;
+    }
+  }
+}
+
+TEST(StepGeometry, TheFixedMeshGrowsWithTheHistoryCarriedAndStaysGrownUntilReset) {
+  // As NssCarriesItsHistoryAcrossAStepOfAOverB, with the default fz_max: the new patch (b2 =
+  // 1.46 b0) is wider than the mesh (1.14 b0), which grows. The history carried over, the force
+  // neither drops towards a fresh start's nor jumps; it settles on steady FastSim's.
+  const double area = 6e-3 * 4e-3, a1 = std::sqrt(area * 1.4), b1 = std::sqrt(area / 1.4),
+               a2 = std::sqrt(area * 0.7), b2 = std::sqrt(area / 0.7);
+  for (const char* model : {"nss", "shen-li"}) {
+    NssModel m(params(model), ChiTable::shipped()), fresh(params(model), ChiTable::shipped());
+    SteadyModel steady(params("steady"));
+    const double sizedA = m.mesh().a(), sizedB = m.mesh().b();
+    ASSERT_LT(sizedB, b2);
+    StepOutput before, after, last;
+    for (int k = 0; k < 200; ++k) before = m.step(withPatch(rolling(1e-3, 1e-3), a1, b1));
+    after = m.step(withPatch(rolling(1e-3, 1e-3), a2, b2));
+    EXPECT_GE(m.mesh().b(), b2) << model;
+    const StepOutput first = fresh.step(withPatch(rolling(1e-3, 1e-3), a2, b2));
+    EXPECT_LT(first.fy / before.fy, 0.7) << model;  // what a cleared history would give
+    EXPECT_GT(after.fx / before.fx, 0.8) << model;
+    EXPECT_GT(after.fy / before.fy, 0.8) << model;
+    EXPECT_LT(after.fx / before.fx, 1.1) << model;
+    EXPECT_LT(after.fy / before.fy, 1.1) << model;
+    for (int k = 0; k < 200; ++k) last = m.step(withPatch(rolling(1e-3, 1e-3), a2, b2));
+    const StepOutput want = steady.step(withPatch(rolling(1e-3, 1e-3), a2, b2));
+    EXPECT_NEAR(last.fx, want.fx, 0.03 * std::abs(want.fx)) << model;
+    EXPECT_NEAR(last.fy, want.fy, 0.03 * std::abs(want.fy)) << model;
+    // Back to the first patch: the mesh stays as grown.
+    const double grownA = m.mesh().a(), grownB = m.mesh().b();
+    m.step(withPatch(rolling(1e-3, 1e-3), a1, b1));
+    EXPECT_EQ(m.mesh().a(), grownA) << model;
+    EXPECT_EQ(m.mesh().b(), grownB) << model;
+    // reset() and a loss of contact clear the history and give the mesh its own size again.
+    m.reset();
+    EXPECT_EQ(m.mesh().a(), sizedA) << model;
+    EXPECT_EQ(m.mesh().b(), sizedB) << model;
+    m.step(withPatch(rolling(1e-3, 1e-3), a2, b2));
+    EXPECT_GT(m.mesh().b(), sizedB) << model;
+    m.step(rolling(1e-3, 1e-3, 0.0, 0.0));
+    EXPECT_EQ(m.mesh().b(), sizedB) << model;
+  }
 }
 
 TEST(StepGeometry, ExactHonoursTheStepPatchAndRejectsOneBeyondItsGrid) {

@@ -31,6 +31,9 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi,
   const HertzEllipse largest = ref_.at(adaptive_ ? p.fz0 : effectiveFzMax(p));
   mesh_ = PatchMesh(p.nx, p.ny, largest.a, largest.b);
   spare_ = mesh_;
+  sizedA_ = largest.a;
+  sizedB_ = largest.b;
+  growthMargin_ = std::max(1.0, std::cbrt(effectiveFzMax(p) / p.fz0));
   state_.resize(mesh_.size());
   remapped_.resize(mesh_.size());
   // Calibrated: x and y run different filters under a single creepage kind (spin: x on chi11, y on
@@ -85,10 +88,34 @@ void NssModel::reshapeHistory(const HertzEllipse& h) {
   // the history across the patch by b_new/b_old with the force it carries (a/b 1.4 -> 0.7 at the
   // same area: +35 % in Fy at once). So the history is carried at fixed physical coordinates
   // (paper eq. 19) into the new patch, and the march then runs on it in place.
-  spare_.scale(h.a, h.b);
+  carryHistoryOnto(h.a, h.b);
+}
+
+void NssModel::carryHistoryOnto(double a, double b) {
+  spare_.scale(a, b);
   remapState(mesh_, state_, spare_, &remapped_);
   std::swap(state_, remapped_);
-  mesh_.scale(h.a, h.b);
+  mesh_.scale(a, b);
+}
+
+void NssModel::resizeMesh(double a, double b) {
+  mesh_.scale(a, b);
+  // A patch equal to the mesh up to rounding (fz = fz_max) fits: it fills the mesh.
+  fitsA_ = a * (1 + 1e-12);
+  fitsB_ = b * (1 + 1e-12);
+}
+
+void NssModel::growMesh(const HertzEllipse& h, bool carry) {
+  // Grown with the margin the mesh was given over the patch at fz0, so that a patch which keeps
+  // growing regrows seldom, and a patch of a0/b0's shape keeps the node density it had there (a
+  // patch doubled at the same load and a/b gives four times the force, as on the adaptive mesh).
+  const double a = std::max(mesh_.a(), growthMargin_ * h.a),
+               b = std::max(mesh_.b(), growthMargin_ * h.b);
+  if (carry && lastA_ > 0.0) carryHistoryOnto(a, b);  // lastA_ == 0: no history yet
+  resizeMesh(a, b);
+  // The history now sits on other nodes: the trailing nodes the patch newly covers on this step
+  // keep what the carrying gave them (coverTrailingNodes copies nothing this once).
+  std::fill(firstBefore_.begin(), firstBefore_.end(), 0);
 }
 
 void NssModel::dropSecondState() {
@@ -117,7 +144,10 @@ void NssModel::reset() {
   opposed_ = -1.0;
   std::fill(firstBefore_.begin(), firstBefore_.end(), p_.nx);  // no node loaded
   frame_.reset();
-  if (adaptive_) mesh_.scale(ref_.a0, ref_.b0);
+  if (adaptive_)
+    mesh_.scale(ref_.a0, ref_.b0);
+  else
+    resizeMesh(sizedA_, sizedB_);  // a grown mesh too: there is no history left to hold
 }
 
 StepOutput NssModel::hold(StepStatus status, const char* why) const {
@@ -310,18 +340,18 @@ bool NssModel::screen(const StepInput& given, StepInput* in, HertzEllipse* h, St
   return true;
 }
 
-StepOutput NssModel::finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h) {
+StepOutput NssModel::finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h,
+                            bool grew) {
   StepOutput out = stepOutput(f, in.fz, h.a, h.b);
   frame_.toContact(&out);
   if (!adaptive_) {
-    if (h.a > mesh_.a() * (1 + 1e-12))
-      out.message = in.a != 0.0 ? "the step's patch exceeds the fixed mesh (sized for fz_max at "
-                                  "a0, b0): the patch is clipped to it"
-                                : "fz exceeds fz_max: the patch is clipped to the fixed mesh";
-    else if (h.b > mesh_.b() * (1 + 1e-12))
-      out.message =
-          "the step's patch exceeds the fixed mesh (sized for fz_max at a0, b0): the patch is "
-          "clipped to it";
+    if (grew)
+      out.message = in.a != 0.0
+                        ? "the step's patch exceeds the fixed mesh (sized for fz_max at a0, b0): "
+                          "the mesh grew to hold it, the history carried over (grown until reset "
+                          "or loss of contact)"
+                        : "fz exceeds fz_max: the fixed mesh grew to hold the patch, the history "
+                          "carried over (grown until reset or loss of contact)";
     // A fixed mesh sized far above the load leaves the patch a node or two: the force is then
     // coarse (29 % off at 2 nodes) or zero (inside one element), so say so.
     else if (std::min(h.a / mesh_.a() * p_.nx, h.b / mesh_.b() * p_.ny) < 4.0)
@@ -340,6 +370,8 @@ StepOutput NssModel::steadyStep(const StepInput& given) {
   if (!screen(given, &in, &h, &out)) return out;
   reshaped_ = false;
   if (meshMustFollow(h)) mesh_.scale(h.a, h.b);  // no carry: the history is overwritten below
+  const bool grew = outgrowsMesh(h);
+  if (grew) growMesh(h, false);
   followBranch(in, -1.0, h.a);
   const CalibratedStep cal = calibrated(h, in);
   boundOn(mesh_, h, in, cal.boundShape);
@@ -356,7 +388,7 @@ StepOutput NssModel::steadyStep(const StepInput& given) {
   state_.sx().setZero();
   state_.sy().setZero();
   if (secondOrder_) dropSecondState();
-  return finish(f, in, h);
+  return finish(f, in, h, grew);
 }
 
 StepOutput NssModel::steadyAlongside(const StepInput& given) {
@@ -378,10 +410,12 @@ StepOutput NssModel::step(const StepInput& given) {
   if (!screen(given, &in, &h, &out)) return out;
   if (reshaped_ && adaptive_ && lastA_ > 0.0) reshapeHistory(h);
   reshaped_ = false;
+  const bool grew = outgrowsMesh(h);
+  if (grew) growMesh(h, true);
   const bool moves = patchMoves(h);
   const CreepForces f = advance(in, h, moves);
   if (moves) adoptMovedPatch();
-  return finish(f, in, h);
+  return finish(f, in, h, grew);
 }
 
 }  // namespace wheel_rail_contact

@@ -4,6 +4,15 @@
 /// the patch, moved only when a(t), b(t) change, the history carried along the strips). V < 0
 /// marches the mirror image, the history mirrored at each reversal (rolling_direction.hpp). Units
 /// as in contact_model.hpp.
+///
+/// The fixed mesh never clips a patch: a step whose patch (a load above fz_max, or its own a, b)
+/// is longer or wider than the mesh grows the mesh to m times the patch along each axis that needs
+/// it, m = (fz_max / fz0)^(1/3) (at least 1; the margin the mesh has over the patch at fz0), and
+/// carries the history over at fixed physical coordinates (remapState, as the adaptive mesh does
+/// for a new a/b). That step has status kOk and says so in its message. The mesh stays grown until
+/// reset() or a loss of contact (which clears the history anyway): shrinking it back when the
+/// patch does would remap the history again, and a load oscillating about the threshold would
+/// remap it at every crossing.
 #pragma once
 
 #include <vector>
@@ -58,7 +67,8 @@ class NssModel : public ContactModel {
   double historyScale(double a) const;
   void keepRatePerTravel(double speed);
   void updateWeights(const Creepages& c, double a, double b);
-  StepOutput finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h);
+  /// `grew`: the fixed mesh grew on this step (said in the message).
+  StepOutput finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h, bool grew);
   void chooseFilters(const Creepages& c, double a, double b, double V, double dt);
   StepOutput hold(StepStatus status, const char* why) const;
 
@@ -94,6 +104,17 @@ class NssModel : public ContactModel {
   /// Adaptive mesh after a new a/b: the history carried at fixed physical coordinates into the
   /// patch h, the mesh moved onto it.
   void reshapeHistory(const HertzEllipse& h);
+  /// The mesh re-sized to semi-axes (a, b), the history carried at fixed physical coordinates.
+  void carryHistoryOnto(double a, double b);
+  /// Fixed mesh: the patch h is longer or wider than the mesh.
+  bool outgrowsMesh(const HertzEllipse& h) const {
+    return !adaptive_ && (h.a > fitsA_ || h.b > fitsB_);
+  }
+  /// Fixed mesh: grows it to hold the patch h (with the margin growthMargin_); `carry`: the history
+  /// carried over (else it is about to be overwritten).
+  void growMesh(const HertzEllipse& h, bool carry);
+  /// Fixed mesh: the mesh's own size again (a fresh model's).
+  void resizeMesh(double a, double b);
   bool reshaped_ = false;  // a/b changed since the last march (followAOverB)
   /// Drops the second filter state of both history buffers (first order from now on).
   void dropSecondState();
@@ -118,6 +139,10 @@ class NssModel : public ContactModel {
   RollingFrame frame_;        // the mirror while rolling backwards
   bool secondOrder_ = false;  // the last step marched s2: state_.s2x/s2y (remapped_'s) may be != 0
   bool handingOn_ = false;    // this step marches s2 only to hand it on into s1 (spin stopped)
+  double sizedA_ = 0.0, sizedB_ = 0.0;  // the mesh's size at construction (reset() restores it)
+  // Fixed mesh: the largest patch it holds (its size, rounding allowed for), and how much larger
+  // than the patch that outgrows it the mesh grows.
+  double fitsA_ = 0.0, fitsB_ = 0.0, growthMargin_ = 1.0;
 };
 
 }  // namespace wheel_rail_contact

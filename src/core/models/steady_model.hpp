@@ -13,9 +13,9 @@ namespace wheel_rail_contact {
 class SteadyModel : public ContactModel {
  public:
   /// Which mesh the march runs on: fitted to each step's patch (every node loaded; the model's
-  /// own choice), or NssModel's fixed mesh sized for fz_max, the patch clipped onto it and the
-  /// nodes outside it skipped (the same-mesh reference for nss on the fixed mesh in the
-  /// benchmarks).
+  /// own choice), or NssModel's fixed mesh as sized for fz_max, the nodes outside the patch
+  /// skipped (the same-mesh reference for nss on the fixed mesh in the benchmarks); unlike
+  /// NssModel's it never grows: a patch beyond it is clipped onto it.
   enum class Mesh { kFittedToPatch, kSizedForFzMax };
   /// `calibration`: the calibrated FastSim's table (empty: classic FastSim); of several meshes,
   /// the one nearest p.nx (CalibrationTable::forMesh).
