@@ -1,0 +1,39 @@
+# The ROS-free core library wheel_rail_contact_core (Eigen only): its sources, compile flags and the
+# tables compiled into it, in one place for every build that compiles it: the package
+# (CMakeLists.txt, catkin or plain CMake) and the fuzz build (test/fuzz). Also sets WRC_WARNINGS,
+# the warnings every target of ours builds clean with. The library is shared or static as
+# BUILD_SHARED_LIBS says (catkin and the plain package: shared; the fuzz build: static).
+get_filename_component(WRC_ROOT ${CMAKE_CURRENT_LIST_DIR}/.. ABSOLUTE)
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+
+# CI adds -Werror (WRC_WERROR=ON).
+option(WRC_WERROR "Treat compiler warnings as errors (CI)" OFF)
+set(WRC_WARNINGS -Wall -Wextra -Wshadow)
+if(WRC_WERROR)
+  list(APPEND WRC_WARNINGS -Werror)
+endif()
+
+file(GLOB_RECURSE WRC_CORE_SOURCES CONFIGURE_DEPENDS ${WRC_ROOT}/src/core/*.cpp)
+# Tables shipped inside the library (shippedTable(name)): no data file to find once installed.
+include(${WRC_ROOT}/cmake/shipped_tables.cmake)  # sets WRC_SHIPPED_TABLES
+wrc_generate_shipped_tables(${CMAKE_CURRENT_BINARY_DIR}/generated/shipped_tables_data.cpp
+  ${WRC_ROOT}/config ${WRC_SHIPPED_TABLES})
+add_library(wheel_rail_contact_core ${WRC_CORE_SOURCES}
+  ${CMAKE_CURRENT_BINARY_DIR}/generated/shipped_tables_data.cpp)
+# Installed and imported as wheel_rail_contact::core.
+set_target_properties(wheel_rail_contact_core PROPERTIES EXPORT_NAME core
+  POSITION_INDEPENDENT_CODE ON)
+target_include_directories(wheel_rail_contact_core PUBLIC
+  $<BUILD_INTERFACE:${WRC_ROOT}/include> $<INSTALL_INTERFACE:include>)
+# Private headers (march internals, the half-space solver, the model classes) live beside their
+# sources as "core/...": visible to the core, the validation library, tools, benchmarks and tests.
+target_include_directories(wheel_rail_contact_core PRIVATE ${WRC_ROOT}/src)
+target_link_libraries(wheel_rail_contact_core PUBLIC Eigen3::Eigen)
+target_compile_options(wheel_rail_contact_core PRIVATE ${WRC_WARNINGS})
+# The time-term march (doc/performance.md): GCC's default inlining budget for the file runs out
+# before the carried march's inner calls, and it turns the per-strip runs of stores outside the
+# patch into memset calls, both slower per step. Neither changes results.
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  set_source_files_properties(${WRC_ROOT}/src/core/fastsim/transient_fastsim.cpp PROPERTIES
+    COMPILE_OPTIONS "--param=inline-unit-growth=400;-fno-tree-loop-distribute-patterns")
+endif()
