@@ -19,7 +19,7 @@ packages=(g++ make cmake catkin libroscpp-dev ros-message-generation
   libeigen3-dev libgtest-dev librostest-dev python3-rostest python3-std-msgs python3-geometry-msgs
   rosbash python3-rostopic python3-rosservice python3-rosnode ros-message-runtime
   libdiagnostic-updater-dev libnodeletlib-dev libnodeletlib-tools
-  libyaml-cpp-dev libbenchmark-dev libfftw3-dev
+  libyaml-cpp-dev libbenchmark-dev libfftw3-dev libhwy-dev
   python3-matplotlib python3-yaml python3-numpy clang-format
   librosbag-storage-dev python3-rosbag  # rostest pairing: writes a bag, plays it
   clang libclang-rt-14-dev)  # clang + its runtime: libFuzzer (scripts/run_fuzz.sh)
