@@ -165,9 +165,10 @@ HWY_NOINLINE int steadyLanes(steady::SteadyStrip<kCoupled>* S, int* from, int n,
 
 // The steady march in lanes, four strips at a time in centre-out order (PatchMesh::centreOutStrip):
 // on a mesh larger than the patch a group's strips are then about as long, and the lanes march
-// most of their nodes together. A strip with no loaded node is only finished; one, two or three
-// left over at the edges go one strip at a time, as do a group's first nodes and what its longer
-// strips have left. The sums are added in strip order at the end, as one strip at a time.
+// most of their nodes together. A strip with no loaded node is only finished; two or three left
+// over at the edges go in the lanes too (the lanes past them repeating the last), one alone one
+// strip at a time, as do a group's first nodes and what its longer strips have left. The sums are
+// added in strip order at the end, as one strip at a time.
 template <bool kCoupled>
 CreepForces steadyInLanes(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
                           TractionField* f) {
@@ -195,17 +196,26 @@ CreepForces steadyInLanes(const PatchMesh& mesh, const Flexibilities& L, const C
       S[q] = m.strip(js[q]);
       at[q] = f->entry[js[q]].first;
     }
-    if (count == kLanes) {
+    if (count >= 2) {
+      // Lanes past `count` repeat the last strip: the same values to the same nodes.
+      auto repeatLast = [&] {
+        for (int q = count; q < kLanes; ++q) {
+          S[q] = S[count - 1];
+          at[q] = at[count - 1];
+        }
+      };
       int n = std::numeric_limits<int>::max();
-      for (int q = 0; q < kLanes; ++q) {
+      for (int q = 0; q < count; ++q) {
         const StripEntry& e = f->entry[js[q]];
         S[q].node(at[q]++, e.h, xn, out);  // loaded: at least one node
         n = std::min(n, nx - e.first - at[q]);
       }
+      repeatLast();
       while (n > 0) {
         n -= steadyLanes(S, at, n, xn, out);
         if (n == 0) break;
-        for (int q = 0; q < kLanes; ++q) S[q].node(at[q]++, S[q].dx, xn, out);  // the tiny path
+        for (int q = 0; q < count; ++q) S[q].node(at[q]++, S[q].dx, xn, out);  // the tiny path
+        repeatLast();
         --n;
       }
     }
@@ -577,8 +587,8 @@ HWY_NOINLINE int transientLanes(Lanes* lanes, bool entry, int n, const Reader& r
 // centre-out order: on a fixed mesh a strip's loaded length falls with |y|, so a group's strips
 // are about as long, and on the adaptive mesh all are. A group's constants are set up in the lanes
 // (start), its first loaded nodes marched in them; a lane whose strip ends repeats one that still
-// marches. The one or two strips left over at the edges go one strip at a time, as do the nodes
-// where the lanes stop. The strips' sums are added in strip order at the end.
+// marches. A strip left over alone at the edges goes one strip at a time, as do the nodes where
+// the lanes stop. The strips' sums are added in strip order at the end.
 template <bool kSecond, bool kResidualAlongTraction, class Source>
 CreepForces transientInLanes(const transient::TransientStep& step, const Source& source) {
   using March = transient::TransientMarch<kSecond, kResidualAlongTraction, Source>;
@@ -664,10 +674,10 @@ CreepForces transientInLanes(const transient::TransientStep& step, const Source&
       ++count;
     }
     if (count == 0) break;
-    // The last, outermost one or two strips one at a time: a node-row of the lanes costs about
+    // A last, outermost strip alone goes one strip at a time: a node-row of the lanes costs about
     // what it costs with four live lanes.
-    if (count <= 2) {
-      for (int q = 0; q < count; ++q) stripSums[lanes.strip[q]] = marchOne(lanes.strip[q]);
+    if (count == 1) {
+      stripSums[lanes.strip[0]] = marchOne(lanes.strip[0]);
       break;
     }
     for (int q = count; q < kLanes; ++q) {  // the group's last lanes repeat its last strip
