@@ -5,6 +5,7 @@
 # source tree in the devel space. (Without catkin, cmake/wheel_rail_contactConfig.cmake.in.)
 include(CMakeFindDependencyMacro)
 find_dependency(Eigen3 3.3 NO_MODULE)
+find_dependency(hwy 1.0)  # a static core links it (LINK_ONLY)
 if(NOT TARGET wheel_rail_contact::core)
   include(${wheel_rail_contact_DIR}/wheel_rail_contactTargets.cmake)
 endif()

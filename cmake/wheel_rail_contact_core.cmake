@@ -1,10 +1,13 @@
-# The ROS-free core library wheel_rail_contact_core (Eigen only): its sources, compile flags and the
+# The ROS-free core library wheel_rail_contact_core (Eigen and Highway): its sources, compile flags and the
 # tables compiled into it, in one place for every build that compiles it: the package
 # (CMakeLists.txt, catkin or plain CMake) and the fuzz build (test/fuzz). Also sets WRC_WARNINGS,
 # the warnings every target of ours builds clean with. The library is shared or static as
 # BUILD_SHARED_LIBS says (catkin and the plain package: shared; the fuzz build: static).
 get_filename_component(WRC_ROOT ${CMAKE_CURRENT_LIST_DIR}/.. ABSOLUTE)
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+# Highway (libhwy-dev): the marches' vector path (src/core/fastsim/strip_lanes.cpp), its target
+# chosen at run time. Private: no public header of ours includes it.
+find_package(hwy 1.0 REQUIRED)
 
 # CI adds -Werror (WRC_WERROR=ON).
 option(WRC_WERROR "Treat compiler warnings as errors (CI)" OFF)
@@ -28,12 +31,11 @@ target_include_directories(wheel_rail_contact_core PUBLIC
 # Private headers (march internals, the half-space solver, the model classes) live beside their
 # sources as "core/...": visible to the core, the validation library, tools, benchmarks and tests.
 target_include_directories(wheel_rail_contact_core PRIVATE ${WRC_ROOT}/src)
-target_link_libraries(wheel_rail_contact_core PUBLIC Eigen3::Eigen)
+target_link_libraries(wheel_rail_contact_core PUBLIC Eigen3::Eigen PRIVATE hwy::hwy)
 target_compile_options(wheel_rail_contact_core PRIVATE ${WRC_WARNINGS})
-# The time-term march (doc/performance.md): GCC's default inlining budget for the file runs out
-# before the carried march's inner calls, and it turns the per-strip runs of stores outside the
-# patch into memset calls, both slower per step. Neither changes results.
+# TransientStorage::lazyBefore writes each strip's few nodes outside the patch; GCC turns those
+# runs of stores into memset calls, dearer per step (doc/performance.md). Results are the same.
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   set_source_files_properties(${WRC_ROOT}/src/core/fastsim/transient_fastsim.cpp PROPERTIES
-    COMPILE_OPTIONS "--param=inline-unit-growth=400;-fno-tree-loop-distribute-patterns")
+    COMPILE_OPTIONS "-fno-tree-loop-distribute-patterns")
 endif()

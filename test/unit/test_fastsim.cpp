@@ -265,51 +265,61 @@ TEST(SteadyFastSim, EveryStripMarchesAsIfAloneWhateverItsPartner) {
   }
 }
 
-TEST(SteadyFastSim, CoupledLanesMarchBitForBitAsOneStripAtATime) {
-  // The coupled (calibrated) march takes four strips at a time in AVX's lanes in centre-out order
-  // (the one to three left over at the edges as scalars, the sums added in strip order), the
-  // strips' first nodes and what a group's shorter strips leave one strip at a time, and stops for
-  // the nodes StripSums::node's tiny path takes. Each strip must come out exactly as from the
-  // scalar march: tractions, slip flags and forces equal bit for bit, on a mesh fitted to the patch
-  // and on one larger than it (strips of different lengths, the outermost unloaded), strip counts
-  // that leave one to three after the groups of four, with spin, eta's drive's slope, zero
-  // creepage (the tiny path) and a bound next to zero (the lanes' stop).
-  if (!fourStripLanesAvailable()) GTEST_SKIP() << "this CPU has no AVX: no lanes";
+TEST(SteadyFastSim, LanesMarchAsOneStripAtATime) {
+  // The march takes four strips at a time in vector lanes (strip_lanes.hpp) in centre-out order
+  // (the one to three left over at the edges one strip at a time, the sums added in strip order),
+  // the strips' first nodes and what a group's longer strips leave one strip at a time, and stops
+  // for the nodes StripSums::node's tiny path takes. Each strip must come out as from the scalar
+  // reference, on a mesh fitted to the patch and on one larger than it (strips of different
+  // lengths, the outermost unloaded), strip counts that leave one to three after the groups of
+  // four, classic and coupled (calibrated), with spin, eta's drive's slope, zero creepage (the tiny
+  // path) and a bound next to zero (the lanes' stop). Within 1e-12 relative, not bit for bit: the
+  // lanes fuse multiply-adds (tractions against the largest bound, forces against mu fz); slip
+  // flags and adhesion fractions equal.
+  if (!stripLanesAvailable()) GTEST_SKIP() << "this CPU has no lanes";
   const Patch p;
   Flexibilities L = kalkerFlexibilities(p.a, p.b, p.G, kalkerCoefficients(p.a / p.b, p.nu));
-  L.lateralCoupling = -3e4;
   int slipping = 0, stuck = 0, tiny = 0;
-  for (const double k : {1.0, std::cbrt(1.5)})
-    for (const int n : {5, 10, 23})
-      for (const int ny : {n, n + 2}) {
-        const PatchMesh mesh(n, ny, k * p.a, k * p.b);
-        for (int step = 0; step < 24; ++step) {
-          TractionField fl, fs;
-          for (TractionField* f : {&fl, &fs}) {
-            f->resize(mesh.size());
-            parabolicBound(mesh, p.a, p.b, p.fz * (1.0 - 0.02 * step), p.mu, f);
-            if (step % 6 == 5) f->bound(mesh.index(n / 2, ny / 2)) = 1e-160;
-          }
-          const double w = step % 8 == 0 ? 0.0 : 1.0;
-          const Creepages c{w * 1.5e-3 * std::cos(step / 3.0), w * 8e-4 * std::sin(step / 2.0),
-                            w * 0.4 * std::sin(step / 5.0)};
-          L.etaSlope = step % 2 == 0 ? 0.0 : 40.0;
-          L.etaGain = step % 2 == 0 ? 1.0 : 1.1;
-          const CreepForces x = steadyFastSim(mesh, L, c, &fl, FourStripLanes::kAuto);
-          const CreepForces y = steadyFastSim(mesh, L, c, &fs, FourStripLanes::kOff);
-          ASSERT_EQ(x.fx, y.fx) << k << " " << n << " " << ny << " " << step;
-          ASSERT_EQ(x.fy, y.fy) << k << " " << n << " " << ny << " " << step;
-          ASSERT_EQ(x.mz, y.mz) << k << " " << n << " " << ny << " " << step;
-          ASSERT_EQ(x.adhesionFraction, y.adhesionFraction) << k << n << ny << step;
-          ASSERT_TRUE((fl.tx == fs.tx).all() && (fl.ty == fs.ty).all()) << k << n << ny << step;
-          ASSERT_TRUE((fl.slip == fs.slip).all()) << k << " " << n << " " << ny << " " << step;
-          for (int i = 0; i < mesh.size(); ++i) {
-            if (fl.bound(i) <= 0.0) continue;
-            ++(fl.slip(i) ? slipping : stuck);
-            tiny += fl.tx(i) == 0.0 && fl.ty(i) == 0.0;
+  for (const double coupling : {-3e4, 0.0})
+    for (const double k : {1.0, std::cbrt(1.5)})
+      for (const int n : {5, 10, 23})
+        for (const int ny : {n, n + 2}) {
+          const PatchMesh mesh(n, ny, k * p.a, k * p.b);
+          L.lateralCoupling = coupling;
+          for (int step = 0; step < 24; ++step) {
+            TractionField fl, fs;
+            const double fz = p.fz * (1.0 - 0.02 * step);
+            for (TractionField* f : {&fl, &fs}) {
+              f->resize(mesh.size());
+              parabolicBound(mesh, p.a, p.b, fz, p.mu, f);
+              if (step % 6 == 5) f->bound(mesh.index(n / 2, ny / 2)) = 1e-160;
+            }
+            const double w = step % 8 == 0 ? 0.0 : 1.0;
+            const Creepages c{w * 1.5e-3 * std::cos(step / 3.0), w * 8e-4 * std::sin(step / 2.0),
+                              w * 0.4 * std::sin(step / 5.0)};
+            L.etaSlope = step % 2 == 0 ? 0.0 : 40.0;
+            L.etaGain = step % 2 == 0 ? 1.0 : 1.1;
+            const CreepForces x = steadyFastSim(mesh, L, c, &fl, StripLanes::kOn);
+            const CreepForces y = steadyFastSim(mesh, L, c, &fs, StripLanes::kOff);
+            const double muFz = p.mu * fz, bound = fl.bound.maxCoeff();
+            const auto at = [&] {
+              return ::testing::Message()
+                     << coupling << " " << k << " " << n << " " << ny << " " << step;
+            };
+            ASSERT_NEAR(x.fx, y.fx, 1e-12 * muFz) << at();
+            ASSERT_NEAR(x.fy, y.fy, 1e-12 * muFz) << at();
+            ASSERT_NEAR(x.mz, y.mz, 1e-12 * muFz * p.a) << at();
+            ASSERT_EQ(x.adhesionFraction, y.adhesionFraction) << at();
+            ASSERT_LE((fl.tx - fs.tx).abs().maxCoeff(), 1e-12 * bound) << at();
+            ASSERT_LE((fl.ty - fs.ty).abs().maxCoeff(), 1e-12 * bound) << at();
+            ASSERT_TRUE((fl.slip == fs.slip).all()) << at();
+            for (int i = 0; i < mesh.size(); ++i) {
+              if (fl.bound(i) <= 0.0) continue;
+              ++(fl.slip(i) ? slipping : stuck);
+              tiny += fl.tx(i) == 0.0 && fl.ty(i) == 0.0;
+            }
           }
         }
-      }
   // Both branches of a node and the tiny path were marched.
   EXPECT_GT(slipping, 1000);
   EXPECT_GT(stuck, 1000);

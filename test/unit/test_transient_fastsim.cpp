@@ -114,8 +114,11 @@ TEST(AlongStripMap, GrowingPatchGivesZeroBeyondTheOldStripEnds) {
   EXPECT_GE(out.tx().minCoeff(), 0.0);
 }
 
-TEST(AlongStripMap, FusedStepEqualsCarryThenStepBitForBit) {
-  // Second order: zy carries the fitted spin F, and the history a second state.
+TEST(AlongStripMap, FusedStepEqualsCarryThenStep) {
+  // Second order: zy carries the fitted spin F, and the history a second state. Within 1e-12
+  // relative, not bit for bit, where the march runs in vector lanes (strip_lanes.hpp): they fuse
+  // the carry's multiply-adds, remapAlongStrips does not (forces against mu fz, the history
+  // against each row's largest); bit for bit one strip at a time.
   for (const bool second : {false, true}) {
     PatchMesh old(14, 12, 6e-3, 4e-3), now = old;
     now.scale(1.03 * 6e-3, 1.03 * 4e-3);
@@ -144,9 +147,25 @@ TEST(AlongStripMap, FusedStepEqualsCarryThenStepBitForBit) {
         transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, map, previous, &a, &fused);
     remapAlongStrips(map, previous, old.ny(), &b);
     const CreepForces fb = transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, &b, &separate);
-    EXPECT_EQ(fa.fx, fb.fx);
-    EXPECT_EQ(fa.fy, fb.fy);
-    EXPECT_EQ(fa.mz, fb.mz);
+    const double muFz = 0.3 * 8e4;
+    EXPECT_NEAR(fa.fx, fb.fx, 1e-12 * muFz);
+    EXPECT_NEAR(fa.fy, fb.fy, 1e-12 * muFz);
+    EXPECT_NEAR(fa.mz, fb.mz, 1e-12 * muFz * now.a());
+    const auto near = [](const auto& u, const auto& v) {
+      return (u - v).abs().maxCoeff() <= 1e-12 * v.abs().maxCoeff();
+    };
+    EXPECT_TRUE(near(a.tx(), b.tx()) && near(a.sy(), b.sy()));
+    EXPECT_TRUE(near(a.s2y(), b.s2y()) && near(a.s2x(), b.s2x()));
+    // One strip at a time, bit for bit.
+    a.setStripLanes(TransientState::StripLanes::kOff);
+    b.setStripLanes(TransientState::StripLanes::kOff);
+    const CreepForces ga =
+        transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, map, previous, &a, &fused);
+    remapAlongStrips(map, previous, old.ny(), &b);
+    const CreepForces gb = transientFastSim(now, L, c, 20.0, 5e-5, zx, zy, 0.97, &b, &separate);
+    EXPECT_EQ(ga.fx, gb.fx);
+    EXPECT_EQ(ga.fy, gb.fy);
+    EXPECT_EQ(ga.mz, gb.mz);
     EXPECT_TRUE((a.tx() == b.tx()).all() && (a.sy() == b.sy()).all());
     EXPECT_TRUE((a.s2y() == b.s2y()).all() && (a.s2x() == b.s2x()).all());
     // The carried s2 reaches s: a second-order step with and without it differs.
@@ -259,82 +278,99 @@ TEST(TransientFastSim, OutsideStatesHeldDecayedEqualTheFullUpdate) {
   EXPECT_LT((lazy.tx() - full.tx()).abs().maxCoeff(), 1e-9 * (full.tx().abs().maxCoeff() + 1.0));
 }
 
-TEST(TransientFastSim, FourStripLanesMarchBitForBitAsTwoStrips) {
-  // The residual-along-traction march takes four strips at a time in AVX's lanes (groups of four
-  // in centre-out order, a lane repeating another once its strip ends, a strip left over alone
-  // as a scalar) and stops for the nodes its guards send one strip at a time. Each strip
-  // must come out exactly as from the two-strip march: tractions, slip flags, filter states and
-  // forces equal bit for bit, on a fixed mesh larger than a patch whose load varies (strips of
-  // different lengths, edges moving), on carried steps (the adaptive mesh's path), first- and
-  // second-order filters, x and y on different filters, with spin, with the lateral coupling and
-  // without, with a history scale, through zero creepage (the tiny path) and a bound next to zero
-  // (the lanes' stop).
-  if (!fourStripLanesAvailable()) GTEST_SKIP() << "this CPU has no AVX: only the two-strip march";
+TEST(TransientFastSim, LanesMarchAsOneStripAtATime) {
+  // The march takes four strips at a time in vector lanes (strip_lanes.hpp: groups of four in
+  // centre-out order, a lane repeating another once its strip ends, the one or two strips left
+  // over one at a time) and stops for the nodes its guards send one strip at a time. Each strip
+  // must come out as from the scalar reference (one strip at a time), on a fixed mesh larger than
+  // a patch whose load varies (strips of different lengths, edges moving), on carried steps (the
+  // adaptive mesh's path), first- and second-order filters, x and y on different filters, both
+  // saturations, with spin, with the lateral coupling and without, with a history scale, through
+  // zero creepage (the tiny path) and a bound next to zero (the lanes' stop). Within 1e-12
+  // relative, not bit for bit: the lanes fuse multiply-adds (tractions against the largest bound,
+  // forces against mu fz, filter states against their largest); slip flags and adhesion fractions
+  // equal.
+  if (!stripLanesAvailable()) GTEST_SKIP() << "this CPU has no lanes: only the scalar reference";
   const double a0 = 6e-3, b0 = 4e-3, fz0 = 8e4, V = 20.0, dt = 5e-5;
   const Flexibilities L0 = kalkerFlexibilities(a0, b0, 8.2e10, kalkerCoefficients(a0 / b0, 0.28));
-  for (const bool second : {false, true})
-    for (const int n : {5, 11, 23}) {
-      const PatchMesh mesh(n, n + 2, std::cbrt(1.5) * a0, std::cbrt(1.5) * b0);
-      const FilterZ zx =
-          second ? discretise(SecondOrderChi{0.744200, 1.776235, 0.511910, 0.107313, 0.021463}, a0,
-                              V, dt)
-                 : discretise(ChiParameters{0.4, 1.1, 0.6}, a0, V, dt);
-      const FilterZ zy = discretise(ChiParameters{0.5, 1.0, 0.7}, a0, V, dt);
-      TransientState lanes, pairs, previous;
-      for (TransientState* s : {&lanes, &pairs}) {
-        s->resize(mesh.size());
-        s->setSaturation(TransientState::Saturation::kResidualAlongTraction);
-      }
-      lanes.setFourStripLanes(TransientState::FourStripLanes::kOn);
-      pairs.setFourStripLanes(TransientState::FourStripLanes::kOff);
-      TractionField fl, fp;
-      fl.resize(mesh.size());
-      fp.resize(mesh.size());
-      AlongStripMap map(mesh.nx());
-      int slipping = 0, stuck = 0;
-      for (int k = 0; k < 120; ++k) {
-        const double fz = fz0 * (1.0 + 0.45 * std::sin(2.0 * M_PI * k / 37.0));
-        const double s = std::cbrt(fz / fz0);
-        for (TractionField* f : {&fl, &fp}) {
-          parabolicBound(mesh, s * a0, s * b0, fz, 0.3, f);
-          // A bound next to zero: under zero creepage from rest (k = 1) the lanes stop there.
-          if (k == 1 || k == 61) f->bound(mesh.index(n / 2, n / 2)) = 1e-160;
+  using Saturation = TransientState::Saturation;
+  for (const Saturation saturation : {Saturation::kResidualAlongTraction, Saturation::kAlongGuess})
+    for (const bool second : {false, true})
+      for (const int n : {5, 11, 23}) {
+        const PatchMesh mesh(n, n + 2, std::cbrt(1.5) * a0, std::cbrt(1.5) * b0);
+        const FilterZ zx =
+            second ? discretise(SecondOrderChi{0.744200, 1.776235, 0.511910, 0.107313, 0.021463},
+                                a0, V, dt)
+                   : discretise(ChiParameters{0.4, 1.1, 0.6}, a0, V, dt);
+        const FilterZ zy = discretise(ChiParameters{0.5, 1.0, 0.7}, a0, V, dt);
+        TransientState lanes, scalar, previous;
+        for (TransientState* s : {&lanes, &scalar}) {
+          s->resize(mesh.size());
+          s->setSaturation(saturation);
         }
-        const double w = k % 40 < 4 ? 0.0 : 1.0;  // zero creepage now and then
-        const Creepages c{w * 1.5e-3 * std::cos(k / 9.0), w * 8e-4 * std::sin(k / 5.0),
-                          w * 0.4 * std::sin(k / 7.0)};
-        const double r = k % 25 == 0 ? 0.97 : 1.0;
-        // The lateral coupling (calibrated FastSim's) on every other step.
-        Flexibilities L = L0;
-        L.lateralCoupling = k % 2 == 0 ? -3e4 : 0.0;
-        CreepForces x, y;
-        if (k % 3 == 2) {  // carried, the patch stretched along the strips
-          map.set(k % 2 == 0 ? 0.95 : 1.04);
-          previous = lanes;
-          x = transientFastSim(mesh, L, c, V, dt, zx, zy, r, map, previous, &lanes, &fl);
-          previous = pairs;
-          y = transientFastSim(mesh, L, c, V, dt, zx, zy, r, map, previous, &pairs, &fp);
-        } else {
-          x = transientFastSim(mesh, L, c, V, dt, zx, zy, r, &lanes, &fl);
-          y = transientFastSim(mesh, L, c, V, dt, zx, zy, r, &pairs, &fp);
+        lanes.setStripLanes(TransientState::StripLanes::kOn);
+        scalar.setStripLanes(TransientState::StripLanes::kOff);
+        TractionField fl, fs;
+        fl.resize(mesh.size());
+        fs.resize(mesh.size());
+        AlongStripMap map(mesh.nx());
+        int slipping = 0, stuck = 0;
+        for (int k = 0; k < 120; ++k) {
+          const double fz = fz0 * (1.0 + 0.45 * std::sin(2.0 * M_PI * k / 37.0));
+          const double s = std::cbrt(fz / fz0);
+          for (TractionField* f : {&fl, &fs}) {
+            parabolicBound(mesh, s * a0, s * b0, fz, 0.3, f);
+            // A bound next to zero: under zero creepage from rest (k = 1) the lanes stop there.
+            if (k == 1 || k == 61) f->bound(mesh.index(n / 2, n / 2)) = 1e-160;
+          }
+          const double w = k % 40 < 4 ? 0.0 : 1.0;  // zero creepage now and then
+          const Creepages c{w * 1.5e-3 * std::cos(k / 9.0), w * 8e-4 * std::sin(k / 5.0),
+                            w * 0.4 * std::sin(k / 7.0)};
+          const double r = k % 25 == 0 ? 0.97 : 1.0;
+          // The lateral coupling (calibrated FastSim's) on every other step.
+          Flexibilities L = L0;
+          L.lateralCoupling = k % 2 == 0 ? -3e4 : 0.0;
+          CreepForces x, y;
+          if (k % 3 == 2) {  // carried, the patch stretched along the strips
+            map.set(k % 2 == 0 ? 0.95 : 1.04);
+            previous = lanes;
+            x = transientFastSim(mesh, L, c, V, dt, zx, zy, r, map, previous, &lanes, &fl);
+            previous = scalar;
+            y = transientFastSim(mesh, L, c, V, dt, zx, zy, r, map, previous, &scalar, &fs);
+          } else {
+            x = transientFastSim(mesh, L, c, V, dt, zx, zy, r, &lanes, &fl);
+            y = transientFastSim(mesh, L, c, V, dt, zx, zy, r, &scalar, &fs);
+          }
+          const auto at = [&] {
+            return ::testing::Message()
+                   << static_cast<int>(saturation) << " " << second << " " << n << " " << k;
+          };
+          const double muFz = 0.3 * fz, bound = fl.bound.maxCoeff();
+          ASSERT_NEAR(x.fx, y.fx, 1e-12 * muFz) << at();
+          ASSERT_NEAR(x.fy, y.fy, 1e-12 * muFz) << at();
+          ASSERT_NEAR(x.mz, y.mz, 1e-12 * muFz * a0) << at();
+          ASSERT_EQ(x.adhesionFraction, y.adhesionFraction) << at();
+          ASSERT_LE((fl.tx - fs.tx).abs().maxCoeff(), 1e-12 * bound) << at();
+          ASSERT_LE((fl.ty - fs.ty).abs().maxCoeff(), 1e-12 * bound) << at();
+          ASSERT_TRUE((fl.slip == fs.slip).all()) << at();
+          // The history: tractions against the bound, each filter state against its largest.
+          const auto near = [](const auto& u, const auto& v, double scale) {
+            return (u - v).abs().maxCoeff() <= 1e-12 * scale;
+          };
+          ASSERT_TRUE(near(lanes.tx(), scalar.tx(), bound) && near(lanes.ty(), scalar.ty(), bound))
+              << at();
+          ASSERT_TRUE(near(lanes.sx(), scalar.sx(), scalar.sx().abs().maxCoeff()) &&
+                      near(lanes.sy(), scalar.sy(), scalar.sy().abs().maxCoeff()) &&
+                      near(lanes.s2x(), scalar.s2x(), scalar.s2x().abs().maxCoeff()) &&
+                      near(lanes.s2y(), scalar.s2y(), scalar.s2y().abs().maxCoeff()))
+              << at();
+          for (int i = 0; i < mesh.size(); ++i)
+            if (fl.bound(i) > 0.0) (fl.slip(i) ? slipping : stuck) += 1;
         }
-        ASSERT_EQ(x.fx, y.fx) << second << n << k;
-        ASSERT_EQ(x.fy, y.fy) << second << n << k;
-        ASSERT_EQ(x.mz, y.mz) << second << n << k;
-        ASSERT_EQ(x.adhesionFraction, y.adhesionFraction) << second << n << k;
-        ASSERT_TRUE((fl.tx == fp.tx).all() && (fl.ty == fp.ty).all()) << second << n << k;
-        ASSERT_TRUE((fl.slip == fp.slip).all()) << second << n << k;
-        ASSERT_TRUE((lanes.tx() == pairs.tx()).all() && (lanes.ty() == pairs.ty()).all() &&
-                    (lanes.sx() == pairs.sx()).all() && (lanes.sy() == pairs.sy()).all() &&
-                    (lanes.s2x() == pairs.s2x()).all() && (lanes.s2y() == pairs.s2y()).all())
-            << second << n << k;
-        for (int i = 0; i < mesh.size(); ++i)
-          if (fl.bound(i) > 0.0) (fl.slip(i) ? slipping : stuck) += 1;
+        // Both regimes were marched.
+        EXPECT_GT(slipping, 100) << second << n;
+        EXPECT_GT(stuck, 100) << second << n;
       }
-      // Both regimes were marched.
-      EXPECT_GT(slipping, 100) << second << n;
-      EXPECT_GT(stuck, 100) << second << n;
-    }
 }
 
 TEST(TransientFastSim, CoupledMarchSettlesOnCoupledSteadyFastSim) {
@@ -363,8 +399,7 @@ TEST(TransientFastSim, CoupledMarchSettlesOnCoupledSteadyFastSim) {
   for (int k = 0; k < mesh.size(); ++k) slipping += steady.bound(k) > 0.0 && steady.slip(k);
   ASSERT_GT(slipping, mesh.size() / 10);
   const double element = 2.0 * a / mesh.nx(), muFz = mu * fz;
-  for (const auto lanes :
-       {TransientState::FourStripLanes::kOff, TransientState::FourStripLanes::kOn})
+  for (const auto lanes : {TransientState::StripLanes::kOff, TransientState::StripLanes::kOn})
     for (double steps : {0.3, 1.0, 4.0}) {
       const double dt = steps * element / V;
       const FilterZ zx = discretise(ChiParameters{0.4, 1.1, 0.6}, a, V, dt),
@@ -372,7 +407,7 @@ TEST(TransientFastSim, CoupledMarchSettlesOnCoupledSteadyFastSim) {
       TransientState st;
       st.resize(mesh.size());
       st.setSaturation(TransientState::Saturation::kResidualAlongTraction);
-      st.setFourStripLanes(lanes);
+      st.setStripLanes(lanes);
       CreepForces o;
       for (int k = 0; k < static_cast<int>(80.0 * a / (steps * element)); ++k)
         o = transientFastSim(mesh, L, c, V, dt, zx, zy, 1.0, &st, &f);
@@ -382,13 +417,13 @@ TEST(TransientFastSim, CoupledMarchSettlesOnCoupledSteadyFastSim) {
     }
 }
 
-TEST(TransientFastSim, FourStripLanesByDefaultFromFourNodesAStrip) {
+TEST(TransientFastSim, LanesByDefaultFromFourNodesAStrip) {
   TransientState s;
-  const bool avx = fourStripLanesAvailable();
-  EXPECT_FALSE(s.marchesFourStrips(TransientState::kFourStripLanesFromNodes - 1));
-  EXPECT_EQ(s.marchesFourStrips(TransientState::kFourStripLanesFromNodes), avx);
-  s.setFourStripLanes(TransientState::FourStripLanes::kOn);
-  EXPECT_EQ(s.marchesFourStrips(5), avx);
-  s.setFourStripLanes(TransientState::FourStripLanes::kOff);
-  EXPECT_FALSE(s.marchesFourStrips(40));
+  const bool lanes = stripLanesAvailable();
+  EXPECT_FALSE(s.marchesInLanes(TransientState::kLanesFromNodes - 1));
+  EXPECT_EQ(s.marchesInLanes(TransientState::kLanesFromNodes), lanes);
+  s.setStripLanes(TransientState::StripLanes::kOn);
+  EXPECT_EQ(s.marchesInLanes(2), lanes);
+  s.setStripLanes(TransientState::StripLanes::kOff);
+  EXPECT_FALSE(s.marchesInLanes(40));
 }

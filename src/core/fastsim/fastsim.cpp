@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <type_traits>
 
-// The coupled march's four strips in AVX lanes (chosen at run time); elsewhere two at a time.
-#include "core/fastsim/avx_lanes.hpp"
+#include "core/fastsim/steady_march.hpp"
+#include "core/fastsim/strip_lanes.hpp"
 
 namespace wheel_rail_contact {
 
@@ -279,255 +278,17 @@ CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& f) {
 
 namespace {
 
-// One strip of the steady march: its drive and running traction and sums. kCoupled: the x drive
-// takes the lateral coupling (Flexibilities::lateralCoupling, perTy = its value times y_j) of the
-// upstream node's lateral traction; the classic march is its own instance without it.
-struct NoCoupling {
-  NoCoupling(double) {}
-};
-template <bool kCoupled>
-struct SteadyStrip {
-  double dx, aj, sx, gy, gphi;
-  [[no_unique_address]] std::conditional_t<kCoupled, double, NoCoupling> perTy;
-  int k0;
-  double tx = 0.0, ty = 0.0;
-  StripSums sums = {};
-  [[gnu::always_inline]] void node(int i, double h, const double* xn, const FieldPointers& out) {
-    const int k = k0 + i;
-    const UpstreamStep step(i, dx, aj, h);
-    if constexpr (kCoupled)  // ty: still the upstream node's; the product off tx's chain
-      tx = (tx - step.h * sx) - (step.h * perTy) * ty;
-    else
-      tx -= step.h * sx;
-    ty -= step.h * (gy + gphi * step.xMid);
-    sums.node(k, xn[k], out.bound[k], &tx, &ty, out);
-  }
-};
-
-#ifdef WRC_FOUR_STRIP_LANES
-// Four strips of the coupled march at once, one in each lane of AVX registers: SteadyStrip<true>'s
-// node, operation for operation, so each strip's traction, flags and sums are those of one strip
-// at a time, bit for bit. Lane q marches nodes from[q] + i of strip S[q], i < n, all steps of a
-// whole element (the strips' first nodes, half an element from the leading edge, go one strip at
-// a time). Returns the nodes marched: n, or fewer where a lane met StripSums::node's tiny path
-// (avx::outsideLanes), which the caller then takes one strip at a time; S and from follow.
-[[gnu::target("avx"), gnu::noinline]] int coupledLanes(SteadyStrip<true>* S, int* from, int n,
-                                                       const double* xn,
-                                                       const FieldPointers& field) {
-  using namespace avx;
-  const FieldPointers out = field;
-  const V dx = _mm256_set_pd(S[3].dx, S[2].dx, S[1].dx, S[0].dx),
-          aj = _mm256_set_pd(S[3].aj, S[2].aj, S[1].aj, S[0].aj);
-  const V dxSx = mul(dx, _mm256_set_pd(S[3].sx, S[2].sx, S[1].sx, S[0].sx)),
-          dxPerTy = mul(dx, _mm256_set_pd(S[3].perTy, S[2].perTy, S[1].perTy, S[0].perTy));
-  const V halfDx = mul(_mm256_set1_pd(0.5), dx), gy = _mm256_set1_pd(S[0].gy),
-          gphi = _mm256_set1_pd(S[0].gphi), one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
-  V tx = _mm256_set_pd(S[3].tx, S[2].tx, S[1].tx, S[0].tx),
-    ty = _mm256_set_pd(S[3].ty, S[2].ty, S[1].ty, S[0].ty);
-  // The strips' sums go on from where they are, in node order, as one strip at a time.
-  V sumX = _mm256_set_pd(S[3].sums.tx, S[2].sums.tx, S[1].sums.tx, S[0].sums.tx),
-    sumY = _mm256_set_pd(S[3].sums.ty, S[2].sums.ty, S[1].sums.ty, S[0].sums.ty),
-    sumXnY = _mm256_set_pd(S[3].sums.xnTy, S[2].sums.xnTy, S[1].sums.xnTy, S[0].sums.xnTy),
-    loaded = zero, stuck = zero;
-  // (i + 0.5) per lane, exact in doubles as UpstreamStep's.
-  V iMid = _mm256_set_pd(from[3] + 0.5, from[2] + 0.5, from[1] + 0.5, from[0] + 0.5);
-  const int k0[4] = {S[0].k0 + from[0], S[1].k0 + from[1], S[2].k0 + from[2], S[3].k0 + from[3]};
-  int i = 0;
-  for (; i < n; ++i) {
-    const int k[4] = {k0[0] + i, k0[1] + i, k0[2] + i, k0[3] + i};
-    const V xMid = add(sub(aj, mul(iMid, dx)), halfDx);
-    V nx = sub(sub(tx, dxSx), mul(dxPerTy, ty));
-    V ny = sub(ty, mul(dx, add(gy, mul(gphi, xMid))));
-    const V g = at(out.bound, k), g2 = mul(g, g);
-    const V t2 = add(mul(nx, nx), mul(ny, ny));
-    if (_mm256_movemask_pd(outsideLanes(t2, g2)) != 0) break;
-    const V slips = greater(t2, g2);
-    const int slipping = _mm256_movemask_pd(slips);
-    if (slipping != 0) {  // a branch: in adhesion the square root and division stay off the chain
-      const V scale = _mm256_div_pd(g, _mm256_sqrt_pd(t2));
-      nx = select(slips, mul(nx, scale), nx);
-      ny = select(slips, mul(ny, scale), ny);
-    }
-    tx = nx;
-    ty = ny;
-    iMid = add(iMid, one);
-    // StripSums::add.
-    scatter(tx, out.tx, k);
-    scatter(ty, out.ty, k);
-    storeFlags(slipping, out.slip, k);
-    sumX = add(sumX, tx);
-    sumY = add(sumY, ty);
-    sumXnY = add(sumXnY, mul(at(xn, k), ty));
-    const V pressed = greater(g, zero);
-    loaded = add(loaded, _mm256_and_pd(pressed, one));
-    stuck = add(stuck, _mm256_and_pd(_mm256_andnot_pd(slips, pressed), one));
-  }
-  alignas(32) double v[7][4];
-  store(v[0], tx);
-  store(v[1], ty);
-  store(v[2], sumX);
-  store(v[3], sumY);
-  store(v[4], sumXnY);
-  store(v[5], loaded);
-  store(v[6], stuck);
-  for (int q = 0; q < 4; ++q) {
-    SteadyStrip<true>& s = S[q];
-    s.tx = v[0][q];
-    s.ty = v[1][q];
-    s.sums.tx = v[2][q];
-    s.sums.ty = v[3][q];
-    s.sums.xnTy = v[4][q];
-    s.sums.loaded += static_cast<int>(v[5][q]);
-    s.sums.stuck += static_cast<int>(v[6][q]);
-    from[q] += i;
-  }
-  return i;
-}
-#endif
-
+// The scalar reference: one strip at a time, in strip order.
 template <bool kCoupled>
 CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
-                        TractionField* f, bool inLanes) {
-  using Strip = SteadyStrip<kCoupled>;
-  const LateralDrive drive = lateralDrive(L, c);  // plain names: lambdas below capture them
-  const double gx = c.xi / L.L1, gy = drive.gy, gphi = drive.gphi, gphiX = c.phi / L.spinX();
-  const FieldPointers out(f);
-  const double* const xn = mesh.xNorms().data();
-  const int nx = mesh.nx(), ny = mesh.ny();
+                        TractionField* f) {
+  const steady::SteadyMarch<kCoupled> m(mesh, L, c, f);
   ForceSums sums;
-  auto strip = [&](int j) __attribute__((always_inline)) {
-    return Strip{mesh.stripStep(j),
-                 mesh.stripHalfLength(j),
-                 gx - gphiX * mesh.stripY(j),
-                 gy,
-                 gphi,
-                 L.lateralCoupling * mesh.stripY(j),
-                 mesh.index(0, j)};
-  };
-  // Strip j's nodes outside the patch.
-  auto unloadedEnds = [&](int j, const Strip& s) {
-    const StripEntry& e = f->entry[j];
-    for (int i = 0; i < std::min(e.first, nx); ++i) out.unloaded(s.k0 + i);
-    for (int i = std::max(nx - e.first, e.first); i < nx; ++i) out.unloaded(s.k0 + i);
-  };
-  auto finish = [&](int j, const Strip& s) {
-    unloadedEnds(j, s);
-    sums.addStrip(mesh, j, s.sums, f->entry[j], out.tx, out.ty);
-  };
-  // Nodes at[m] + s, s < n, of the four strips S, in step; at follows.
-  auto together = [&](Strip * S, int* at, int n) __attribute__((always_inline)) {
-#ifdef WRC_FOUR_STRIP_LANES
-    if constexpr (kCoupled) {
-      while (n > 0) {
-        const int done = coupledLanes(S, at, n, xn, out);
-        n -= done;
-        if (n == 0) break;
-        for (int m = 0; m < 4; ++m) S[m].node(at[m]++, S[m].dx, xn, out);  // the tiny path
-        --n;
-      }
-      return;
-    }
-#endif
-    for (int s = 0; s < n; ++s)
-      for (int m = 0; m < 4; ++m) S[m].node(at[m] + s, S[m].dx, xn, out);
-    for (int m = 0; m < 4; ++m) at[m] += n;
-  };
-  // Four strips at a time: their marches are independent chains, so each fills the others'
-  // latency (a saturated node's square root and division sit on its strip's chain). Each strip's
-  // nodes still go in order: the result is that of one strip at a time.
-  auto marchFour = [&](const int* js, Strip* S) __attribute__((always_inline)) {
-    int at[4], end[4];
-    for (int m = 0; m < 4; ++m) {
-      const StripEntry& e = f->entry[js[m]];
-      at[m] = e.first;
-      end[m] = nx - e.first;
-      if (at[m] < end[m]) S[m].node(at[m]++, e.h, xn, out);
-    }
-    together(
-        S, at,
-        std::max(0, std::min({end[0] - at[0], end[1] - at[1], end[2] - at[2], end[3] - at[3]})));
-    for (int m = 0; m < 4; ++m)
-      for (int i = at[m]; i < end[m]; ++i) S[m].node(i, S[m].dx, xn, out);
-  };
-  // Two strips at a time, the same.
-  auto marchTwo = [&](int ja, int jb, Strip& A, Strip& B) __attribute__((always_inline)) {
-    const StripEntry ea = f->entry[ja], eb = f->entry[jb];
-    int ia = ea.first, ib = eb.first;
-    const int la = nx - ea.first, lb = nx - eb.first;
-    if (ia < la) A.node(ia++, ea.h, xn, out);
-    if (ib < lb) B.node(ib++, eb.h, xn, out);
-    const int n = std::max(0, std::min(la - ia, lb - ib));
-    for (int s = 0; s < n; ++s) {
-      A.node(ia + s, A.dx, xn, out);
-      B.node(ib + s, B.dx, xn, out);
-    }
-    for (ia += n; ia < la; ++ia) A.node(ia, A.dx, xn, out);
-    for (ib += n; ib < lb; ++ib) B.node(ib, B.dx, xn, out);
-  };
-  auto marchOne = [&](int j, Strip& A) __attribute__((always_inline)) {
-    const StripEntry ea = f->entry[j];
-    const int la = nx - ea.first;
-    if (ea.first < la) A.node(ea.first, ea.h, xn, out);
-    for (int i = ea.first + 1; i < la; ++i) A.node(i, A.dx, xn, out);
-  };
-  if constexpr (kCoupled) {
-    if (inLanes && ny >= 4) {
-      // The coupled march in AVX lanes (coupledLanes), four strips at a time in centre-out order
-      // (PatchMesh::centreOutStrip): on a mesh larger than the patch a group's strips are then
-      // about as long, and the lanes march most of their nodes together. A strip with no loaded
-      // node is only finished; one, two or three left over at the edges go as scalars. The sums
-      // are added in strip order at the end, as one strip at a time.
-      f->stripSums.resize(ny);
-      StripSums* const stripSums = f->stripSums.data();
-      for (int k = 0; k < ny;) {
-        int js[4], count = 0;
-        for (; k < ny && count < 4; ++k) {
-          const int j = mesh.centreOutStrip(k);
-          if (f->entry[j].first >= nx - f->entry[j].first) {  // nothing loaded
-            unloadedEnds(j, strip(j));
-            stripSums[j] = StripSums{};
-            continue;
-          }
-          js[count++] = j;
-        }
-        Strip S[4];
-        for (int m = 0; m < count; ++m) S[m] = strip(js[m]);
-        if (count == 4) {
-          marchFour(js, S);
-        } else {
-          int m = 0;
-          if (count >= 2) marchTwo(js[0], js[1], S[0], S[1]), m = 2;
-          if (m < count) marchOne(js[m], S[m]);
-        }
-        for (int m = 0; m < count; ++m) {
-          unloadedEnds(js[m], S[m]);
-          stripSums[js[m]] = S[m].sums;
-        }
-      }
-      for (int j = 0; j < ny; ++j)
-        sums.addStrip(mesh, j, stripSums[j], f->entry[j], out.tx, out.ty);
-      return sums.forces();
-    }
-  }
-  // In strip order. As scalars, with its extra running operand, the coupled march spilled
-  // registers on four strips and ran slower than on two.
-  int j = 0;
-  for (; !kCoupled && j + 3 < ny; j += 4) {
-    const int js[4] = {j, j + 1, j + 2, j + 3};
-    Strip S[4] = {strip(j), strip(j + 1), strip(j + 2), strip(j + 3)};
-    marchFour(js, S);
-    for (int m = 0; m < 4; ++m) finish(j + m, S[m]);
-  }
-  for (; j + 1 < ny; j += 2) {
-    Strip A = strip(j), B = strip(j + 1);
-    marchTwo(j, j + 1, A, B);
-    finish(j, A);
-    finish(j + 1, B);
-  }
-  if (j < ny) {
-    Strip A = strip(j);
-    marchOne(j, A);
-    finish(j, A);
+  for (int j = 0; j < m.ny; ++j) {
+    auto s = m.strip(j);
+    m.march(j, s, f->entry[j].first);
+    m.unloadedEnds(j);
+    sums.addStrip(mesh, j, s.sums, f->entry[j], m.out.tx, m.out.ty);
   }
   return sums.forces();
 }
@@ -535,15 +296,16 @@ CreepForces steadyMarch(const PatchMesh& mesh, const Flexibilities& L, const Cre
 }  // namespace
 
 CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
-                          TractionField* f, FourStripLanes lanes) {
-  if (L.lateralCoupling != 0.0)
-    return steadyMarch<true>(mesh, L, c, f,
-                             lanes != FourStripLanes::kOff && fourStripLanesAvailable());
-  return steadyMarch<false>(mesh, L, c, f, false);
+                          TractionField* f, StripLanes lanes) {
+  const bool inLanes = lanes == StripLanes::kOn ||
+                       (lanes == StripLanes::kAuto && mesh.nx() >= kSteadyLanesFromNodes);
+  if (inLanes && stripLanesAvailable()) return steadyFastSimInLanes(mesh, L, c, f);
+  if (L.lateralCoupling != 0.0) return steadyMarch<true>(mesh, L, c, f);
+  return steadyMarch<false>(mesh, L, c, f);
 }
 
 bool fourStripLanesAvailable() {
-#ifdef WRC_FOUR_STRIP_LANES
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
   static const bool avx = __builtin_cpu_supports("avx");  // asked once
   return avx;
 #else

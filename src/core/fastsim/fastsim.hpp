@@ -187,20 +187,23 @@ class ForceSums {
 /// Sum of the traction field into forces and moment (midpoint rule).
 CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& field);
 
-/// Whether a march takes four strips at a time in the lanes of AVX registers (where the CPU has
-/// them: fourStripLanesAvailable) instead of one or two as scalars; the results are the same bit
-/// for bit. kAuto: where the lanes pay (each march's own rule); kOff, kOn: never, always (tests,
-/// comparisons). Only the calibrated FastSim's marches have lanes; classic's are scalar.
-enum class FourStripLanes { kAuto, kOff, kOn };
-/// Whether this CPU has the lanes (AVX).
+/// Whether a march takes its strips in the lanes of vector registers, several strips at a time
+/// (strip_lanes.hpp, where this CPU has them: stripLanesAvailable), or one strip at a time (the
+/// scalar reference). The two agree within 1e-12 relative (the lanes fuse multiply-adds). kAuto:
+/// where the lanes pay (each march's own rule); kOff, kOn: never, always (tests, comparisons).
+enum class StripLanes { kAuto, kOff, kOn };
+/// Whether this CPU has the marches' lanes (strip_lanes.hpp).
+bool stripLanesAvailable();
+/// Whether this CPU has AVX, for the calibration's own vectorised step (calibration_table.cpp).
 bool fourStripLanesAvailable();
 
 /// Steady FastSim: marches each strip from the patch's leading edge in adhesion, saturates at the
 /// bound. `field.bound` and `field.entry` must be filled (parabolicBound); tx, ty and slip are
 /// written. Nodes outside the patch (zero bound) get zero traction, marked slipping, unmarched.
-/// With a lateral coupling (the calibrated FastSim) the march takes four strips at a time in
-/// lanes unless `lanes` is kOff (kAuto: on every mesh).
+/// The march takes its strips in lanes unless `lanes` is kOff (kAuto: on meshes of at least
+/// kSteadyLanesFromNodes nodes a strip).
+constexpr int kSteadyLanesFromNodes = 6;
 CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const Creepages& c,
-                          TractionField* field, FourStripLanes lanes = FourStripLanes::kAuto);
+                          TractionField* field, StripLanes lanes = StripLanes::kAuto);
 
 }  // namespace wheel_rail_contact

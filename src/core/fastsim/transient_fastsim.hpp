@@ -38,14 +38,13 @@ class TransientState {
   enum class Saturation { kAlongGuess, kResidualAlongTraction };
   void setSaturation(Saturation s) { saturation_ = s; }
   Saturation saturation() const { return saturation_; }
-  /// Under kResidualAlongTraction the march can take four strips at a time in the lanes of AVX
-  /// registers instead of two (FourStripLanes, fastsim.hpp). kAuto: on meshes of at least
-  /// kFourStripLanesFromNodes nodes a strip.
-  using FourStripLanes = wheel_rail_contact::FourStripLanes;
-  static constexpr int kFourStripLanesFromNodes = 4;
-  void setFourStripLanes(FourStripLanes use) { fourStripLanes_ = use; }
-  /// Whether a march on strips of nx nodes takes four strips at a time.
-  bool marchesFourStrips(int nx) const;
+  /// Whether the march takes strips in the lanes of vector registers (StripLanes, fastsim.hpp)
+  /// or one at a time. kAuto: on meshes of at least kLanesFromNodes nodes a strip.
+  using StripLanes = wheel_rail_contact::StripLanes;
+  static constexpr int kLanesFromNodes = 4;
+  void setStripLanes(StripLanes use) { stripLanes_ = use; }
+  /// Whether a march on strips of nx nodes takes its strips in lanes.
+  bool marchesInLanes(int nx) const;
   void resize(int n);
   void clear();
   /// Restores the states held decayed. Const: it changes how the state is stored, not the state.
@@ -91,11 +90,11 @@ class TransientState {
   mutable bool decaying_ = false;
   mutable Eigen::Array2d decay_{1.0, 1.0};
   std::vector<int> ends_, from_;
-  std::vector<StripSums> stripSums_;  // the four-strip march's sums, added in strip order
+  std::vector<StripSums> stripSums_;  // the lanes' sums, added in strip order
   bool fromZero_ = false;             // from_ holds zeros for every strip
   int nx_ = 0;
   Saturation saturation_ = Saturation::kAlongGuess;
-  FourStripLanes fourStripLanes_ = FourStripLanes::kAuto;
+  StripLanes stripLanes_ = StripLanes::kAuto;
 };
 
 /// One step of length dt > 0 at speed V > 0. Marches each strip from the patch's leading edge
