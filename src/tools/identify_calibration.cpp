@@ -48,36 +48,34 @@
 #include "validation/steady_curves.hpp"
 
 using namespace wheel_rail_contact;
+using namespace wheel_rail_contact::calibration;
 
 namespace {
 
+// A kind's short name in the table (calibration_schema.hpp); `multiplier`: the combined
+// correction's multiplier k's.
+const char* code(int k, bool multiplier = false) {
+  return (multiplier ? kMultiplierInfo[k] : kKindInfo[k]).code.data();
+}
+
 const char* const kDefaultExact = "doc/data/steady_exact_curves.csv";
+
+template <std::size_t N>
+std::vector<double> gridOf(const double (&values)[N]) {
+  return std::vector<double>(values, values + N);
+}
 
 struct Options {
   std::string out, exact = kDefaultExact, curves, table;
   int grid = 20, nx = 20;  // nx: the mesh being identified or evaluated, one of `meshes`
   std::vector<int> meshes = {20};
   double nu = 0.28, G = 8.2e10, mu = 0.3, fz = 1e4;
-  std::vector<double> ratios = {0.2, 0.5, 1, 2, 5};
-  std::vector<double> knots = {0,    0.1, 0.2, 0.35, 0.5, 0.6, 0.75, 0.9, 1,
-                               1.25, 1.5, 2,   3,    4.5, 7,   10,   15};
+  // The grids: the shipped table's (calibration_schema.hpp, where each is explained).
+  std::vector<double> ratios = gridOf(calibration::kAOverB), knots = gridOf(calibration::kKnots);
   std::vector<double> points = {0.05, 0.15, 0.3, 0.6, 0.9, 1.25, 1.75, 2.5, 4, 6, 9, 13};
-  // The combined correction's knots: denser where creep curves with spin turn (e 1.5 to 2.5), and
-  // 3.75 and 5.5 in full slip, where h5 (a/b 1) and r25 (a/b 5) missed the moment by 5.1 and
-  // 5.3 % of the peak at their worst, between the knots 4.5 and 7 and between 3 and 4.5.
-  std::vector<double> corrKnots = {0,    0.1,  0.2, 0.35, 0.5, 0.6,  0.75, 0.9, 1, 1.25, 1.5,
-                                   1.65, 1.85, 2,   2.25, 3,   3.75, 4.5,  5.5, 7, 10,   15};
-  // Spin's share 0.06 and xi's share 0.875: held-out rays h7 and h8 (spin 7 % of e^2, between
-  // h4 and the share 0.1) were 0.024 and 0.025 mu fz off without them. Spin's shares 0.625, 0.825
-  // and 0.95 and xi's 0.125 and 0.375: directions spread between the coarser grid's (r1-r16, eta
-  // phi < 0) were up to 0.055 off. Spin's share 0.03: r10 (4.5 %, in full slip at a/b 0.2) was
-  // 0.027 off with the correction interpolated from none up to 0.06. Spin's share 0.045 and xi's
-  // 0.9375: r10 (4.5 %, xi 93 % of the rest) was 0.0185 mu fz off at a/b 0.2 and its moment 6.5 %
-  // of the peak at a/b 0.5 with the correction interpolated between the directions around it,
-  // whose own fits were within 0.011.
-  std::vector<double> spinShares = {0.03, 0.045, 0.06, 0.1,   0.175, 0.25, 0.375,
-                                    0.5,  0.625, 0.75, 0.825, 0.9,   0.95},
-                      xiShares = {0, 0.125, 0.25, 0.375, 0.5, 0.75, 0.875, 0.9375, 1};
+  std::vector<double> corrKnots = gridOf(calibration::kCorrectionKnots),
+                      spinShares = gridOf(calibration::kSpinShares),
+                      xiShares = gridOf(calibration::kXiShares);
   // The smoothing sweeps' pull towards the neighbouring directions (identifyCorrection), in
   // mu fz per unit ln multiplier; 0: each direction fitted alone.
   double smoothing = 0.01;
@@ -91,12 +89,9 @@ const char* const kUsage =
     "usage: identify_calibration [--out config/steady_calibration.csv]\n"
     "                       [--exact doc/data/steady_exact_curves.csv]\n"
     "                       [--curves doc/data/steady_curves.csv] [--table FILE]\n"
-    "                       [--grid 20] [--nx 20[,...]] [--nu 0.28] [--ab 0.2,0.5,1,2,5]\n"
-    "                       [--knots 0,0.1,...] [--points 0.05,0.15,...]\n"
-    "                       [--correction-knots 0,0.1,...]\n"
-    "                       [--spin-shares 0.03,0.045,0.06,0.1,0.175,0.25,0.375,0.5,0.625,\n"
-    "                                      0.75,0.825,0.9,0.95]\n"
-    "                       [--xi-shares 0,0.125,0.25,0.375,0.5,0.75,0.875,0.9375,1]\n"
+    "                       [--grid 20] [--nx 20[,...]] [--nu 0.28] [--ab R,...]\n"
+    "                       [--knots E,...] [--points 0.05,0.15,...]\n"
+    "                       [--correction-knots E,...] [--spin-shares S,...] [--xi-shares T,...]\n"
     "                       [--smoothing 0.01] [--no-coupling] [--no-eta-slope]\n"
     "                       [--no-eta-without-spin]\n"
     "                       [--solve-grid [--grid-only]]\n"
@@ -106,6 +101,8 @@ const char* const kUsage =
     "--exact:  the exact points' cache, read and extended (the default, relative to the\n"
     "          repository root, must exist; a FILE that does not is a new cache)\n"
     "--curves: write exact / classic / calibrated curves at --points for every ray\n"
+    "--ab, --knots, --correction-knots, --spin-shares, --xi-shares: the table's grid (default:\n"
+    "          the shipped table's, src/core/calibration/calibration_schema.hpp)\n"
     "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis, one table block\n"
     "          per mesh (fastsim_nx); evaluation: each mesh on the table's, interpolated\n"
     "          between its meshes (one --nx with --curves)\n"
@@ -377,10 +374,9 @@ class ExactCache {
 
 // The combined correction's multipliers at a knot, in PatchCalibration::correction's order:
 // of L1, L2, L3, of the bound's shape, and of L3x besides L3's; the table's kinds for them.
-constexpr int kMultipliers = PatchCalibration::kCorrections;
+using calibration::kMultipliers;
 using Multipliers = std::array<double, kMultipliers>;
 constexpr Multipliers kNoCorrection = {1.0, 1.0, 1.0, 1.0, 1.0};
-const char* const kCorrectionKinds[kMultipliers] = {"c1", "c2", "c3", "cs", "c3x"};
 Multipliers expOf(const double* l) {
   Multipliers m;
   for (int p = 0; p < kMultipliers; ++p) m[p] = std::exp(l[p]);
@@ -398,7 +394,7 @@ Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
   TractionField f;
   f.resize(mesh.size());
   const Creepages c = s.creepages(r, e);
-  double shape = std::min(PatchCalibration::kMaxBoundShape,
+  double shape = std::min(calibration::kMaxBoundShape,
                           base.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c) * m[3]);
   if (hertzShapeBlend)  // as the table with its correction does (towardsFullSlip)
     shape = PatchCalibration::hertzShapeBlend(
@@ -729,7 +725,7 @@ struct CorrectionFit {
 constexpr int kSmoothingSweeps = 3;
 // Normalised creepage up to which the combined correction is 1.
 constexpr double kLinearEnd = 0.1;
-// Below PatchCalibration::kSmallSpinShare a spin-share knot is fitted from this normalised
+// Below calibration::kSmallSpinShare a spin-share knot is fitted from this normalised
 // creepage on (with towardsFullSlip's blend in the fit, as the table applies it there), below it
 // holding the correction interpolated between no spin and the first knot from kSmallSpinShare on:
 // kRoundSmallShareFitFrom on a round patch (a/b 1), kSmallShareFitFrom from a/b 2 (or 1/2) on,
@@ -845,10 +841,10 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
     if (!first) knots.push_back(ePrevious);
     knots.push_back(e);
     for (double k : knots) {
-      row(&fixed, "11", k, cal.ratio(0, k));
-      row(&fixed, "22", k, cal.ratio(1, k));
-      row(&fixed, "23", k, 1.0);
-      row(&fixed, "22c", k, cal.coupling(k));
+      row(&fixed, code(kXiRatio), k, cal.ratio(kXiRatio, k));
+      row(&fixed, code(kEtaRatio), k, cal.ratio(kEtaRatio, k));
+      row(&fixed, code(kSpinRatio), k, 1.0);
+      row(&fixed, code(kEtaCoupling), k, cal.coupling(k));
     }
     // The larger of eta alone's error and xi = eta's over the knot's cell, and the fit's cost: at
     // each place their sum and the larger.
@@ -857,10 +853,10 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
       for (double k : knots) {
         const bool here = k == e, before = k > 0.0 && !here;
         const double* w = here ? v : before ? previous : nullptr;
-        row(&t, "22b", k, w ? w[3] : 0.0);
-        row(&t, "22n", k, w ? std::exp(w[0]) : 1.0);
-        row(&t, "22cn", k, w ? w[1] : 0.0);
-        row(&t, "22s", k, w ? w[2] : 0.0);
+        row(&t, code(kEtaDriveSlope), k, w ? w[3] : 0.0);
+        row(&t, code(kEtaRatioNoSpin), k, w ? std::exp(w[0]) : 1.0);
+        row(&t, code(kEtaCouplingNoSpin), k, w ? w[1] : 0.0);
+        row(&t, code(kEtaBoundShapeNoSpin), k, w ? w[2] : 0.0);
       }
       std::istringstream text(t);
       const PatchCalibration one = CalibrationTable::parse(text, "(knot cell)").at(g);
@@ -874,7 +870,8 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
       if (larger) *larger = worst;
       return sum;
     };
-    const double pair[4] = {std::log(cal.ratio(1, e)), cal.coupling(e), 0.0, cal.etaSlope(e)};
+    const double pair[4] = {std::log(cal.ratio(kEtaRatio, e)), cal.coupling(e), 0.0,
+                            cal.etaSlope(e)};
     auto cost = [&](const double* v) {
       double pull = 0.0;
       if (!first)
@@ -884,9 +881,8 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
       return errors(v) + kEtaNoSpinPull * pull + kEtaNoSpinPairPull * toPair;
     };
     auto allowed = [](const double* v) {
-      return v[0] > std::log(0.05) && v[0] < std::log(50.0) &&
-             v[2] >= PatchCalibration::kMinEtaShape && v[2] <= PatchCalibration::kMaxBoundShape &&
-             std::abs(v[3]) <= kEtaSlopeMax;
+      return v[0] > std::log(0.05) && v[0] < std::log(50.0) && v[2] >= calibration::kMinEtaShape &&
+             v[2] <= calibration::kMaxBoundShape && std::abs(v[3]) <= kEtaSlopeMax;
     };
     double best[4] = {pair[0], pair[1], pair[2], pair[3]};
     coordinateSearch(best, 4, cost, allowed, 20);
@@ -928,7 +924,7 @@ void heldKnot(const CorrectionFit& held, double heldPower, std::size_t i, double
 // The combined correction along one direction of the grid: at each knot the multipliers
 // (Multipliers) minimising spinError (force and moment weighed as for spin alone), by pattern
 // search in their logarithms from the previous knot's (one continuous branch), with a small pull
-// towards 1. `held` (a spin share s3 below PatchCalibration::kSmallSpinShare): the same xi
+// towards 1. `held` (a spin share s3 below calibration::kSmallSpinShare): the same xi
 // share and sign's fit at the first spin share sA from it on; knots below smallShareFitFrom(g) take
 // held's multipliers to the power s3 / sA (what linear interpolation in ln multiplier between no
 // spin and sA gives there, so the knot changes nothing there) and the search goes on from them;
@@ -1027,12 +1023,11 @@ void identifyCorrection(const Options& o, ExactCache* exact, const CalibrationTa
     // By spin share, then xi share and sign. The shares from kSmallSpinShare on first: a share
     // below it holds, outside its fitted range, the first of them (identifyDirection).
     std::map<double, std::map<std::pair<double, int>, CorrectionFit>> byShare;
-    const auto first = std::find_if(o.spinShares.begin(), o.spinShares.end(), [](double s3) {
-      return s3 >= PatchCalibration::kSmallSpinShare;
-    });
+    const auto first = std::find_if(o.spinShares.begin(), o.spinShares.end(),
+                                    [](double s3) { return s3 >= calibration::kSmallSpinShare; });
     for (bool small : {false, true})
       for (double s3 : o.spinShares) {
-        if ((s3 < PatchCalibration::kSmallSpinShare) != small) continue;
+        if ((s3 < calibration::kSmallSpinShare) != small) continue;
         if (small && first == o.spinShares.end())
           throw std::runtime_error("--spin-shares: a share below 0.25 needs one from 0.25 on");
         for (double t : o.xiShares)
@@ -1066,7 +1061,7 @@ void identifyCorrection(const Options& o, ExactCache* exact, const CalibrationTa
           for (std::size_t b = 0; b < nT; ++b)
             for (int sign : {1, -1}) {
               const double s3 = o.spinShares[a], t = o.xiShares[b];
-              const bool small = s3 < PatchCalibration::kSmallSpinShare;
+              const bool small = s3 < calibration::kSmallSpinShare;
               if ((sign < 0 && t >= 1.0) || small != (pass == 1)) continue;
               // The neighbours along each share (no eta: both signs' next xi share); a multiplier
               // that acts on nothing (L1 without xi, L2 without eta) is left out of their mean.
@@ -1121,9 +1116,9 @@ void identifyCorrection(const Options& o, ExactCache* exact, const CalibrationTa
         for (int p = 0; p < kMultipliers; ++p)
           for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
             char line[200];
-            std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d,%g,%g,%d\n", g,
-                          kCorrectionKinds[p], o.corrKnots[i], fit.m[i][p], fit.error[i], o.nx, s3,
-                          key.first, key.second);
+            std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d,%g,%g,%d\n", g, code(p, true),
+                          o.corrKnots[i], fit.m[i][p], fit.error[i], o.nx, s3, key.first,
+                          key.second);
             (*rows)[g] += line;
           }
     }
@@ -1154,22 +1149,22 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
       }
       for (std::size_t i = 0; i < fit.couple.size(); ++i) {  // eta's coupling, its fit's error
         char line[160];
-        std::snprintf(line, sizeof line, "%g,22c,%g,%.6f,%.5f,%d\n", g, o.knots[i], fit.couple[i],
-                      fit.error[i], o.nx);
+        std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, code(kEtaCoupling),
+                      o.knots[i], fit.couple[i], fit.error[i], o.nx);
         rows[g] += line;
       }
       if (kind == 2)  // spin's second parameter: same knots, the same fit's error
         for (std::size_t i = 0; i < o.knots.size(); ++i) {
           char line[160];
-          std::snprintf(line, sizeof line, "%g,23x,%g,%.6f,%.5f,%d\n", g, o.knots[i], fit.ratioX[i],
-                        fit.error[i], o.nx);
+          std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, code(kSpinDriveRatio),
+                        o.knots[i], fit.ratioX[i], fit.error[i], o.nx);
           rows[g] += line;
         }
       if (kind == 2)
         for (std::size_t i = 0; i < o.knots.size(); ++i) {
           char line[160];
-          std::snprintf(line, sizeof line, "%g,23s,%g,%.6f,%.5f,%d\n", g, o.knots[i], fit.shape,
-                        fit.error[i], o.nx);
+          std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, code(kSpinBoundShape),
+                        o.knots[i], fit.shape, fit.error[i], o.nx);
           rows[g] += line;
         }
       char note[120];
@@ -1183,11 +1178,11 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
       std::vector<double> error;
       std::vector<double> beta = identifyEtaSlope(
           o, exact, g, CalibrationTable::parse(single, "(single kinds)").at(g), &error);
-      auto write = [&](const char* kind, const std::vector<double>& v) {
+      auto write = [&](int kind, const std::vector<double>& v) {
         for (std::size_t i = 0; i < v.size(); ++i) {
           char line[160];
-          std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, kind, o.knots[i], v[i],
-                        error[i], o.nx);
+          std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, code(kind), o.knots[i],
+                        v[i], error[i], o.nx);
           rows[g] += line;
         }
       };
@@ -1195,16 +1190,17 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
         std::stringstream withSlope;
         withSlope << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n" << rows[g];
         for (std::size_t i = 0; i < beta.size(); ++i)
-          withSlope << g << ",22b," << o.knots[i] << "," << beta[i] << ",0," << o.nx << "\n";
+          withSlope << g << "," << code(kEtaDriveSlope) << "," << o.knots[i] << "," << beta[i]
+                    << ",0," << o.nx << "\n";
         const EtaNoSpinFit fit = identifyEtaWithoutSpin(
             o, exact, g, CalibrationTable::parse(withSlope, "(single kinds)").at(g));
         beta = fit.beta;
         error = fit.error;
-        write("22n", fit.ratio);
-        write("22cn", fit.couple);
-        write("22s", fit.shape);
+        write(kEtaRatioNoSpin, fit.ratio);
+        write(kEtaCouplingNoSpin, fit.couple);
+        write(kEtaBoundShapeNoSpin, fit.shape);
       }
-      write("22b", beta);
+      write(kEtaDriveSlope, beta);
       char note[120];
       std::snprintf(note, sizeof note, "#   a/b %g kind%s: worst knot error %.4f\n", g,
                     o.etaNoSpin ? "s 22n, 22cn, 22s, 22b (together)" : " 22b",
@@ -1340,7 +1336,7 @@ Point studyFastSim(const Options& o, double g, const Ray& r, double e, const Pat
   const double shape =
       step.boundShape > 0.0 ? step.boundShape * std::exp(t.l[3]) : std::exp(t.l[3]) - 1.0;
   flattenedBound(mesh, s.a, s.b, s.fz, s.mu,
-                 std::min(PatchCalibration::kMaxBoundShape, std::max(0.0, shape)), &f);
+                 std::min(calibration::kMaxBoundShape, std::max(0.0, shape)), &f);
   const double L1 = step.L.L1 * std::exp(t.l[0]), L2 = step.L.L2 * std::exp(t.l[1]),
                L3 = step.L.L3 * std::exp(t.l[2]), L3x = step.L.spinX() * std::exp(t.l[2]);
   const double gy = c.eta / L2 / (1.0 - t.beta / 3.0), gphi = c.phi / L3;
