@@ -28,7 +28,7 @@ struct ContactParameters {
   /// compiled in).
   std::string chi_table;
   /// FastSim's steady part in steady, shen-li, nss and auto: "calibrated" (flexibilities
-  /// identified against the exact solver, config/steady_calibration.csv) or "classic" (Kalker's
+  /// identified against the exact solver, config/calibration.bin) or "classic" (Kalker's
   /// 1982 FastSim); empty = calibrated for nss and auto, classic for the baselines steady and
   /// shen-li (see calibratedFastSim).
   std::string fastsim;

@@ -1,5 +1,5 @@
 // identify_calibration: identifies the calibrated FastSim's flexibility ratios
-// (config/steady_calibration.csv, calibration_table.hpp) against our exact half-space solver, and
+// (config/calibration.bin, calibration_table.hpp) against our exact half-space solver, and
 // writes the steady creep curves exact / classic / calibrated for plots and tests.
 // Exact creep curves are cached (--exact, doc/data/steady_exact_curves.csv): a point found there
 // is read, not recomputed; missing points are solved and the cache rewritten.
@@ -66,7 +66,8 @@ std::vector<double> gridOf(const double (&values)[N]) {
 }
 
 struct Options {
-  std::string out, exact = kDefaultExact, curves, table;
+  std::string out, exact = kDefaultExact, curves, table, convert;
+  int dump = -1;           // --dump: the mesh written as CSV (0: every mesh)
   int grid = 20, nx = 20;  // nx: the mesh being identified or evaluated, one of `meshes`
   std::vector<int> meshes = {20};
   double nu = 0.28, G = 8.2e10, mu = 0.3, fz = 1e4;
@@ -86,7 +87,7 @@ struct Options {
 };
 
 const char* const kUsage =
-    "usage: identify_calibration [--out config/steady_calibration.csv]\n"
+    "usage: identify_calibration [--out config/calibration.bin]\n"
     "                       [--exact doc/data/steady_exact_curves.csv]\n"
     "                       [--curves doc/data/steady_curves.csv] [--table FILE]\n"
     "                       [--grid 20] [--nx 20[,...]] [--nu 0.28] [--ab R,...]\n"
@@ -96,8 +97,14 @@ const char* const kUsage =
     "                       [--no-eta-without-spin]\n"
     "                       [--solve-grid [--grid-only]]\n"
     "                       [--moment-study]\n"
-    "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
-    "          --table classic: no table)\n"
+    "       identify_calibration --dump NX [--table FILE] [--out FILE.csv]\n"
+    "       identify_calibration --convert FILE --out FILE.bin\n"
+    "--out:    identify and write the table: binary where FILE ends in .bin, with a summary\n"
+    "          beside it (FILE less .bin, _summary.txt: the fit errors and the command), else\n"
+    "          CSV (else --table, or the shipped one, is evaluated; --table classic: no table)\n"
+    "--table:  a table file, binary or CSV (default: the one shipped in the library)\n"
+    "--dump:   write mesh NX of the table (0: every mesh) as CSV, to --out or stdout\n"
+    "--convert: read a table (CSV or binary) and write it to --out (.bin: binary, else CSV)\n"
     "--exact:  the exact points' cache, read and extended (the default, relative to the\n"
     "          repository root, must exist; a FILE that does not is a new cache)\n"
     "--curves: write exact / classic / calibrated curves at --points for every ray\n"
@@ -128,6 +135,10 @@ void readOption(tools::Args& a, Options* o) {
     o->curves = a.text();
   else if (a.is("--table"))
     o->table = a.text();
+  else if (a.is("--dump"))
+    o->dump = a.integer();
+  else if (a.is("--convert"))
+    o->convert = a.text();
   else if (a.is("--grid"))
     o->grid = a.integer();
   else if (a.is("--nx"))
@@ -1219,6 +1230,25 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
   return block;
 }
 
+bool isBinaryPath(const std::string& path) {
+  return path.size() > 4 && path.compare(path.size() - 4, 4, ".bin") == 0;
+}
+
+// The summary beside a binary table: FILE.bin's is FILE_summary.txt.
+std::string summaryPath(const std::string& bin) {
+  return bin.substr(0, bin.size() - 4) + "_summary.txt";
+}
+
+// Writes `table` to `path`: the binary format where it ends in .bin, else CSV.
+void writeTableFile(const CalibrationTable& table, const std::string& path) {
+  std::ofstream out = tools::writeFile(path);
+  if (isBinaryPath(path))
+    table.writeBinary(out);
+  else
+    table.writeCsv(out);
+  if (!out.flush()) throw std::runtime_error("cannot write " + path);
+}
+
 void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
   std::string blocks;
   std::ostringstream notes;
@@ -1232,25 +1262,35 @@ void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
     notes << title << meshNotes.str();
     blocks += title + block;
   }
-  std::ofstream out = tools::writeFile(o.out);
   std::string command = "identify_calibration";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
-  out << "# Calibrated FastSim: flexibility ratio per creepage kind against normalised creepage\n"
-      << "# (src/core/calibration/calibration_table.hpp). Identified " << date << " by: " << command
-      << "\n# against our exact solver (" << o.grid << "x" << o.grid << ", nu " << o.nu
-      << "; exact curves cached in " << o.exact << ") per FastSim mesh (fastsim_nx; a model "
-      << "interpolates between the meshes in 1/nx, the nearest beyond them); other nu: the same "
-         "ratios.\n"
-      << "# fit_error: max(|dFx|, |dFy|) / (mu fz) at the knot (spin, kinds 23 and 23x fitted "
-         "together, and the combined correction c1, c2, c3, cs, c3x: the larger of that and 0.2 "
-         "|dMz| / "
-         "peak |Mz|)\n"
-      << notes.str()
-      << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx,spin_share,xi_share,sign\n"
-      << blocks;
+  std::ostringstream head;
+  head << "# Calibrated FastSim: flexibility ratio per creepage kind against normalised creepage\n"
+       << "# (src/core/calibration/calibration_table.hpp). Identified " << date
+       << " by: " << command << "\n# against our exact solver (" << o.grid << "x" << o.grid
+       << ", nu " << o.nu << "; exact curves cached in " << o.exact
+       << ") per FastSim mesh (fastsim_nx; a model "
+       << "interpolates between the meshes in 1/nx, the nearest beyond them); other nu: the same "
+          "ratios.\n"
+       << "# fit_error (and the worst knot errors below): max(|dFx|, |dFy|) / (mu fz) at the knot "
+          "(spin, kinds 23 and 23x fitted "
+          "together, and the combined correction c1, c2, c3, cs, c3x: the larger of that and 0.2 "
+          "|dMz| / "
+          "peak |Mz|)\n"
+       << notes.str();
+  const std::string table =
+      "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx,spin_share,xi_share,sign\n" + blocks;
+  if (isBinaryPath(o.out)) {
+    // The binary table, and beside it what is not runtime data: the command and the fit errors.
+    std::istringstream text(table);
+    writeTableFile(CalibrationTable::parse(text, "(identified)"), o.out);
+    tools::writeFile(summaryPath(o.out)) << head.str();
+  } else {
+    tools::writeFile(o.out) << head.str() << table;
+  }
   std::cout << notes.str();
 }
 
@@ -1539,6 +1579,22 @@ void solveGrid(const Options& o, ExactCache* exact) {
 }
 
 int run(const Options& o, int argc, char** argv) {
+  if (!o.convert.empty()) {  // a table file into another format: no exact curves needed
+    if (o.out.empty()) throw std::runtime_error("--convert: --out FILE");
+    writeTableFile(CalibrationTable::load(o.convert), o.out);
+    return 0;
+  }
+  if (o.dump >= 0) {
+    const CalibrationTable table =
+        o.table.empty() ? CalibrationTable::shipped() : CalibrationTable::load(o.table);
+    if (o.out.empty()) {
+      table.writeCsv(std::cout, o.dump);
+    } else {
+      std::ofstream out = tools::writeFile(o.out);
+      table.writeCsv(out, o.dump);
+    }
+    return 0;
+  }
   if (o.meshes.empty()) throw std::runtime_error("--nx: at least one mesh");
   for (int nx : o.meshes)
     if (nx < 2) throw std::runtime_error("--nx: every mesh needs at least 2 nodes per axis");

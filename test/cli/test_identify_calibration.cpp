@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
+#include "core/calibration/calibration_table.hpp"
 #include "process.hpp"
 #include "validation/steady_curves.hpp"
 
@@ -95,4 +97,21 @@ TEST(IdentifySteady, RefusesAnExactCacheSolvedForAnotherSetup) {
   EXPECT_NE(out.find("was solved for another setup"), std::string::npos) << out;
   EXPECT_NE(out.find("nu 0.3,"), std::string::npos) << out;  // the setup asked for
   EXPECT_EQ(wrc_test::fileText(cache), before);              // the cache is left as it was
+}
+
+TEST(IdentifyCalibration, DumpsAMeshAsCsvAndConvertsItBackWithoutTheExactCache) {
+  // Run outside the repository: neither needs the exact curves.
+  const std::string dir = testing::TempDir(), tool = WRC_IDENTIFY_CALIBRATION;
+  std::string out;
+  ASSERT_EQ(wrc_test::run("cd " + dir + " && " + tool + " --dump 10 --out mesh10.csv", &out), 0)
+      << out;
+  ASSERT_EQ(
+      wrc_test::run("cd " + dir + " && " + tool + " --convert mesh10.csv --out mesh10.bin", &out),
+      0)
+      << out;
+  std::ostringstream shipped;
+  wheel_rail_contact::CalibrationTable::shipped().forMesh(10).writeBinary(shipped);
+  EXPECT_EQ(wrc_test::fileText(dir + "mesh10.bin"), shipped.str());
+  EXPECT_NE(wrc_test::run(tool + " --dump 7", &out), 0);
+  EXPECT_NE(out.find("no mesh 7"), std::string::npos) << out;
 }

@@ -3,7 +3,6 @@
 #include "core/csv_fields.hpp"
 #include "core/fastsim/avx_lanes.hpp"
 #include "core/fastsim/nearest_mesh.hpp"
-#include "wheel_rail_contact/shipped_tables.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -11,12 +10,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
-#include <streambuf>
 #include <string_view>
 #include <tuple>
 
@@ -450,7 +447,7 @@ double PatchCalibration::hertzShapeBlend(double shape, double e, double s3, doub
 namespace {
 
 [[noreturn]] void fail(const std::string& path, long line, const std::string& why) {
-  throw std::runtime_error("steady calibration " + path + ":" + std::to_string(line) + ": " + why);
+  throw std::runtime_error("calibration table " + path + ":" + std::to_string(line) + ": " + why);
 }
 
 double number(const std::string& path, long line, std::string_view s) {
@@ -495,29 +492,6 @@ void reciprocalWidths(const std::vector<double>& x, std::vector<double>* w) {
 }
 
 }  // namespace
-
-const CalibrationTable& CalibrationTable::shipped() {
-  // Parsed once: every calibrated model is built from it (five meshes, some 650 000 lines), read
-  // in place from the library's data rather than from a copy of its 27 MB of text.
-  struct InPlace : std::streambuf {
-    explicit InPlace(std::string_view text) {
-      char* begin = const_cast<char*>(text.data());  // only read: the get area
-      setg(begin, begin, begin + text.size());
-    }
-  };
-  static const CalibrationTable table = [] {
-    InPlace text(shippedTable("steady_calibration"));
-    std::istream in(&text);
-    return parse(in, "(shipped) steady_calibration.csv");
-  }();
-  return table;
-}
-
-CalibrationTable CalibrationTable::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("steady calibration " + path + ": cannot open");
-  return parse(in, path);
-}
 
 CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& path) {
   CalibrationTable t;
@@ -603,7 +577,7 @@ CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& pa
     if (rows.empty() || rows.back().logAB != logAB) {
       if (!rows.empty() && !(logAB > rows.back().logAB))
         fail(path, n, "a_over_b must increase from one block to the next");
-      rows.push_back(Row{logAB, {}, {}, {}, {}, {}, {}});
+      rows.push_back(Row{ab, logAB, {}, {}, {}, {}, {}, {}});
     }
     if (multiplier >= 0) {
       if (!given(kSpinShare) || !given(kXiShare) || !given(kSign))
@@ -726,18 +700,19 @@ CalibrationTable CalibrationTable::forMesh(int nx) const {
   // between tables of other knots, the nearest mesh.
   const Mesh *lo = nullptr, *hi = nullptr;
   double w = 0.0;
-  if (!meshesAround(meshes_, nx, &lo, &hi, &w) || !sameKnots(lo->rows, hi->rows)) {
-    t.meshes_.push_back(nearestMesh(meshes_, nx));
+  if (!meshesAround(meshes_, nx, &lo, &hi, &w) || !sameKnots(rowsOf(*lo), rowsOf(*hi))) {
+    const Mesh& m = nearestMesh(meshes_, nx);
+    t.meshes_.push_back(Mesh{m.nx, rowsOf(m)});
     return t;
   }
   auto blend = [w](double x, double y) {
     return std::exp((1.0 - w) * std::log(x) + w * std::log(y));
   };
-  Mesh m = *lo;
-  m.nx = nx;
+  Mesh m{nx, rowsOf(*lo)};
+  const std::vector<Row>& high = rowsOf(*hi);
   for (std::size_t r = 0; r < m.rows.size(); ++r) {
     Row& row = m.rows[r];
-    const Row& h = hi->rows[r];
+    const Row& h = high[r];
     for (int k = 0; k < calibration::kKinds; ++k)
       for (std::size_t j = 0; j < row.ratio[k].size(); ++j)
         row.ratio[k][j] = calibration::kKindInfo[k].heldAsIs
@@ -767,7 +742,7 @@ void CalibrationTable::at(double a_over_b, PatchCalibration* c) const {
   if (meshes_.size() != 1)
     throw std::logic_error("CalibrationTable: a table of " + std::to_string(meshes_.size()) +
                            " FastSim meshes: narrow it with forMesh() first");
-  const std::vector<Row>& rows = meshes_.front().rows;
+  const std::vector<Row>& rows = rowsOf(meshes_.front());
   const double x = std::log(a_over_b);
   std::size_t i = 0;
   while (i + 1 < rows.size() && rows[i + 1].logAB <= x) ++i;

@@ -94,7 +94,9 @@
 #include <cmath>
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/calibration/calibration_schema.hpp"
@@ -375,16 +377,29 @@ class PatchCalibration {
 /// The identified table over a/b, per FastSim mesh.
 class CalibrationTable {
  public:
-  /// Reads a table. Throws std::runtime_error naming the file and line on a malformed,
-  /// non-finite or non-positive ratio, knots not increasing or not starting at (0, 1), or a/b rows
-  /// whose knots differ (23x, 23s: in every a/b or in none; 23s in (0, 1], any at knot 0), an
-  /// unknown or repeated column, a fastsim_nx below 2 or missing in a row, or a mesh in two blocks.
+  /// Reads a table file: the binary format (calibration_binary.hpp; recognised by its magic) or
+  /// CSV (parse). Throws std::runtime_error naming the file (and the line, in CSV) on a malformed
+  /// table: a number not finite or out of its kind's range, knots not increasing or not starting
+  /// at (0, 1), a/b rows whose knots differ (23x, 23s: in every a/b or in none), an unknown or
+  /// repeated column, a fastsim_nx below 2 or missing in a row, a mesh in two blocks; in the binary
+  /// format besides, another magic, version or schema, a size or checksum that does not match.
   static CalibrationTable load(const std::string& path);
-  /// The same from a stream; `source` names it in messages.
+  /// A table in CSV from a stream; `source` names it in messages.
   static CalibrationTable parse(std::istream& in, const std::string& source);
-  /// The table shipped with the package (config/steady_calibration.csv, meshes 5x5 to 40x40,
-  /// compiled in; parsed once per process).
+  /// A table in the binary format from its bytes, every mesh read and checked; `source` names it
+  /// in messages.
+  static CalibrationTable fromBinary(std::string_view bytes, const std::string& source);
+  /// The table shipped with the package (config/calibration.bin, meshes 5x5 to 40x40, compiled
+  /// into the library): the header is read once per process, a mesh's block only when forMesh()
+  /// first needs it.
   static const CalibrationTable& shipped();
+  /// Writes the table in the binary format. Throws std::runtime_error where a value is not a
+  /// multiple of 1e-6 or beyond +-2147 (the format holds int32 millionths: what the identifier's
+  /// CSV held, 6 decimals, read back bit for bit).
+  void writeBinary(std::ostream& out) const;
+  /// Writes the block of mesh nx (0: every mesh) as CSV that parse() reads back to the same
+  /// values, kinds by their readable names: the table for people to read.
+  void writeCsv(std::ostream& out, int nx = 0) const;
   /// The table for a FastSim mesh of nx nodes per strip, as a table of its own: an identified
   /// mesh's own; between two identified meshes of the same knots their ratios interpolated in
   /// 1/nx (the march's step along the strip; ln ratio, the coupling itself); beyond the table's
@@ -403,7 +418,7 @@ class CalibrationTable {
 
  private:
   struct Row {
-    double logAB;
+    double aOverB, logAB;
     // Per kind (calibration::Kind): knots and values (ratios, or held as is).
     std::vector<double> eps[calibration::kKinds], ratio[calibration::kKinds];
     std::vector<double> corrS3, corrT, corrEps, corr;  // as PatchCalibration's, ratios
@@ -412,7 +427,17 @@ class CalibrationTable {
     int nx = 0;             // 0: any
     std::vector<Row> rows;  // sorted by a/b
   };
-  std::vector<Mesh> meshes_;  // sorted by nx
+  std::vector<Mesh> meshes_;  // sorted by nx; rows empty where binary_ reads them when asked
+  // The binary form a table was read from lazily (shipped()), its meshes' blocks read once each
+  // on first use; null: every mesh's rows are in meshes_.
+  struct Binary;
+  std::shared_ptr<const Binary> binary_;
+  // Mesh m's rows (read from binary_ on first use).
+  const std::vector<Row>& rowsOf(const Mesh& m) const;
+  // The binary format's reader and writer (calibration_binary.cpp).
+  static CalibrationTable readBinary(std::string_view bytes, const std::string& source, bool lazy);
+  static std::vector<Row> readMesh(std::string_view block, std::uint32_t checksum,
+                                   const std::string& source, int nx);
   // Whether two meshes' tables hold the same a/b rows and knots (identified on the same grids).
   static bool sameKnots(const std::vector<Row>& x, const std::vector<Row>& y);
 };
