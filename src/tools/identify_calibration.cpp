@@ -23,20 +23,27 @@
 // xi = eta together.
 // Per FastSim mesh (--nx 5,10,20,30,40): FastSim's own discretisation error differs per mesh, the
 // exact curves do not, so one cache serves every mesh; each mesh's rows carry its fastsim_nx.
+// Each (mesh, a/b) is identified on its own, needing no other's: they run as parallel jobs
+// (--threads), each writing only its own result, so the table is the same whatever the number.
 // Options: identify_calibration --help.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <iostream>
 #include <limits>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -67,7 +74,8 @@ std::vector<double> gridOf(const double (&values)[N]) {
 
 struct Options {
   std::string out, exact = kDefaultExact, curves, table, convert;
-  int dump = -1;           // --dump: the mesh written as CSV (0: every mesh)
+  int dump = -1;  // --dump: the mesh written as CSV (0: every mesh)
+  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   int grid = 20, nx = 20;  // nx: the mesh being identified or evaluated, one of `meshes`
   std::vector<int> meshes = {20};
   double nu = 0.28, G = 8.2e10, mu = 0.3, fz = 1e4;
@@ -97,12 +105,15 @@ const char* const kUsage =
     "                       [--no-eta-without-spin]\n"
     "                       [--solve-grid [--grid-only]]\n"
     "                       [--moment-study]\n"
+    "                       [--threads N]\n"
     "       identify_calibration --dump NX [--table FILE] [--out FILE.csv]\n"
     "       identify_calibration --convert FILE --out FILE.bin\n"
     "--out:    identify and write the table: binary where FILE ends in .bin, with a summary\n"
     "          beside it (FILE less .bin, _summary.txt: the fit errors and the command), else\n"
     "          CSV (else --table, or the shipped one, is evaluated; --table classic: no table)\n"
     "--table:  a table file, binary or CSV (default: the one shipped in the library)\n"
+    "--threads: identify that many meshes and a/b at once (default: the CPU's threads); the\n"
+    "          table is the same whatever the number\n"
     "--dump:   write mesh NX of the table (0: every mesh) as CSV, to --out or stdout\n"
     "--convert: read a table (CSV or binary) and write it to --out (.bin: binary, else CSV)\n"
     "--exact:  the exact points' cache, read and extended (the default, relative to the\n"
@@ -135,6 +146,8 @@ void readOption(tools::Args& a, Options* o) {
     o->curves = a.text();
   else if (a.is("--table"))
     o->table = a.text();
+  else if (a.is("--threads"))
+    o->threads = a.integer();
   else if (a.is("--dump"))
     o->dump = a.integer();
   else if (a.is("--convert"))
@@ -319,7 +332,9 @@ class ExactCache {
     for (const SteadyCurvePoint& p : readSteadyCurves(path))
       map_[Key{p.aOverB, p.ray, p.epsilon}] = {{p.fx, p.fy, p.mz}, p.c};
   }
+  // Thread-safe: the parallel jobs share the cache (a point missing is solved under the lock).
   Point at(double g, const Ray& r, double e) {
+    std::lock_guard<std::mutex> lock(mutex_);
     const Key key{g, r.name, e};
     auto it = map_.find(key);
     if (it != map_.end()) return it->second.p;
@@ -381,7 +396,42 @@ class ExactCache {
   int solved_ = 0;
   std::unique_ptr<HalfspaceSolver> solver_;
   double solverAB_ = 0.0;
+  std::mutex mutex_;
 };
+
+// A FastSim evaluation's mesh and traction field, one per thread, kept from one evaluation to the
+// next: the identifier runs FastSim millions of times on a handful of patches, and a mesh built
+// for each run cost a third of the time (40x40). Kept, they give the same results bit for bit:
+// the mesh is a function of (nx, a, b) alone, the march writes every value of the field it reads
+// but the bound, and the bound is a function of (fz, mu, shape) on the mesh: written again only
+// where one of them changed (a search moving L1, L2 or L3 keeps the shape).
+struct Scratch {
+  int nx = 0;
+  double a = 0.0, b = 0.0;
+  PatchMesh mesh;
+  TractionField f;
+  double fz = 0.0, mu = 0.0, shape = std::numeric_limits<double>::quiet_NaN();  // f's bound's
+  // The bound of (fz, mu, shape) into f (flattenedBound).
+  void bound(double boundFz, double boundMu, double boundShape) {
+    if (boundFz == fz && boundMu == mu && boundShape == shape) return;
+    flattenedBound(mesh, a, b, boundFz, boundMu, boundShape, &f);
+    fz = boundFz;
+    mu = boundMu;
+    shape = boundShape;
+  }
+};
+Scratch& scratch(int nx, double a, double b) {
+  thread_local Scratch s;
+  if (s.nx != nx || s.a != a || s.b != b) {
+    s = Scratch();
+    s.mesh = PatchMesh(nx, nx, a, b);
+    s.f.resize(s.mesh.size());
+    s.nx = nx;
+    s.a = a;
+    s.b = b;
+  }
+  return s;
+}
 
 // The combined correction's multipliers at a knot, in PatchCalibration::correction's order:
 // of L1, L2, L3, of the bound's shape, and of L3x besides L3's; the table's kinds for them.
@@ -401,22 +451,20 @@ Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
                        const PatchCalibration& base, const double* m,
                        bool hertzShapeBlend = false) {
   const Setup s(o, g);
-  const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
-  TractionField f;
-  f.resize(mesh.size());
+  Scratch& scratchField = scratch(o.nx, s.a, s.b);
   const Creepages c = s.creepages(r, e);
-  double shape = std::min(calibration::kMaxBoundShape,
-                          base.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c) * m[3]);
+  const CalibratedStep step = base.step(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
+  double shape = std::min(calibration::kMaxBoundShape, step.boundShape * m[3]);
   if (hertzShapeBlend)  // as the table with its correction does (towardsFullSlip)
     shape = PatchCalibration::hertzShapeBlend(
         shape, e, r.e[2] * r.e[2] / (r.e[0] * r.e[0] + r.e[1] * r.e[1] + r.e[2] * r.e[2]), g);
-  flattenedBound(mesh, s.a, s.b, s.fz, s.mu, shape, &f);
-  Flexibilities L = base.flexibilities(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
+  scratchField.bound(s.fz, s.mu, shape);
+  Flexibilities L = step.L;
   L.L3x = L.spinX() * m[2] * m[4];
   L.L1 *= m[0];
   L.L2 *= m[1];
   L.L3 *= m[2];
-  const CreepForces y = steadyFastSim(mesh, L, c, &f);
+  const CreepForces y = steadyFastSim(scratchField.mesh, L, c, &scratchField.f);
   return s.normalised(y.fx, y.fy, y.mz);
 }
 
@@ -431,10 +479,10 @@ Point fastsimAt(const Options& o, double g, const Ray& r, double e, const PatchC
 Point fastsimScaled(const Options& o, double g, int kind, double e, double ratio,
                     double ratioX = 1.0, double shape = 0.0, double couple = 0.0) {
   const Setup s(o, g);
-  const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
-  TractionField f;
-  f.resize(mesh.size());
-  flattenedBound(mesh, s.a, s.b, s.fz, s.mu, shape, &f);
+  Scratch& scratchField = scratch(o.nx, s.a, s.b);
+  const PatchMesh& mesh = scratchField.mesh;
+  TractionField& f = scratchField.f;
+  scratchField.bound(s.fz, s.mu, shape);
   const Creepages c = s.creepages(kRays[kind], e);
   Flexibilities L = kalkerFlexibilities(s.a, s.b, s.G, s.k);
   (kind == 0 ? L.L1 : kind == 1 ? L.L2 : L.L3) *= ratio;
@@ -612,12 +660,12 @@ std::vector<double> identifyEtaSlope(const Options& o, ExactCache* exact, double
     }
     const Point x = exact->at(g, xe, e);
     const Setup s(o, g);
-    const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
-    TractionField f;
-    f.resize(mesh.size());
+    Scratch& scratchField = scratch(o.nx, s.a, s.b);
+    const PatchMesh& mesh = scratchField.mesh;
+    TractionField& f = scratchField.f;
     const Creepages c = s.creepages(xe, e);
     const CalibratedStep step = cal.step(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
-    flattenedBound(mesh, s.a, s.b, s.fz, s.mu, step.boundShape, &f);
+    scratchField.bound(s.fz, s.mu, step.boundShape);
     auto fit = [&](double b) {
       Flexibilities L = step.L;
       PatchCalibration::setEtaSlope(b, s.a, &L);
@@ -769,22 +817,36 @@ int searchedMultipliers(double e, double* lm) {
 
 // Pattern search along the coordinates: from x, steps of +-h along each of its `dims` coordinates
 // while they lower `cost`, h halving from 0.2 down to 1e-3, at most `maxSweeps` sweeps per h; a
-// point `allowed` rejects is not costed. x ends at the best point found.
+// point `allowed` rejects is not costed. x ends at the best point found. A point's coordinates
+// past `dims` are 0, as every caller holds them (they were left unset, and the fit then hung on
+// whatever the stack held there).
 constexpr int kMaxSearchDims = 5;
 template <class Cost, class Allowed>
 void coordinateSearch(double* x, int dims, const Cost& cost, const Allowed& allowed,
                       int maxSweeps) {
   double best = cost(x);
+  // The points costed so far, by their bits: a step back to where the search came from (some 15 %
+  // of the points) is looked up, not costed again (the same cost: it is a function of the point).
+  using Bits = std::array<std::uint64_t, kMaxSearchDims>;
+  std::map<Bits, double> costed;
+  auto bitsOf = [dims](const double* p) {
+    Bits b{};
+    std::memcpy(b.data(), p, sizeof(double) * dims);
+    return b;
+  };
+  costed[bitsOf(x)] = best;
   for (double h = 0.2; h > 1e-3; h *= 0.5)
     for (int sweeps = 0, moved = 1; moved && sweeps < maxSweeps; ++sweeps) {
       moved = 0;
       for (int d = 0; d < dims; ++d)
         for (double step : {h, -h}) {
-          double t[kMaxSearchDims];
+          double t[kMaxSearchDims] = {};
           std::copy(x, x + dims, t);
           t[d] += step;
           if (!allowed(t)) continue;
-          const double c = cost(t);
+          const auto [at, fresh] = costed.try_emplace(bitsOf(t), 0.0);
+          if (fresh) at->second = cost(t);
+          const double c = at->second;
           if (c < best) best = c, std::copy(t, t + dims, x), moved = 1;
         }
     }
@@ -1026,10 +1088,9 @@ void refitTowards(const Options& o, ExactCache* exact, double g, const Ray& r,
 
 // The combined correction's rows (kinds c1, c2, c3, cs, c3x) on the table `base` (single kinds
 // only).
-void identifyCorrection(const Options& o, ExactCache* exact, const CalibrationTable& base,
-                        std::map<double, std::string>* rows, std::ostringstream* notes) {
-  for (double g : o.ratios) {
-    const PatchCalibration cal = base.at(g);
+void identifyCorrection(const Options& o, ExactCache* exact, double g, const PatchCalibration& cal,
+                        std::string* rows, std::string* notes, std::string* log) {
+  {
     double worst = 0.0;
     // By spin share, then xi share and sign. The shares from kSmallSpinShare on first: a share
     // below it holds, outside its fitted range, the first of them (identifyDirection).
@@ -1049,8 +1110,10 @@ void identifyCorrection(const Options& o, ExactCache* exact, const CalibrationTa
                                           &byShare[*first].at({t, sign}), s3 / *first)
                       : identifyDirection(o, exact, g, gridRay(s3, t, sign), cal);
             const double w = *std::max_element(fit.error.begin(), fit.error.end());
-            std::printf("a/b %g direction %s: worst knot error %.4f\n", g,
-                        gridRay(s3, t, sign).name.c_str(), w);
+            char line[120];
+            std::snprintf(line, sizeof line, "a/b %g direction %s: worst knot error %.4f\n", g,
+                          gridRay(s3, t, sign).name.c_str(), w);
+            *log += line;
             worst = std::max(worst, w);
             byShare[s3][{t, sign}] = fit;
             if (t >= 1.0) byShare[s3][{t, -1}] = fit;
@@ -1130,20 +1193,26 @@ void identifyCorrection(const Options& o, ExactCache* exact, const CalibrationTa
             std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d,%g,%g,%d\n", g, code(p, true),
                           o.corrKnots[i], fit.m[i][p], fit.error[i], o.nx, s3, key.first,
                           key.second);
-            (*rows)[g] += line;
+            *rows += line;
           }
     }
     char note[120];
     std::snprintf(note, sizeof note, "#   a/b %g combined correction: worst knot error %.4f\n", g,
                   worst);
-    *notes << note;
+    *notes += note;
   }
 }
 
-// One mesh's rows (fastsim_nx o.nx) in increasing a/b, its fit errors into `notes`.
-std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream* notes) {
-  std::map<double, std::string> rows;  // per a/b: the table's blocks in increasing a/b
-  for (double g : o.ratios) {
+// One mesh's (fastsim_nx o.nx) identification at one a/b: its rows, the notes of its fit errors
+// and its progress log. It needs no other a/b's or mesh's: one job of the parallel run.
+struct RowFit {
+  std::string rows, singleNotes, correctionNotes, log;
+};
+RowFit identifyRow(const Options& o, ExactCache* exact, double g) {
+  RowFit out;
+  std::string* const notes = &out.singleNotes;
+  std::map<double, std::string> rows;  // this a/b's rows (rows[g]), as the CSV table holds them
+  {
     std::vector<double> couple;  // eta's fit's lateral coupling, which spin's is fitted on
     for (int kind = 0; kind < 3; ++kind) {
       const KindFit fit = kind == 2                 ? identifySpin(o, exact, g, {})
@@ -1181,7 +1250,7 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
       char note[120];
       std::snprintf(note, sizeof note, "#   a/b %g kind %s: worst knot error %.4f\n", g,
                     kRays[kind].name.c_str(), worst);
-      *notes << note;
+      *notes += note;
     }
     if (o.coupling && o.etaSlope) {  // on the single kinds' table at this a/b
       std::stringstream single;
@@ -1216,18 +1285,17 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
       std::snprintf(note, sizeof note, "#   a/b %g kind%s: worst knot error %.4f\n", g,
                     o.etaNoSpin ? "s 22n, 22cn, 22s, 22b (together)" : " 22b",
                     *std::max_element(error.begin(), error.end()));
-      *notes << note;
+      *notes += note;
     }
   }
+  out.rows = rows[g];
   if (!o.spinShares.empty()) {  // the correction on top of the single kinds' table
     std::stringstream single;
-    single << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n";
-    for (const auto& [g, block] : rows) single << block;
-    identifyCorrection(o, exact, CalibrationTable::parse(single, "(single kinds)"), &rows, notes);
+    single << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n" << out.rows;
+    identifyCorrection(o, exact, g, CalibrationTable::parse(single, "(single kinds)").at(g),
+                       &out.rows, &out.correctionNotes, &out.log);
   }
-  std::string block;
-  for (const auto& [g, text] : rows) block += text;
-  return block;
+  return out;
 }
 
 bool isBinaryPath(const std::string& path) {
@@ -1249,18 +1317,70 @@ void writeTableFile(const CalibrationTable& table, const std::string& path) {
   if (!out.flush()) throw std::runtime_error("cannot write " + path);
 }
 
+// Runs job(i) for i in [0, n) on `threads` threads, in the order of `order` (the longest jobs
+// first, so that the threads end together). Each job writes only its own result: what the run
+// makes does not depend on the number of threads. The first exception is rethrown.
+template <class Job>
+void runJobs(std::size_t n, int threads, const std::vector<std::size_t>& order, const Job& job) {
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failed;
+  std::mutex failedMutex;
+  auto work = [&] {
+    for (std::size_t k; (k = next++) < n;) {
+      try {
+        job(order[k]);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failedMutex);
+        if (!failed) failed = std::current_exception();
+        next = n;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  if (failed) std::rethrow_exception(failed);
+}
+
 void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
+  // One job per mesh and a/b, the meshes' blocks and notes assembled in order afterwards.
+  std::vector<std::pair<int, double>> jobs;
+  for (int nx : o.meshes)
+    for (double g : o.ratios) jobs.push_back({nx, g});
+  std::vector<RowFit> fits(jobs.size());
+  // The march's cost grows as nx^2: the finest meshes first.
+  std::vector<std::size_t> order(jobs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return jobs[x].first > jobs[y].first; });
+  std::mutex logMutex;
+  runJobs(jobs.size(), o.threads, order, [&](std::size_t i) {
+    Options m = o;
+    m.nx = jobs[i].first;
+    fits[i] = identifyRow(m, exact, jobs[i].second);
+    std::lock_guard<std::mutex> lock(logMutex);
+    std::cout << "FastSim " << m.nx << "x" << m.nx << " a/b " << jobs[i].second << ":\n"
+              << fits[i].log << std::flush;
+  });
   std::string blocks;
   std::ostringstream notes;
-  for (int nx : o.meshes) {
-    Options m = o;
-    m.nx = nx;
-    std::ostringstream meshNotes;
-    const std::string block = identifyMesh(m, exact, &meshNotes);
+  for (std::size_t m = 0; m < o.meshes.size(); ++m) {
+    const int nx = o.meshes[m];
     const std::string title =
         "# FastSim mesh " + std::to_string(nx) + "x" + std::to_string(nx) + "\n";
-    notes << title << meshNotes.str();
-    blocks += title + block;
+    // The a/b rows in increasing a/b (the table's order), the notes in --ab's.
+    std::map<double, std::string> rows;
+    std::string single, correction;
+    for (std::size_t r = 0; r < o.ratios.size(); ++r) {
+      const RowFit& fit = fits[m * o.ratios.size() + r];
+      rows[o.ratios[r]] = fit.rows;
+      single += fit.singleNotes;
+      correction += fit.correctionNotes;
+    }
+    notes << title << single << correction;
+    blocks += title;
+    for (const auto& [g, text] : rows) blocks += text;
   }
   std::string command = "identify_calibration";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
@@ -1368,15 +1488,14 @@ struct StudyTerms {
 Point studyFastSim(const Options& o, double g, const Ray& r, double e, const PatchCalibration& base,
                    const StudyTerms& t) {
   const Setup s(o, g);
-  const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
-  TractionField f;
-  f.resize(mesh.size());
+  Scratch& scratchField = scratch(o.nx, s.a, s.b);
+  const PatchMesh& mesh = scratchField.mesh;
+  TractionField& f = scratchField.f;
   const Creepages c = s.creepages(r, e);
   const CalibratedStep step = base.step(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
   const double shape =
       step.boundShape > 0.0 ? step.boundShape * std::exp(t.l[3]) : std::exp(t.l[3]) - 1.0;
-  flattenedBound(mesh, s.a, s.b, s.fz, s.mu,
-                 std::min(calibration::kMaxBoundShape, std::max(0.0, shape)), &f);
+  scratchField.bound(s.fz, s.mu, std::min(calibration::kMaxBoundShape, std::max(0.0, shape)));
   const double L1 = step.L.L1 * std::exp(t.l[0]), L2 = step.L.L2 * std::exp(t.l[1]),
                L3 = step.L.L3 * std::exp(t.l[2]), L3x = step.L.spinX() * std::exp(t.l[2]);
   const double gy = c.eta / L2 / (1.0 - t.beta / 3.0), gphi = c.phi / L3;
