@@ -127,7 +127,15 @@ def main():
     ap.add_argument("--threads", type=int, default=os.cpu_count())
     ap.add_argument("--out", default="doc/figures/calibration_size_error.png")
     ap.add_argument("--csv", default="doc/data/calibration_size_error.csv")
+    ap.add_argument("--plot-only", action="store_true", help="plot --csv as it is (no runs)")
     a = ap.parse_args()
+    if a.plot_only:
+        with open(a.csv) as f:
+            results = [(r["representation"], r["group"], int(r["bytes"]),
+                        float(r["worst_force_error"]), float(r["worst_moment_error"]))
+                       for r in csv.DictReader(f)]
+        plot(results, a.out)
+        return
     tool = os.path.join(a.build, "devel/lib/wheel_rail_contact/identify_calibration")
     shipped = "config/calibration.bin"
     if not os.path.exists(tool) or not os.path.exists(shipped):
@@ -166,32 +174,41 @@ def main():
         w.writerow(["representation", "group", "bytes", "worst_force_error", "worst_moment_error"])
         for r in results:
             w.writerow([r[0], r[1], r[2], f"{r[3]:.4f}", f"{r[4]:.4f}"])
+    plot(results, a.out)
+    for r in results:
+        print(f"{r[0]:32s} {r[2] / 1e6:6.2f} MB  force {r[3]:.4f}  moment {r[4]:.4f}")
+
+
+def plot(results, path):
+    """The figure: size against the worst force and moment errors, one point per representation."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+    fig, axes = plt.subplots(1, 2, figsize=(11, 5.6))
     style = {"shipped": ("o", "C0"), "quantised": ("s", "C1"), "re-identified": ("^", "C2")}
     for ax, col, name in ((axes[0], 3, "worst force error  max(|dFx|, |dFy|) / (mu Fz)"),
                           (axes[1], 4, "worst moment error  |dMz| / peak |Mz|")):
         for group, (marker, colour) in style.items():
-            pts = [r for r in results if r[1] == group]
-            ax.scatter([r[2] / 1e6 for r in pts], [r[col] for r in pts], marker=marker,
+            pts = [(i, r) for i, r in enumerate(results) if r[1] == group]
+            ax.scatter([r[2] / 1e6 for _, r in pts], [r[col] for _, r in pts], marker=marker,
                        color=colour, label=group, zorder=3)
-            for r in pts:
-                ax.annotate(r[0], (r[2] / 1e6, r[col]), fontsize=7, xytext=(4, 3),
-                            textcoords="offset points")
+            for i, r in pts:  # numbered: the key below the plots names them
+                ax.annotate(str(i + 1), (r[2] / 1e6, r[col]), fontsize=8,
+                            xytext=(4, 2 + 7 * (i % 3)), textcoords="offset points")
         ax.set_xlabel("size of the five-mesh table [MB]")
         ax.set_ylabel(name)
         ax.set_xlim(left=0)
         ax.grid(alpha=0.3)
     axes[0].legend(loc="upper right", fontsize=8)
+    key = [f"{i + 1}: {r[0]}" for i, r in enumerate(results)]
+    half = (len(key) + 1) // 2
+    fig.text(0.08, 0.02, "\n".join(key[:half]), fontsize=8, va="bottom")
+    fig.text(0.55, 0.02, "\n".join(key[half:]), fontsize=8, va="bottom")
     fig.suptitle(f"Calibrated FastSim's table: size against worst steady error "
                  f"(FastSim {NX}x{NX}, every ray and a/b 0.2-5, against the exact curves)",
                  fontsize=10)
-    fig.tight_layout()
-    fig.savefig(a.out, dpi=110)
-    for r in results:
-        print(f"{r[0]:32s} {r[2] / 1e6:6.2f} MB  force {r[3]:.4f}  moment {r[4]:.4f}")
+    fig.tight_layout(rect=(0, 0.2, 1, 1))
+    fig.savefig(path, dpi=110)
 
 
 if __name__ == "__main__":
