@@ -27,7 +27,7 @@ inline StepInput input(int k, bool varyLoad) {
 // SteadyModel with its mesh fitted to the patch, on "fixed" SteadyModel on NssModel's fixed mesh
 // (the same-mesh reference for nss fixed). nss runs a uniform first-order chi, or with shippedChi
 // config/chi_table.csv (kind 23 second order: with spin the march carries s2).
-// A model name ending in "-calibrated" runs the calibrated FastSim (config/steady_calibration.csv).
+// A model name ending in "-calibrated" runs the calibrated FastSim (config/calibration.bin).
 inline std::unique_ptr<ContactModel> makeModel(const std::string& model, const std::string& mesh,
                                                int n, bool shippedChi = false) {
   ContactParameters p;

@@ -1,10 +1,27 @@
-# Tables shipped inside the core library: each config/<name>.csv is compiled in as text, so an
-# installed package (or a copied binary) never looks for a data file in a source tree. Read through
-# wheel_rail_contact::shippedTable("<name>") (shipped_tables.hpp). To ship another table, add its
-# name to WRC_SHIPPED_TABLES here: the package and the fuzz build (test/fuzz) both read this list.
+# Tables shipped inside the core library, so an installed package (or a copied binary) never looks
+# for a data file in a source tree.
+#
+# Text tables: each config/<name>.csv is compiled in as text, read through
+# wheel_rail_contact::shippedTable("<name>") (shipped_tables.hpp). To ship another, add its name to
+# WRC_SHIPPED_TABLES here: the package and the fuzz build (test/fuzz) both read this list.
 #   wrc_generate_shipped_tables(<out .cpp> <directory of the CSVs> <name>...)
 # The CSVs are configure dependencies: editing one regenerates the source.
-set(WRC_SHIPPED_TABLES chi_table steady_calibration)
+#
+# The calibrated FastSim's table, config/calibration.bin (binary, 2.6 MB:
+# src/core/calibration/calibration_binary.hpp), goes in as it is, by the assembler's .incbin in
+# src/core/calibration/calibration_data.cpp: nothing generated, nothing to compile (as C++ text it
+# cost a 27 MB source and its compile). Its path and SHA-256 are that one source's compile
+# definitions: a changed table reconfigures, and the new checksum rebuilds the object (ccache does
+# not read a file the assembler includes, so the checksum is what tells it the data changed).
+#   wrc_embed_calibration(<calibration_data.cpp> <calibration.bin>)
+set(WRC_SHIPPED_TABLES chi_table)
+function(wrc_embed_calibration source bin)
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${bin})
+  file(SHA256 ${bin} hash)
+  set_source_files_properties(${source} PROPERTIES
+    COMPILE_DEFINITIONS "WRC_CALIBRATION_BIN=\"${bin}\";WRC_CALIBRATION_SHA256=${hash}"
+    OBJECT_DEPENDS ${bin})
+endfunction()
 function(wrc_generate_shipped_tables out dir)
   set(entries "")
   foreach(name ${ARGN})

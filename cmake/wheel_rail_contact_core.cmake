@@ -21,6 +21,8 @@ file(GLOB_RECURSE WRC_CORE_SOURCES CONFIGURE_DEPENDS ${WRC_ROOT}/src/core/*.cpp)
 include(${WRC_ROOT}/cmake/shipped_tables.cmake)  # sets WRC_SHIPPED_TABLES
 wrc_generate_shipped_tables(${CMAKE_CURRENT_BINARY_DIR}/generated/shipped_tables_data.cpp
   ${WRC_ROOT}/config ${WRC_SHIPPED_TABLES})
+wrc_embed_calibration(${WRC_ROOT}/src/core/calibration/calibration_data.cpp
+  ${WRC_ROOT}/config/calibration.bin)
 add_library(wheel_rail_contact_core ${WRC_CORE_SOURCES}
   ${CMAKE_CURRENT_BINARY_DIR}/generated/shipped_tables_data.cpp)
 # Installed and imported as wheel_rail_contact::core.

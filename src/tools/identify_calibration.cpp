@@ -1,5 +1,5 @@
 // identify_calibration: identifies the calibrated FastSim's flexibility ratios
-// (config/steady_calibration.csv, calibration_table.hpp) against our exact half-space solver, and
+// (config/calibration.bin, calibration_table.hpp) against our exact half-space solver, and
 // writes the steady creep curves exact / classic / calibrated for plots and tests.
 // Exact creep curves are cached (--exact, doc/data/steady_exact_curves.csv): a point found there
 // is read, not recomputed; missing points are solved and the cache rewritten.
@@ -23,20 +23,27 @@
 // xi = eta together.
 // Per FastSim mesh (--nx 5,10,20,30,40): FastSim's own discretisation error differs per mesh, the
 // exact curves do not, so one cache serves every mesh; each mesh's rows carry its fastsim_nx.
+// Each (mesh, a/b) is identified on its own, needing no other's: they run as parallel jobs
+// (--threads), each writing only its own result, so the table is the same whatever the number.
 // Options: identify_calibration --help.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <iostream>
 #include <limits>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -48,36 +55,36 @@
 #include "validation/steady_curves.hpp"
 
 using namespace wheel_rail_contact;
+using namespace wheel_rail_contact::calibration;
 
 namespace {
 
+// A kind's short name in the table (calibration_schema.hpp); `multiplier`: the combined
+// correction's multiplier k's.
+const char* code(int k, bool multiplier = false) {
+  return (multiplier ? kMultiplierInfo[k] : kKindInfo[k]).code.data();
+}
+
 const char* const kDefaultExact = "doc/data/steady_exact_curves.csv";
 
+template <std::size_t N>
+std::vector<double> gridOf(const double (&values)[N]) {
+  return std::vector<double>(values, values + N);
+}
+
 struct Options {
-  std::string out, exact = kDefaultExact, curves, table;
+  std::string out, exact = kDefaultExact, curves, table, convert;
+  int dump = -1;  // --dump: the mesh written as CSV (0: every mesh)
+  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   int grid = 20, nx = 20;  // nx: the mesh being identified or evaluated, one of `meshes`
   std::vector<int> meshes = {20};
   double nu = 0.28, G = 8.2e10, mu = 0.3, fz = 1e4;
-  std::vector<double> ratios = {0.2, 0.5, 1, 2, 5};
-  std::vector<double> knots = {0,    0.1, 0.2, 0.35, 0.5, 0.6, 0.75, 0.9, 1,
-                               1.25, 1.5, 2,   3,    4.5, 7,   10,   15};
+  // The grids: the shipped table's (calibration_schema.hpp, where each is explained).
+  std::vector<double> ratios = gridOf(calibration::kAOverB), knots = gridOf(calibration::kKnots);
   std::vector<double> points = {0.05, 0.15, 0.3, 0.6, 0.9, 1.25, 1.75, 2.5, 4, 6, 9, 13};
-  // The combined correction's knots: denser where creep curves with spin turn (e 1.5 to 2.5), and
-  // 3.75 and 5.5 in full slip, where h5 (a/b 1) and r25 (a/b 5) missed the moment by 5.1 and
-  // 5.3 % of the peak at their worst, between the knots 4.5 and 7 and between 3 and 4.5.
-  std::vector<double> corrKnots = {0,    0.1,  0.2, 0.35, 0.5, 0.6,  0.75, 0.9, 1, 1.25, 1.5,
-                                   1.65, 1.85, 2,   2.25, 3,   3.75, 4.5,  5.5, 7, 10,   15};
-  // Spin's share 0.06 and xi's share 0.875: held-out rays h7 and h8 (spin 7 % of e^2, between
-  // h4 and the share 0.1) were 0.024 and 0.025 mu fz off without them. Spin's shares 0.625, 0.825
-  // and 0.95 and xi's 0.125 and 0.375: directions spread between the coarser grid's (r1-r16, eta
-  // phi < 0) were up to 0.055 off. Spin's share 0.03: r10 (4.5 %, in full slip at a/b 0.2) was
-  // 0.027 off with the correction interpolated from none up to 0.06. Spin's share 0.045 and xi's
-  // 0.9375: r10 (4.5 %, xi 93 % of the rest) was 0.0185 mu fz off at a/b 0.2 and its moment 6.5 %
-  // of the peak at a/b 0.5 with the correction interpolated between the directions around it,
-  // whose own fits were within 0.011.
-  std::vector<double> spinShares = {0.03, 0.045, 0.06, 0.1,   0.175, 0.25, 0.375,
-                                    0.5,  0.625, 0.75, 0.825, 0.9,   0.95},
-                      xiShares = {0, 0.125, 0.25, 0.375, 0.5, 0.75, 0.875, 0.9375, 1};
+  std::vector<double> corrKnots = gridOf(calibration::kCorrectionKnots),
+                      spinShares = gridOf(calibration::kSpinShares),
+                      xiShares = gridOf(calibration::kXiShares);
   // The smoothing sweeps' pull towards the neighbouring directions (identifyCorrection), in
   // mu fz per unit ln multiplier; 0: each direction fitted alone.
   double smoothing = 0.01;
@@ -88,24 +95,32 @@ struct Options {
 };
 
 const char* const kUsage =
-    "usage: identify_calibration [--out config/steady_calibration.csv]\n"
+    "usage: identify_calibration [--out config/calibration.bin]\n"
     "                       [--exact doc/data/steady_exact_curves.csv]\n"
     "                       [--curves doc/data/steady_curves.csv] [--table FILE]\n"
-    "                       [--grid 20] [--nx 20[,...]] [--nu 0.28] [--ab 0.2,0.5,1,2,5]\n"
-    "                       [--knots 0,0.1,...] [--points 0.05,0.15,...]\n"
-    "                       [--correction-knots 0,0.1,...]\n"
-    "                       [--spin-shares 0.03,0.045,0.06,0.1,0.175,0.25,0.375,0.5,0.625,\n"
-    "                                      0.75,0.825,0.9,0.95]\n"
-    "                       [--xi-shares 0,0.125,0.25,0.375,0.5,0.75,0.875,0.9375,1]\n"
+    "                       [--grid 20] [--nx 20[,...]] [--nu 0.28] [--ab R,...]\n"
+    "                       [--knots E,...] [--points 0.05,0.15,...]\n"
+    "                       [--correction-knots E,...] [--spin-shares S,...] [--xi-shares T,...]\n"
     "                       [--smoothing 0.01] [--no-coupling] [--no-eta-slope]\n"
     "                       [--no-eta-without-spin]\n"
     "                       [--solve-grid [--grid-only]]\n"
     "                       [--moment-study]\n"
-    "--out:    identify and write the table (else --table, or the shipped one, is evaluated;\n"
-    "          --table classic: no table)\n"
+    "                       [--threads N]\n"
+    "       identify_calibration --dump NX [--table FILE] [--out FILE.csv]\n"
+    "       identify_calibration --convert FILE --out FILE.bin\n"
+    "--out:    identify and write the table: binary where FILE ends in .bin, with a summary\n"
+    "          beside it (FILE less .bin, _summary.txt: the fit errors and the command), else\n"
+    "          CSV (else --table, or the shipped one, is evaluated; --table classic: no table)\n"
+    "--table:  a table file, binary or CSV (default: the one shipped in the library)\n"
+    "--threads: identify that many meshes and a/b at once (default: the CPU's threads); the\n"
+    "          table is the same whatever the number\n"
+    "--dump:   write mesh NX of the table (0: every mesh) as CSV, to --out or stdout\n"
+    "--convert: read a table (CSV or binary) and write it to --out (.bin: binary, else CSV)\n"
     "--exact:  the exact points' cache, read and extended (the default, relative to the\n"
     "          repository root, must exist; a FILE that does not is a new cache)\n"
     "--curves: write exact / classic / calibrated curves at --points for every ray\n"
+    "--ab, --knots, --correction-knots, --spin-shares, --xi-shares: the table's grid (default:\n"
+    "          the shipped table's, src/core/calibration/calibration_schema.hpp)\n"
     "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis, one table block\n"
     "          per mesh (fastsim_nx); evaluation: each mesh on the table's, interpolated\n"
     "          between its meshes (one --nx with --curves)\n"
@@ -131,6 +146,12 @@ void readOption(tools::Args& a, Options* o) {
     o->curves = a.text();
   else if (a.is("--table"))
     o->table = a.text();
+  else if (a.is("--threads"))
+    o->threads = a.integer();
+  else if (a.is("--dump"))
+    o->dump = a.integer();
+  else if (a.is("--convert"))
+    o->convert = a.text();
   else if (a.is("--grid"))
     o->grid = a.integer();
   else if (a.is("--nx"))
@@ -311,7 +332,9 @@ class ExactCache {
     for (const SteadyCurvePoint& p : readSteadyCurves(path))
       map_[Key{p.aOverB, p.ray, p.epsilon}] = {{p.fx, p.fy, p.mz}, p.c};
   }
+  // Thread-safe: the parallel jobs share the cache (a point missing is solved under the lock).
   Point at(double g, const Ray& r, double e) {
+    std::lock_guard<std::mutex> lock(mutex_);
     const Key key{g, r.name, e};
     auto it = map_.find(key);
     if (it != map_.end()) return it->second.p;
@@ -373,14 +396,48 @@ class ExactCache {
   int solved_ = 0;
   std::unique_ptr<HalfspaceSolver> solver_;
   double solverAB_ = 0.0;
+  std::mutex mutex_;
 };
+
+// A FastSim evaluation's mesh and traction field, one per thread, kept from one evaluation to the
+// next: the identifier runs FastSim millions of times on a handful of patches, and a mesh built
+// for each run cost a third of the time (40x40). Kept, they give the same results bit for bit:
+// the mesh is a function of (nx, a, b) alone, the march writes every value of the field it reads
+// but the bound, and the bound is a function of (fz, mu, shape) on the mesh: written again only
+// where one of them changed (a search moving L1, L2 or L3 keeps the shape).
+struct Scratch {
+  int nx = 0;
+  double a = 0.0, b = 0.0;
+  PatchMesh mesh;
+  TractionField f;
+  double fz = 0.0, mu = 0.0, shape = std::numeric_limits<double>::quiet_NaN();  // f's bound's
+  // The bound of (fz, mu, shape) into f (flattenedBound).
+  void bound(double boundFz, double boundMu, double boundShape) {
+    if (boundFz == fz && boundMu == mu && boundShape == shape) return;
+    flattenedBound(mesh, a, b, boundFz, boundMu, boundShape, &f);
+    fz = boundFz;
+    mu = boundMu;
+    shape = boundShape;
+  }
+};
+Scratch& scratch(int nx, double a, double b) {
+  thread_local Scratch s;
+  if (s.nx != nx || s.a != a || s.b != b) {
+    s = Scratch();
+    s.mesh = PatchMesh(nx, nx, a, b);
+    s.f.resize(s.mesh.size());
+    s.nx = nx;
+    s.a = a;
+    s.b = b;
+  }
+  return s;
+}
 
 // The combined correction's multipliers at a knot, in PatchCalibration::correction's order:
 // of L1, L2, L3, of the bound's shape, and of L3x besides L3's; the table's kinds for them.
-constexpr int kMultipliers = PatchCalibration::kCorrections;
+using calibration::kMultipliers;
 using Multipliers = std::array<double, kMultipliers>;
 constexpr Multipliers kNoCorrection = {1.0, 1.0, 1.0, 1.0, 1.0};
-const char* const kCorrectionKinds[kMultipliers] = {"c1", "c2", "c3", "cs", "c3x"};
 Multipliers expOf(const double* l) {
   Multipliers m;
   for (int p = 0; p < kMultipliers; ++p) m[p] = std::exp(l[p]);
@@ -394,22 +451,20 @@ Point fastsimCorrected(const Options& o, double g, const Ray& r, double e,
                        const PatchCalibration& base, const double* m,
                        bool hertzShapeBlend = false) {
   const Setup s(o, g);
-  const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
-  TractionField f;
-  f.resize(mesh.size());
+  Scratch& scratchField = scratch(o.nx, s.a, s.b);
   const Creepages c = s.creepages(r, e);
-  double shape = std::min(PatchCalibration::kMaxBoundShape,
-                          base.boundShape(s.a, s.b, s.G, s.k, s.mu * s.fz, c) * m[3]);
+  const CalibratedStep step = base.step(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
+  double shape = std::min(calibration::kMaxBoundShape, step.boundShape * m[3]);
   if (hertzShapeBlend)  // as the table with its correction does (towardsFullSlip)
     shape = PatchCalibration::hertzShapeBlend(
         shape, e, r.e[2] * r.e[2] / (r.e[0] * r.e[0] + r.e[1] * r.e[1] + r.e[2] * r.e[2]), g);
-  flattenedBound(mesh, s.a, s.b, s.fz, s.mu, shape, &f);
-  Flexibilities L = base.flexibilities(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
+  scratchField.bound(s.fz, s.mu, shape);
+  Flexibilities L = step.L;
   L.L3x = L.spinX() * m[2] * m[4];
   L.L1 *= m[0];
   L.L2 *= m[1];
   L.L3 *= m[2];
-  const CreepForces y = steadyFastSim(mesh, L, c, &f);
+  const CreepForces y = steadyFastSim(scratchField.mesh, L, c, &scratchField.f);
   return s.normalised(y.fx, y.fy, y.mz);
 }
 
@@ -424,10 +479,10 @@ Point fastsimAt(const Options& o, double g, const Ray& r, double e, const PatchC
 Point fastsimScaled(const Options& o, double g, int kind, double e, double ratio,
                     double ratioX = 1.0, double shape = 0.0, double couple = 0.0) {
   const Setup s(o, g);
-  const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
-  TractionField f;
-  f.resize(mesh.size());
-  flattenedBound(mesh, s.a, s.b, s.fz, s.mu, shape, &f);
+  Scratch& scratchField = scratch(o.nx, s.a, s.b);
+  const PatchMesh& mesh = scratchField.mesh;
+  TractionField& f = scratchField.f;
+  scratchField.bound(s.fz, s.mu, shape);
   const Creepages c = s.creepages(kRays[kind], e);
   Flexibilities L = kalkerFlexibilities(s.a, s.b, s.G, s.k);
   (kind == 0 ? L.L1 : kind == 1 ? L.L2 : L.L3) *= ratio;
@@ -605,12 +660,12 @@ std::vector<double> identifyEtaSlope(const Options& o, ExactCache* exact, double
     }
     const Point x = exact->at(g, xe, e);
     const Setup s(o, g);
-    const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
-    TractionField f;
-    f.resize(mesh.size());
+    Scratch& scratchField = scratch(o.nx, s.a, s.b);
+    const PatchMesh& mesh = scratchField.mesh;
+    TractionField& f = scratchField.f;
     const Creepages c = s.creepages(xe, e);
     const CalibratedStep step = cal.step(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
-    flattenedBound(mesh, s.a, s.b, s.fz, s.mu, step.boundShape, &f);
+    scratchField.bound(s.fz, s.mu, step.boundShape);
     auto fit = [&](double b) {
       Flexibilities L = step.L;
       PatchCalibration::setEtaSlope(b, s.a, &L);
@@ -729,7 +784,7 @@ struct CorrectionFit {
 constexpr int kSmoothingSweeps = 3;
 // Normalised creepage up to which the combined correction is 1.
 constexpr double kLinearEnd = 0.1;
-// Below PatchCalibration::kSmallSpinShare a spin-share knot is fitted from this normalised
+// Below calibration::kSmallSpinShare a spin-share knot is fitted from this normalised
 // creepage on (with towardsFullSlip's blend in the fit, as the table applies it there), below it
 // holding the correction interpolated between no spin and the first knot from kSmallSpinShare on:
 // kRoundSmallShareFitFrom on a round patch (a/b 1), kSmallShareFitFrom from a/b 2 (or 1/2) on,
@@ -762,22 +817,36 @@ int searchedMultipliers(double e, double* lm) {
 
 // Pattern search along the coordinates: from x, steps of +-h along each of its `dims` coordinates
 // while they lower `cost`, h halving from 0.2 down to 1e-3, at most `maxSweeps` sweeps per h; a
-// point `allowed` rejects is not costed. x ends at the best point found.
+// point `allowed` rejects is not costed. x ends at the best point found. A point's coordinates
+// past `dims` are 0, as every caller holds them (they were left unset, and the fit then hung on
+// whatever the stack held there).
 constexpr int kMaxSearchDims = 5;
 template <class Cost, class Allowed>
 void coordinateSearch(double* x, int dims, const Cost& cost, const Allowed& allowed,
                       int maxSweeps) {
   double best = cost(x);
+  // The points costed so far, by their bits: a step back to where the search came from (some 15 %
+  // of the points) is looked up, not costed again (the same cost: it is a function of the point).
+  using Bits = std::array<std::uint64_t, kMaxSearchDims>;
+  std::map<Bits, double> costed;
+  auto bitsOf = [dims](const double* p) {
+    Bits b{};
+    std::memcpy(b.data(), p, sizeof(double) * dims);
+    return b;
+  };
+  costed[bitsOf(x)] = best;
   for (double h = 0.2; h > 1e-3; h *= 0.5)
     for (int sweeps = 0, moved = 1; moved && sweeps < maxSweeps; ++sweeps) {
       moved = 0;
       for (int d = 0; d < dims; ++d)
         for (double step : {h, -h}) {
-          double t[kMaxSearchDims];
+          double t[kMaxSearchDims] = {};
           std::copy(x, x + dims, t);
           t[d] += step;
           if (!allowed(t)) continue;
-          const double c = cost(t);
+          const auto [at, fresh] = costed.try_emplace(bitsOf(t), 0.0);
+          if (fresh) at->second = cost(t);
+          const double c = at->second;
           if (c < best) best = c, std::copy(t, t + dims, x), moved = 1;
         }
     }
@@ -845,10 +914,10 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
     if (!first) knots.push_back(ePrevious);
     knots.push_back(e);
     for (double k : knots) {
-      row(&fixed, "11", k, cal.ratio(0, k));
-      row(&fixed, "22", k, cal.ratio(1, k));
-      row(&fixed, "23", k, 1.0);
-      row(&fixed, "22c", k, cal.coupling(k));
+      row(&fixed, code(kXiRatio), k, cal.ratio(kXiRatio, k));
+      row(&fixed, code(kEtaRatio), k, cal.ratio(kEtaRatio, k));
+      row(&fixed, code(kSpinRatio), k, 1.0);
+      row(&fixed, code(kEtaCoupling), k, cal.coupling(k));
     }
     // The larger of eta alone's error and xi = eta's over the knot's cell, and the fit's cost: at
     // each place their sum and the larger.
@@ -857,10 +926,10 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
       for (double k : knots) {
         const bool here = k == e, before = k > 0.0 && !here;
         const double* w = here ? v : before ? previous : nullptr;
-        row(&t, "22b", k, w ? w[3] : 0.0);
-        row(&t, "22n", k, w ? std::exp(w[0]) : 1.0);
-        row(&t, "22cn", k, w ? w[1] : 0.0);
-        row(&t, "22s", k, w ? w[2] : 0.0);
+        row(&t, code(kEtaDriveSlope), k, w ? w[3] : 0.0);
+        row(&t, code(kEtaRatioNoSpin), k, w ? std::exp(w[0]) : 1.0);
+        row(&t, code(kEtaCouplingNoSpin), k, w ? w[1] : 0.0);
+        row(&t, code(kEtaBoundShapeNoSpin), k, w ? w[2] : 0.0);
       }
       std::istringstream text(t);
       const PatchCalibration one = CalibrationTable::parse(text, "(knot cell)").at(g);
@@ -874,7 +943,8 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
       if (larger) *larger = worst;
       return sum;
     };
-    const double pair[4] = {std::log(cal.ratio(1, e)), cal.coupling(e), 0.0, cal.etaSlope(e)};
+    const double pair[4] = {std::log(cal.ratio(kEtaRatio, e)), cal.coupling(e), 0.0,
+                            cal.etaSlope(e)};
     auto cost = [&](const double* v) {
       double pull = 0.0;
       if (!first)
@@ -884,9 +954,8 @@ EtaNoSpinFit identifyEtaWithoutSpin(const Options& o, ExactCache* exact, double 
       return errors(v) + kEtaNoSpinPull * pull + kEtaNoSpinPairPull * toPair;
     };
     auto allowed = [](const double* v) {
-      return v[0] > std::log(0.05) && v[0] < std::log(50.0) &&
-             v[2] >= PatchCalibration::kMinEtaShape && v[2] <= PatchCalibration::kMaxBoundShape &&
-             std::abs(v[3]) <= kEtaSlopeMax;
+      return v[0] > std::log(0.05) && v[0] < std::log(50.0) && v[2] >= calibration::kMinEtaShape &&
+             v[2] <= calibration::kMaxBoundShape && std::abs(v[3]) <= kEtaSlopeMax;
     };
     double best[4] = {pair[0], pair[1], pair[2], pair[3]};
     coordinateSearch(best, 4, cost, allowed, 20);
@@ -928,7 +997,7 @@ void heldKnot(const CorrectionFit& held, double heldPower, std::size_t i, double
 // The combined correction along one direction of the grid: at each knot the multipliers
 // (Multipliers) minimising spinError (force and moment weighed as for spin alone), by pattern
 // search in their logarithms from the previous knot's (one continuous branch), with a small pull
-// towards 1. `held` (a spin share s3 below PatchCalibration::kSmallSpinShare): the same xi
+// towards 1. `held` (a spin share s3 below calibration::kSmallSpinShare): the same xi
 // share and sign's fit at the first spin share sA from it on; knots below smallShareFitFrom(g) take
 // held's multipliers to the power s3 / sA (what linear interpolation in ln multiplier between no
 // spin and sA gives there, so the knot changes nothing there) and the search goes on from them;
@@ -1019,20 +1088,18 @@ void refitTowards(const Options& o, ExactCache* exact, double g, const Ray& r,
 
 // The combined correction's rows (kinds c1, c2, c3, cs, c3x) on the table `base` (single kinds
 // only).
-void identifyCorrection(const Options& o, ExactCache* exact, const CalibrationTable& base,
-                        std::map<double, std::string>* rows, std::ostringstream* notes) {
-  for (double g : o.ratios) {
-    const PatchCalibration cal = base.at(g);
+void identifyCorrection(const Options& o, ExactCache* exact, double g, const PatchCalibration& cal,
+                        std::string* rows, std::string* notes, std::string* log) {
+  {
     double worst = 0.0;
     // By spin share, then xi share and sign. The shares from kSmallSpinShare on first: a share
     // below it holds, outside its fitted range, the first of them (identifyDirection).
     std::map<double, std::map<std::pair<double, int>, CorrectionFit>> byShare;
-    const auto first = std::find_if(o.spinShares.begin(), o.spinShares.end(), [](double s3) {
-      return s3 >= PatchCalibration::kSmallSpinShare;
-    });
+    const auto first = std::find_if(o.spinShares.begin(), o.spinShares.end(),
+                                    [](double s3) { return s3 >= calibration::kSmallSpinShare; });
     for (bool small : {false, true})
       for (double s3 : o.spinShares) {
-        if ((s3 < PatchCalibration::kSmallSpinShare) != small) continue;
+        if ((s3 < calibration::kSmallSpinShare) != small) continue;
         if (small && first == o.spinShares.end())
           throw std::runtime_error("--spin-shares: a share below 0.25 needs one from 0.25 on");
         for (double t : o.xiShares)
@@ -1043,8 +1110,10 @@ void identifyCorrection(const Options& o, ExactCache* exact, const CalibrationTa
                                           &byShare[*first].at({t, sign}), s3 / *first)
                       : identifyDirection(o, exact, g, gridRay(s3, t, sign), cal);
             const double w = *std::max_element(fit.error.begin(), fit.error.end());
-            std::printf("a/b %g direction %s: worst knot error %.4f\n", g,
-                        gridRay(s3, t, sign).name.c_str(), w);
+            char line[120];
+            std::snprintf(line, sizeof line, "a/b %g direction %s: worst knot error %.4f\n", g,
+                          gridRay(s3, t, sign).name.c_str(), w);
+            *log += line;
             worst = std::max(worst, w);
             byShare[s3][{t, sign}] = fit;
             if (t >= 1.0) byShare[s3][{t, -1}] = fit;
@@ -1066,7 +1135,7 @@ void identifyCorrection(const Options& o, ExactCache* exact, const CalibrationTa
           for (std::size_t b = 0; b < nT; ++b)
             for (int sign : {1, -1}) {
               const double s3 = o.spinShares[a], t = o.xiShares[b];
-              const bool small = s3 < PatchCalibration::kSmallSpinShare;
+              const bool small = s3 < calibration::kSmallSpinShare;
               if ((sign < 0 && t >= 1.0) || small != (pass == 1)) continue;
               // The neighbours along each share (no eta: both signs' next xi share); a multiplier
               // that acts on nothing (L1 without xi, L2 without eta) is left out of their mean.
@@ -1121,23 +1190,29 @@ void identifyCorrection(const Options& o, ExactCache* exact, const CalibrationTa
         for (int p = 0; p < kMultipliers; ++p)
           for (std::size_t i = 0; i < o.corrKnots.size(); ++i) {
             char line[200];
-            std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d,%g,%g,%d\n", g,
-                          kCorrectionKinds[p], o.corrKnots[i], fit.m[i][p], fit.error[i], o.nx, s3,
-                          key.first, key.second);
-            (*rows)[g] += line;
+            std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d,%g,%g,%d\n", g, code(p, true),
+                          o.corrKnots[i], fit.m[i][p], fit.error[i], o.nx, s3, key.first,
+                          key.second);
+            *rows += line;
           }
     }
     char note[120];
     std::snprintf(note, sizeof note, "#   a/b %g combined correction: worst knot error %.4f\n", g,
                   worst);
-    *notes << note;
+    *notes += note;
   }
 }
 
-// One mesh's rows (fastsim_nx o.nx) in increasing a/b, its fit errors into `notes`.
-std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream* notes) {
-  std::map<double, std::string> rows;  // per a/b: the table's blocks in increasing a/b
-  for (double g : o.ratios) {
+// One mesh's (fastsim_nx o.nx) identification at one a/b: its rows, the notes of its fit errors
+// and its progress log. It needs no other a/b's or mesh's: one job of the parallel run.
+struct RowFit {
+  std::string rows, singleNotes, correctionNotes, log;
+};
+RowFit identifyRow(const Options& o, ExactCache* exact, double g) {
+  RowFit out;
+  std::string* const notes = &out.singleNotes;
+  std::map<double, std::string> rows;  // this a/b's rows (rows[g]), as the CSV table holds them
+  {
     std::vector<double> couple;  // eta's fit's lateral coupling, which spin's is fitted on
     for (int kind = 0; kind < 3; ++kind) {
       const KindFit fit = kind == 2                 ? identifySpin(o, exact, g, {})
@@ -1154,28 +1229,28 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
       }
       for (std::size_t i = 0; i < fit.couple.size(); ++i) {  // eta's coupling, its fit's error
         char line[160];
-        std::snprintf(line, sizeof line, "%g,22c,%g,%.6f,%.5f,%d\n", g, o.knots[i], fit.couple[i],
-                      fit.error[i], o.nx);
+        std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, code(kEtaCoupling),
+                      o.knots[i], fit.couple[i], fit.error[i], o.nx);
         rows[g] += line;
       }
       if (kind == 2)  // spin's second parameter: same knots, the same fit's error
         for (std::size_t i = 0; i < o.knots.size(); ++i) {
           char line[160];
-          std::snprintf(line, sizeof line, "%g,23x,%g,%.6f,%.5f,%d\n", g, o.knots[i], fit.ratioX[i],
-                        fit.error[i], o.nx);
+          std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, code(kSpinDriveRatio),
+                        o.knots[i], fit.ratioX[i], fit.error[i], o.nx);
           rows[g] += line;
         }
       if (kind == 2)
         for (std::size_t i = 0; i < o.knots.size(); ++i) {
           char line[160];
-          std::snprintf(line, sizeof line, "%g,23s,%g,%.6f,%.5f,%d\n", g, o.knots[i], fit.shape,
-                        fit.error[i], o.nx);
+          std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, code(kSpinBoundShape),
+                        o.knots[i], fit.shape, fit.error[i], o.nx);
           rows[g] += line;
         }
       char note[120];
       std::snprintf(note, sizeof note, "#   a/b %g kind %s: worst knot error %.4f\n", g,
                     kRays[kind].name.c_str(), worst);
-      *notes << note;
+      *notes += note;
     }
     if (o.coupling && o.etaSlope) {  // on the single kinds' table at this a/b
       std::stringstream single;
@@ -1183,11 +1258,11 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
       std::vector<double> error;
       std::vector<double> beta = identifyEtaSlope(
           o, exact, g, CalibrationTable::parse(single, "(single kinds)").at(g), &error);
-      auto write = [&](const char* kind, const std::vector<double>& v) {
+      auto write = [&](int kind, const std::vector<double>& v) {
         for (std::size_t i = 0; i < v.size(); ++i) {
           char line[160];
-          std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, kind, o.knots[i], v[i],
-                        error[i], o.nx);
+          std::snprintf(line, sizeof line, "%g,%s,%g,%.6f,%.5f,%d\n", g, code(kind), o.knots[i],
+                        v[i], error[i], o.nx);
           rows[g] += line;
         }
       };
@@ -1195,66 +1270,147 @@ std::string identifyMesh(const Options& o, ExactCache* exact, std::ostringstream
         std::stringstream withSlope;
         withSlope << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n" << rows[g];
         for (std::size_t i = 0; i < beta.size(); ++i)
-          withSlope << g << ",22b," << o.knots[i] << "," << beta[i] << ",0," << o.nx << "\n";
+          withSlope << g << "," << code(kEtaDriveSlope) << "," << o.knots[i] << "," << beta[i]
+                    << ",0," << o.nx << "\n";
         const EtaNoSpinFit fit = identifyEtaWithoutSpin(
             o, exact, g, CalibrationTable::parse(withSlope, "(single kinds)").at(g));
         beta = fit.beta;
         error = fit.error;
-        write("22n", fit.ratio);
-        write("22cn", fit.couple);
-        write("22s", fit.shape);
+        write(kEtaRatioNoSpin, fit.ratio);
+        write(kEtaCouplingNoSpin, fit.couple);
+        write(kEtaBoundShapeNoSpin, fit.shape);
       }
-      write("22b", beta);
+      write(kEtaDriveSlope, beta);
       char note[120];
       std::snprintf(note, sizeof note, "#   a/b %g kind%s: worst knot error %.4f\n", g,
                     o.etaNoSpin ? "s 22n, 22cn, 22s, 22b (together)" : " 22b",
                     *std::max_element(error.begin(), error.end()));
-      *notes << note;
+      *notes += note;
     }
   }
+  out.rows = rows[g];
   if (!o.spinShares.empty()) {  // the correction on top of the single kinds' table
     std::stringstream single;
-    single << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n";
-    for (const auto& [g, block] : rows) single << block;
-    identifyCorrection(o, exact, CalibrationTable::parse(single, "(single kinds)"), &rows, notes);
+    single << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx\n" << out.rows;
+    identifyCorrection(o, exact, g, CalibrationTable::parse(single, "(single kinds)").at(g),
+                       &out.rows, &out.correctionNotes, &out.log);
   }
-  std::string block;
-  for (const auto& [g, text] : rows) block += text;
-  return block;
+  return out;
+}
+
+bool isBinaryPath(const std::string& path) {
+  return path.size() > 4 && path.compare(path.size() - 4, 4, ".bin") == 0;
+}
+
+// The summary beside a binary table: FILE.bin's is FILE_summary.txt.
+std::string summaryPath(const std::string& bin) {
+  return bin.substr(0, bin.size() - 4) + "_summary.txt";
+}
+
+// Writes `table` to `path`: the binary format where it ends in .bin, else CSV.
+void writeTableFile(const CalibrationTable& table, const std::string& path) {
+  std::ofstream out = tools::writeFile(path);
+  if (isBinaryPath(path))
+    table.writeBinary(out);
+  else
+    table.writeCsv(out);
+  if (!out.flush()) throw std::runtime_error("cannot write " + path);
+}
+
+// Runs job(i) for i in [0, n) on `threads` threads, in the order of `order` (the longest jobs
+// first, so that the threads end together). Each job writes only its own result: what the run
+// makes does not depend on the number of threads. The first exception is rethrown.
+template <class Job>
+void runJobs(std::size_t n, int threads, const std::vector<std::size_t>& order, const Job& job) {
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failed;
+  std::mutex failedMutex;
+  auto work = [&] {
+    for (std::size_t k; (k = next++) < n;) {
+      try {
+        job(order[k]);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failedMutex);
+        if (!failed) failed = std::current_exception();
+        next = n;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  if (failed) std::rethrow_exception(failed);
 }
 
 void writeTable(const Options& o, ExactCache* exact, int argc, char** argv) {
+  // One job per mesh and a/b, the meshes' blocks and notes assembled in order afterwards.
+  std::vector<std::pair<int, double>> jobs;
+  for (int nx : o.meshes)
+    for (double g : o.ratios) jobs.push_back({nx, g});
+  std::vector<RowFit> fits(jobs.size());
+  // The march's cost grows as nx^2: the finest meshes first.
+  std::vector<std::size_t> order(jobs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return jobs[x].first > jobs[y].first; });
+  std::mutex logMutex;
+  runJobs(jobs.size(), o.threads, order, [&](std::size_t i) {
+    Options m = o;
+    m.nx = jobs[i].first;
+    fits[i] = identifyRow(m, exact, jobs[i].second);
+    std::lock_guard<std::mutex> lock(logMutex);
+    std::cout << "FastSim " << m.nx << "x" << m.nx << " a/b " << jobs[i].second << ":\n"
+              << fits[i].log << std::flush;
+  });
   std::string blocks;
   std::ostringstream notes;
-  for (int nx : o.meshes) {
-    Options m = o;
-    m.nx = nx;
-    std::ostringstream meshNotes;
-    const std::string block = identifyMesh(m, exact, &meshNotes);
+  for (std::size_t m = 0; m < o.meshes.size(); ++m) {
+    const int nx = o.meshes[m];
     const std::string title =
         "# FastSim mesh " + std::to_string(nx) + "x" + std::to_string(nx) + "\n";
-    notes << title << meshNotes.str();
-    blocks += title + block;
+    // The a/b rows in increasing a/b (the table's order), the notes in --ab's.
+    std::map<double, std::string> rows;
+    std::string single, correction;
+    for (std::size_t r = 0; r < o.ratios.size(); ++r) {
+      const RowFit& fit = fits[m * o.ratios.size() + r];
+      rows[o.ratios[r]] = fit.rows;
+      single += fit.singleNotes;
+      correction += fit.correctionNotes;
+    }
+    notes << title << single << correction;
+    blocks += title;
+    for (const auto& [g, text] : rows) blocks += text;
   }
-  std::ofstream out = tools::writeFile(o.out);
   std::string command = "identify_calibration";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
-  out << "# Calibrated FastSim: flexibility ratio per creepage kind against normalised creepage\n"
-      << "# (src/core/calibration/calibration_table.hpp). Identified " << date << " by: " << command
-      << "\n# against our exact solver (" << o.grid << "x" << o.grid << ", nu " << o.nu
-      << "; exact curves cached in " << o.exact << ") per FastSim mesh (fastsim_nx; a model "
-      << "interpolates between the meshes in 1/nx, the nearest beyond them); other nu: the same "
-         "ratios.\n"
-      << "# fit_error: max(|dFx|, |dFy|) / (mu fz) at the knot (spin, kinds 23 and 23x fitted "
-         "together, and the combined correction c1, c2, c3, cs, c3x: the larger of that and 0.2 "
-         "|dMz| / "
-         "peak |Mz|)\n"
-      << notes.str()
-      << "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx,spin_share,xi_share,sign\n"
-      << blocks;
+  std::ostringstream head;
+  head << "# Calibrated FastSim: flexibility ratio per creepage kind against normalised creepage\n"
+       << "# (src/core/calibration/calibration_table.hpp). Identified " << date
+       << " by: " << command << "\n# against our exact solver (" << o.grid << "x" << o.grid
+       << ", nu " << o.nu << "; exact curves cached in " << o.exact
+       << ") per FastSim mesh (fastsim_nx; a model "
+       << "interpolates between the meshes in 1/nx, the nearest beyond them); other nu: the same "
+          "ratios.\n"
+       << "# fit_error (and the worst knot errors below): max(|dFx|, |dFy|) / (mu fz) at the knot "
+          "(spin, kinds 23 and 23x fitted "
+          "together, and the combined correction c1, c2, c3, cs, c3x: the larger of that and 0.2 "
+          "|dMz| / "
+          "peak |Mz|)\n"
+       << notes.str();
+  const std::string table =
+      "a_over_b,kind,epsilon,ratio,fit_error,fastsim_nx,spin_share,xi_share,sign\n" + blocks;
+  if (isBinaryPath(o.out)) {
+    // The binary table, and beside it what is not runtime data: the command and the fit errors.
+    std::istringstream text(table);
+    writeTableFile(CalibrationTable::parse(text, "(identified)"), o.out);
+    tools::writeFile(summaryPath(o.out)) << head.str();
+  } else {
+    tools::writeFile(o.out) << head.str() << table;
+  }
   std::cout << notes.str();
 }
 
@@ -1332,15 +1488,14 @@ struct StudyTerms {
 Point studyFastSim(const Options& o, double g, const Ray& r, double e, const PatchCalibration& base,
                    const StudyTerms& t) {
   const Setup s(o, g);
-  const PatchMesh mesh(o.nx, o.nx, s.a, s.b);
-  TractionField f;
-  f.resize(mesh.size());
+  Scratch& scratchField = scratch(o.nx, s.a, s.b);
+  const PatchMesh& mesh = scratchField.mesh;
+  TractionField& f = scratchField.f;
   const Creepages c = s.creepages(r, e);
   const CalibratedStep step = base.step(s.a, s.b, s.G, s.k, s.mu * s.fz, c);
   const double shape =
       step.boundShape > 0.0 ? step.boundShape * std::exp(t.l[3]) : std::exp(t.l[3]) - 1.0;
-  flattenedBound(mesh, s.a, s.b, s.fz, s.mu,
-                 std::min(PatchCalibration::kMaxBoundShape, std::max(0.0, shape)), &f);
+  scratchField.bound(s.fz, s.mu, std::min(calibration::kMaxBoundShape, std::max(0.0, shape)));
   const double L1 = step.L.L1 * std::exp(t.l[0]), L2 = step.L.L2 * std::exp(t.l[1]),
                L3 = step.L.L3 * std::exp(t.l[2]), L3x = step.L.spinX() * std::exp(t.l[2]);
   const double gy = c.eta / L2 / (1.0 - t.beta / 3.0), gphi = c.phi / L3;
@@ -1543,6 +1698,22 @@ void solveGrid(const Options& o, ExactCache* exact) {
 }
 
 int run(const Options& o, int argc, char** argv) {
+  if (!o.convert.empty()) {  // a table file into another format: no exact curves needed
+    if (o.out.empty()) throw std::runtime_error("--convert: --out FILE");
+    writeTableFile(CalibrationTable::load(o.convert), o.out);
+    return 0;
+  }
+  if (o.dump >= 0) {
+    const CalibrationTable table =
+        o.table.empty() ? CalibrationTable::shipped() : CalibrationTable::load(o.table);
+    if (o.out.empty()) {
+      table.writeCsv(std::cout, o.dump);
+    } else {
+      std::ofstream out = tools::writeFile(o.out);
+      table.writeCsv(out, o.dump);
+    }
+    return 0;
+  }
   if (o.meshes.empty()) throw std::runtime_error("--nx: at least one mesh");
   for (int nx : o.meshes)
     if (nx < 2) throw std::runtime_error("--nx: every mesh needs at least 2 nodes per axis");

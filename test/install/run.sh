@@ -39,7 +39,8 @@ trap 'rm -rf "$prefix" "$plain_prefix"' EXIT
 install_space() {
   rm -rf "$prefix"
   make -C build install
-  # The chi table is compiled in: the installed library names no file of the source tree.
+  # The chi table and the calibration are compiled in: the installed library names no file of the
+  # source tree.
   if grep -rl "$here/config" "$prefix/lib"; then
     echo "the installed library names $here/config"
     return 1

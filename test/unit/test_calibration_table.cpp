@@ -149,8 +149,8 @@ TEST(CalibrationTable, OneStepCallIsTheRuleKindByKind) {
                              Creepages{2e-4, 1e-3, -0.3}, Creepages{0.05, 0.02, 8.0}}) {
     double e2[3];
     const double e = PatchCalibration::normalisedCreepage(a, b, G, k, muFz, cr, e2);
-    double m[PatchCalibration::kCorrections];
-    c.correction(e2, e, cr.eta * cr.phi < 0.0, 0, PatchCalibration::kCorrections, m);
+    double m[calibration::kMultipliers];
+    c.correction(e2, e, cr.eta * cr.phi < 0.0, 0, calibration::kMultipliers, m);
     const double rho = std::exp(
         (e2[0] * c.logRatio(0, e) + e2[1] * c.logRatio(1, e) + e2[2] * c.logRatio(2, e)) / (e * e));
     const double kphi = 3.0 * M_PI * a / 32.0 * cr.phi, x2 = cr.xi * cr.xi, y2 = cr.eta * cr.eta;
@@ -182,7 +182,7 @@ TEST(CalibrationTable, SmallSpinSharesGoTowardsHertzsShapeInFullSlipOnly) {
   // at e = 2.5, and at 1.5 where the lateral coupling is held (spin's share up to 0.06, linearly
   // between 0.06 and 0.12: 2 at 0.09).
   const PatchCalibration c = CalibrationTable::shipped().forMesh(20).at(1.0);
-  constexpr double hertz = PatchCalibration::kHertzMomentShape;
+  constexpr double hertz = calibration::kHertzMomentShape;
   EXPECT_EQ(PatchCalibration::fullSlipFrom(0.02, 1.0), 1.5);
   EXPECT_DOUBLE_EQ(PatchCalibration::fullSlipFrom(0.09, 1.0), 2.0);
   EXPECT_EQ(PatchCalibration::fullSlipFrom(0.15, 1.0), 2.5);
@@ -214,7 +214,7 @@ TEST(CalibrationTable, TheBlendSpansLessCreepageOnAWidePatch) {
   EXPECT_DOUBLE_EQ(PatchCalibration::fullSlipFrom(0.02, 0.35), 1.125);
   EXPECT_EQ(PatchCalibration::fullSlipTo(0.2), 3.5);
   EXPECT_EQ(PatchCalibration::fullSlipTo(1.0), 5.0);
-  const double shape = 0.3, hertz = PatchCalibration::kHertzMomentShape;
+  const double shape = 0.3, hertz = calibration::kHertzMomentShape;
   const double w = (1.0 - 0.02 / 0.25);  // full blend's share factor at s3 = 0.02
   // Held share at a/b 0.2: from 0.75 to 3.5, half way at 2.125.
   EXPECT_EQ(PatchCalibration::hertzShapeBlend(shape, 0.75, 0.02, 0.2), shape);
@@ -250,7 +250,7 @@ TEST(CalibrationTable, HertzMomentShapeGivesHertzsFullSlipSpinMoment) {
     return -steadyFastSim(mesh, L, {0.0, 0.0, 1e3}, &f).mz / (mu * fz * a);  // phi > 0: Mz < 0
   };
   EXPECT_NEAR(moment(0.0), 8.0 / 15.0, 1e-3);
-  EXPECT_NEAR(moment(PatchCalibration::kHertzMomentShape), 3.0 * M_PI / 16.0, 1e-3);
+  EXPECT_NEAR(moment(calibration::kHertzMomentShape), 3.0 * M_PI / 16.0, 1e-3);
 }
 
 TEST(CalibrationTable, CreepagesWhoseSquaresAreSubnormalGiveFiniteFlexibilities) {
@@ -583,18 +583,17 @@ TEST(CalibrationTable, LinearSpinMomentHoldsAtEveryShareOfSpinUntilThePatchSlips
     const Flexibilities L = p.step(c, p.normalised(std::sqrt(0.9) * e, 0.0, std::sqrt(0.1) * e)).L;
     return L.L3x / L.L3;
   };
-  for (double e :
-       {0.01, 0.5 * PatchCalibration::kLinearSpinMomentTo,
-        0.5 * (PatchCalibration::kLinearSpinMomentTo + PatchCalibration::kLinearSpinMomentEnd),
-        PatchCalibration::kLinearSpinMomentEnd + 0.1}) {
+  for (double e : {0.01, 0.5 * calibration::kLinearSpinMomentTo,
+                   0.5 * (calibration::kLinearSpinMomentTo + calibration::kLinearSpinMomentEnd),
+                   calibration::kLinearSpinMomentEnd + 0.1}) {
     const double own = std::log(0.5) + e / 5.0 * std::log(8.0);  // 23x's ln ratio at e
     const double expected =
         std::exp(0.1 * own + 0.9 * std::log(0.5) * PatchCalibration::linearSpinMoment(e));
     EXPECT_NEAR(spinX(e), expected, 1e-12 * expected) << e;
   }
   EXPECT_EQ(PatchCalibration::linearSpinMoment(0.0), 1.0);
-  EXPECT_EQ(PatchCalibration::linearSpinMoment(PatchCalibration::kLinearSpinMomentTo), 1.0);
-  EXPECT_EQ(PatchCalibration::linearSpinMoment(PatchCalibration::kLinearSpinMomentEnd), 0.0);
+  EXPECT_EQ(PatchCalibration::linearSpinMoment(calibration::kLinearSpinMomentTo), 1.0);
+  EXPECT_EQ(PatchCalibration::linearSpinMoment(calibration::kLinearSpinMomentEnd), 0.0);
   // Near linear theory L3x is knot 0's, whatever the share of spin.
   EXPECT_NEAR(spinX(1e-3), 0.5, 1e-3);
 }
@@ -607,11 +606,10 @@ TEST(CalibrationTable, CombinedCorrectionInterpolatesOverTheDirectionAndIsOneOnI
         return k == "c1" && sign == "1" ? (t == "0" ? "2" : "8") : k == "cs" ? "3" : "1";
       });
   const PatchCalibration c = CalibrationTable::load(writeTable(body)).at(1.0);
-  double m[PatchCalibration::kCorrections];
+  double m[calibration::kMultipliers];
   auto m1 = [&](double e1, double e2, double e3, bool opposed) {
     const double sq[3] = {e1 * e1, e2 * e2, e3 * e3};
-    c.correction(sq, std::sqrt(sq[0] + sq[1] + sq[2]), opposed, 0, PatchCalibration::kCorrections,
-                 m);
+    c.correction(sq, std::sqrt(sq[0] + sq[1] + sq[2]), opposed, 0, calibration::kMultipliers, m);
     return m[0];
   };
   const double h = std::sqrt(0.5);
@@ -791,7 +789,7 @@ TEST(CalibrationTable, FlattenedBoundOfAClippedPatchStaysPositive) {
       f.resize(mesh.size());
       g.resize(mesh.size());
       parabolicBound(mesh, a, b, fz, mu, &f);
-      flattenedBound(mesh, a, b, fz, mu, PatchCalibration::kMaxBoundShape, &g);
+      flattenedBound(mesh, a, b, fz, mu, calibration::kMaxBoundShape, &g);
       for (int n = 0; n < mesh.size(); ++n) {
         ASSERT_GE(g.bound[n], 0.0) << ka << " " << kb << " " << n;
         EXPECT_EQ(f.bound[n] > 0.0, g.bound[n] > 0.0) << ka << " " << kb << " " << n;

@@ -3,19 +3,17 @@
 #include "core/csv_fields.hpp"
 #include "core/fastsim/avx_lanes.hpp"
 #include "core/fastsim/nearest_mesh.hpp"
-#include "wheel_rail_contact/shipped_tables.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
-#include <streambuf>
 #include <string_view>
 #include <tuple>
 
@@ -73,7 +71,7 @@ inline double stepExp(double x, const Exp2Table& table) {
 // wt, ws the weights along e, xi's share and spin's share.
 inline double inCell(const double* l0, std::size_t alongT, std::size_t alongS, double we, double wt,
                      double ws, int p) {
-  constexpr std::size_t P = PatchCalibration::kCorrections;
+  constexpr std::size_t P = calibration::kMultipliers;
   auto along = [we](const double* x) { return x[0] + we * (x[P] - x[0]); };
   const double* h0 = l0 + alongS;
   const double l = (1.0 - wt) * along(l0 + p) + wt * along(l0 + alongT + p);
@@ -94,7 +92,7 @@ inline double inCell(const double* l0, std::size_t alongT, std::size_t alongS, d
                                           double opposed, double logRho, double logShape,
                                           const Exp2Table& table, double* r, double* lm4) {
   using namespace avx;
-  constexpr std::size_t P = PatchCalibration::kCorrections;
+  constexpr std::size_t P = calibration::kMultipliers;
   const V weV = _mm256_set1_pd(we), wtV = _mm256_set1_pd(wt), restT = _mm256_set1_pd(1.0 - wt),
           wsV = _mm256_set1_pd(ws), restS = _mm256_set1_pd(1.0 - ws);
   auto along = [&](const double* x) __attribute__((always_inline, target("avx"))) {
@@ -242,7 +240,7 @@ inline PatchCalibration::CorrectionCell PatchCalibration::correctionCell(double 
   // The cell's four corners (spin-share rows i - 1 and i, xi shares j - 1 and j), each at e's
   // cell [k - 1, k]: the five multipliers of a grid point lie side by side; the eta phi < 0
   // branch's block follows the eta phi > 0 one.
-  constexpr std::size_t P = kCorrections;
+  constexpr std::size_t P = calibration::kMultipliers;
   c.alongT = nE * P;
   c.alongS = nT * c.alongT;
   c.branch = (nS + 2) * c.alongS;
@@ -267,11 +265,11 @@ inline void PatchCalibration::lookUpCorrection(double s3, double t, double e, do
 }
 
 double PatchCalibration::coupling(double e) const {
-  return logRatio(kCouplingKind, e);  // stored as it is, not as a logarithm
+  return logRatio(calibration::kEtaCoupling, e);  // stored as it is, not as a logarithm
 }
 
 double PatchCalibration::etaSlope(double e) const {
-  return logRatio(kEtaSlopeKind, e);  // stored as it is
+  return logRatio(calibration::kEtaDriveSlope, e);  // stored as it is
 }
 
 double PatchCalibration::ratio(int kind, double e) const {
@@ -291,6 +289,7 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
 
 CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepCoefficients& k,
                                       double muFz, const Creepages& c, double opposed) const {
+  using namespace calibration;
   CalibratedStep s;
   Flexibilities& L = s.L;
   L = kalkerFlexibilities(a, b, G, k);
@@ -318,7 +317,7 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
   // Eta's own ratio, coupling and bound shape without spin (22n, 22cn, 22s), fading into the pair
   // 22, 22c as spin's share goes to kNoSpinTo (noSpinWeight).
   const double noSpin =
-      finite && !eps_[kEtaNoSpinKind].empty() && e2[1] > 0.0 ? noSpinWeight(share[2]) : 0.0;
+      finite && !eps_[kEtaRatioNoSpin].empty() && e2[1] > 0.0 ? noSpinWeight(share[2]) : 0.0;
   auto towardsNoSpin = [&](double withSpin, int kind) {
     return noSpin > 0.0 ? withSpin + noSpin * (logRatioOf(kind) - withSpin) : withSpin;
   };
@@ -330,37 +329,39 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
   // (c_n); without friction (e infinite, the squares inf or NaN) none: every node slips with zero
   // traction.
   double held = 0.0;
-  if (finite && !eps_[kCouplingKind].empty() && e2[1] > 0.0) {
+  if (finite && !eps_[kEtaCoupling].empty() && e2[1] > 0.0) {
+    static_assert(kCouplingSharePower == 6, "q6 below is q^kCouplingSharePower");
     const double q = e2[1] / (e2[1] + e2[2]), q2 = q * q, q6 = q2 * q2 * q2;
     held = heldCoupling(e, share[2]);
     L.lateralCoupling = lateralCoupling(
-        towardsNoSpin(logRatioOf(kCouplingKind), kCouplingNoSpinKind) * (q6 + (1.0 - q6) * held), a,
+        towardsNoSpin(logRatioOf(kEtaCoupling), kEtaCouplingNoSpin) * (q6 + (1.0 - q6) * held), a,
         b, k);
     // Eta's drive's slope where xi is beside eta (etaSlopeWeight): in full slip it turns the
     // traction along the strip, as exact theory's xi = eta curves do (doc/calibrated_fastsim.md,
     // "Eta's drive's slope").
-    if (!eps_[kEtaSlopeKind].empty() && e2[0] > 0.0) {
+    if (!eps_[kEtaDriveSlope].empty() && e2[0] > 0.0) {
       const double w = etaSlopeWeight(e2[0], e2[1], share[2]);
-      if (w > 0.0) setEtaSlope(logRatioOf(kEtaSlopeKind) * w, a, &L);
+      if (w > 0.0) setEtaSlope(logRatioOf(kEtaDriveSlope) * w, a, &L);
     }
   }
   // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
   // curves better than the arithmetic one (identify_calibration's combined rays,
   // doc/calibrated_fastsim.md).
-  const double logRho = finite ? share[0] * logRatioOf(0) +
-                                     share[1] * towardsNoSpin(logRatioOf(1), kEtaNoSpinKind) +
-                                     share[2] * logRatioOf(2)
-                               : logRatioOf(0);
+  const double logRho = finite
+                            ? share[0] * logRatioOf(kXiRatio) +
+                                  share[1] * towardsNoSpin(logRatioOf(kEtaRatio), kEtaRatioNoSpin) +
+                                  share[2] * logRatioOf(kSpinRatio)
+                            : logRatioOf(kXiRatio);
   const bool spin = finite && e2[2] > 0.0;
-  const bool shaped = spin && !eps_[4].empty();  // the bound's shape from spin's share (23s)
-  const double logShape = shaped ? logRatioOf(4) : 0.0;
+  const bool shaped = spin && !eps_[kSpinBoundShape].empty();  // from spin's share (23s)
+  const double logShape = shaped ? logRatioOf(kSpinBoundShape) : 0.0;
   // The combined correction's ln multipliers, of L1, L2, L3, of the bound's shape and of L3x, in
   // one lookup; each goes into the exp of the ratio it multiplies. None for one kind or xi with
   // eta. The step's exps (inline): the ratios of L1, L2, L3 (the correction's multipliers folded
   // in), of the spin drive's L3x to L3 (below) and the bound's shape.
   const Exp2Table& table = exp2Table();
-  double lm[kCorrections], r1, r2, r3, shapeRatio = 0.0;
+  double lm[kMultipliers], r1, r2, r3, shapeRatio = 0.0;
   const double rest = e2[0] + e2[1];
   const bool corrected = finite && !corrS3_.empty() && e2[2] > 0.0 && rest > 0.0;
 #ifdef WRC_FOUR_STRIP_LANES
@@ -376,7 +377,7 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
   } else
 #endif
   {
-    if (corrected) lookUpCorrection(share[2], e2[0] / rest, e, opposed, 0, kCorrections, lm);
+    if (corrected) lookUpCorrection(share[2], e2[0] / rest, e, opposed, 0, kMultipliers, lm);
     r1 = stepExp(corrected ? logRho + lm[0] : logRho, table);
     r2 = corrected ? stepExp(logRho + lm[1], table) : r1;
     r3 = corrected ? stepExp(logRho + lm[2], table) : r1;
@@ -385,13 +386,14 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
   // Towards full slip the flexibilities blend into one, L_crss (Vollebregt and Voltr 2023,
   // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
   // theory, not along (xi / L1, eta / L2). A single creepage has L_crss = its own L, unchanged.
-  // Weight min(1, e / 5): of e / 1.5, 3, 5, 10, 20 the one nearest the combined exact curves.
+  // Weight min(1, e / kCrssFrom): of e / 1.5, 3, 5, 10, 20 the one nearest the combined exact
+  // curves.
   // L_crss = (xi^2 + eta^2 + (k phi)^2) / (xi^2 / L1 + eta^2 / L2 + (k phi)^2 / L3), in one
   // division: numerator and denominator times L1 L2 L3.
   const double kphi = 3.0 * M_PI * a / 32.0 * c.phi, x2 = c.xi * c.xi, y2 = c.eta * c.eta,
                s2 = kphi * kphi, L23 = L.L2 * L.L3, L12 = L.L1 * L.L2;
   const double den = x2 * L23 + (y2 * L.L3 + s2 * L.L2) * L.L1;
-  const double w = finite ? std::min(1.0, e / 5.0) : 1.0;
+  const double w = finite ? std::min(1.0, e / kCrssFrom) : 1.0;
   const double crss = den > 0.0 ? (x2 + y2 + s2) * (L12 * L.L3) / den : L.L1;
   L.L1 = r1 * ((1.0 - w) * L.L1 + w * crss);
   L.L2 = r2 * ((1.0 - w) * L.L2 + w * crss);
@@ -400,12 +402,13 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
   // The correction's fifth multiplier (c3x) acts on L3x alone, in the same exp. 23x's knot 0 is
   // linear theory's spin moment (C33): it holds for the rest of e^2 too (spin's own curve has it
   // for spin's share) until the patch slips (linearSpinMoment).
-  if (spin && (!eps_[3].empty() || corrected)) {
-    double lx = corrected ? lm[4] : 0.0;
-    if (!eps_[3].empty())
-      lx += share[2] * logRatioOf(3) + (1.0 - share[2]) * logRatio_[3][0] * linearSpinMoment(e);
+  if (spin && (!eps_[kSpinDriveRatio].empty() || corrected)) {
+    double lx = corrected ? lm[kSpinDriveMultiplier] : 0.0;
+    if (!eps_[kSpinDriveRatio].empty())
+      lx += share[2] * logRatioOf(kSpinDriveRatio) +
+            (1.0 - share[2]) * logRatio_[kSpinDriveRatio][0] * linearSpinMoment(e);
     L.L3x = L.L3 * stepExp(lx, table);
-  } else if (!eps_[3].empty())
+  } else if (!eps_[kSpinDriveRatio].empty())
     L.L3x = L.L3;
   // The held coupling's moment on spin's lateral traction, in linear theory
   // -kappa phi a^4 b^3 32 / (315 L3) against the spin drive's -phi 8 a^2 b^3 / (15 L3x), is taken
@@ -417,7 +420,7 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
   }
   // The bound's shape: shape_23s(e) times spin's share of e^2 and shape_22s(e) times eta's where
   // spin's is small (no friction: parabolic).
-  const double etaShape = noSpin > 0.0 ? noSpin * share[1] * logRatioOf(kEtaShapeKind) : 0.0;
+  const double etaShape = noSpin > 0.0 ? noSpin * share[1] * logRatioOf(kEtaBoundShapeNoSpin) : 0.0;
   if (shaped)
     s.boundShape = towardsFullSlip(std::min(kMaxBoundShape, shapeRatio * share[2] + etaShape), e,
                                    share[2], a / b);
@@ -431,20 +434,20 @@ double PatchCalibration::towardsFullSlip(double shape, double e, double s3, doub
 }
 
 double PatchCalibration::hertzShapeBlend(double shape, double e, double s3, double aOverB) {
-  constexpr double kSpinShare = 0.01;
+  using namespace calibration;
   if (!(s3 > 0.0) || !(s3 < kSmallSpinShare)) return shape;
   const double from = fullSlipFrom(s3, aOverB);
   if (!(e > from)) return shape;
   const double q = std::min(1.0, (e - from) / (fullSlipTo(aOverB) - from));
-  const double w =
-      q * q * (3.0 - 2.0 * q) * (1.0 - s3 / kSmallSpinShare) * std::min(1.0, s3 / kSpinShare);
+  const double w = q * q * (3.0 - 2.0 * q) * (1.0 - s3 / kSmallSpinShare) *
+                   std::min(1.0, s3 / kHertzShapeSpinShare);
   return shape + (kHertzMomentShape - shape) * w;
 }
 
 namespace {
 
 [[noreturn]] void fail(const std::string& path, long line, const std::string& why) {
-  throw std::runtime_error("steady calibration " + path + ":" + std::to_string(line) + ": " + why);
+  throw std::runtime_error("calibration table " + path + ":" + std::to_string(line) + ": " + why);
 }
 
 double number(const std::string& path, long line, std::string_view s) {
@@ -468,6 +471,20 @@ enum Column { kFitError, kFastsimNx, kSpinShare, kXiShare, kSign, kColumns };
 const char* const kColumnNames[kColumns] = {"fit_error", "fastsim_nx", "spin_share", "xi_share",
                                             "sign"};
 
+// Why a value of single kind `kind` is out of its range (calibration::KindInfo).
+std::string rangeMessage(int kind) {
+  const calibration::KindInfo& k = calibration::kKindInfo[kind];
+  const std::string what = kind == calibration::kSpinBoundShape  ? "a bound shape"
+                           : kind == calibration::kEtaDriveSlope ? "eta's drive's slope"
+                                                                 : "eta's bound shape";
+  char range[64];
+  if (k.heldAsIs)
+    std::snprintf(range, sizeof range, "[%g, %g]", k.min, k.max);
+  else
+    std::snprintf(range, sizeof range, "(0, %g]", k.max);
+  return what + " (" + std::string(k.code) + ") must be in " + range;
+}
+
 // 1 / (x[i] - x[i - 1]) into w[i], w[0] = 0 (PatchCalibration's cell weights).
 void reciprocalWidths(const std::vector<double>& x, std::vector<double>* w) {
   w->resize(x.size());
@@ -475,29 +492,6 @@ void reciprocalWidths(const std::vector<double>& x, std::vector<double>* w) {
 }
 
 }  // namespace
-
-const CalibrationTable& CalibrationTable::shipped() {
-  // Parsed once: every calibrated model is built from it (five meshes, some 650 000 lines), read
-  // in place from the library's data rather than from a copy of its 27 MB of text.
-  struct InPlace : std::streambuf {
-    explicit InPlace(std::string_view text) {
-      char* begin = const_cast<char*>(text.data());  // only read: the get area
-      setg(begin, begin, begin + text.size());
-    }
-  };
-  static const CalibrationTable table = [] {
-    InPlace text(shippedTable("steady_calibration"));
-    std::istream in(&text);
-    return parse(in, "(shipped) steady_calibration.csv");
-  }();
-  return table;
-}
-
-CalibrationTable CalibrationTable::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("steady calibration " + path + ": cannot open");
-  return parse(in, path);
-}
 
 CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& path) {
   CalibrationTable t;
@@ -560,36 +554,32 @@ CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& pa
     }
     std::vector<Row>& rows = t.meshes_.back().rows;
     const double ab = number(path, n, f[0]), e = number(path, n, f[2]), r = number(path, n, f[3]);
-    const int kind = f[1] == "11"     ? 0
-                     : f[1] == "22"   ? 1
-                     : f[1] == "23"   ? 2
-                     : f[1] == "23x"  ? 3
-                     : f[1] == "23s"  ? 4
-                     : f[1] == "22c"  ? 10
-                     : f[1] == "22b"  ? 11
-                     : f[1] == "22n"  ? 12
-                     : f[1] == "22cn" ? 13
-                     : f[1] == "22s"  ? 14
-                     : f[1] == "c1"   ? 5
-                     : f[1] == "c2"   ? 6
-                     : f[1] == "c3"   ? 7
-                     : f[1] == "cs"   ? 8
-                     : f[1] == "c3x"  ? 9
-                                      : -1;
-    if (kind < 0)
+    // The kind by its code or name (calibration_schema.hpp): a single kind, or (multiplier >= 0)
+    // one of the combined correction's.
+    int kind = -1, multiplier = -1;
+    for (int k = 0; k < calibration::kKinds && kind < 0; ++k)
+      if (f[1] == calibration::kKindInfo[k].code || f[1] == calibration::kKindInfo[k].name)
+        kind = k;
+    for (int p = 0; p < calibration::kMultipliers && kind < 0 && multiplier < 0; ++p)
+      if (f[1] == calibration::kMultiplierInfo[p].code ||
+          f[1] == calibration::kMultiplierInfo[p].name)
+        multiplier = p;
+    if (kind < 0 && multiplier < 0)
       fail(path, n,
            "kind must be 11, 22, 23, 23x, 23s, 22c, 22b, 22n, 22cn, 22s, c1, c2, c3, cs or c3x, "
            "got '" +
                std::string(f[1]) + "'");
+    const calibration::KindInfo& info =
+        kind >= 0 ? calibration::kKindInfo[kind] : calibration::kMultiplierInfo[multiplier];
     if (!(ab > 0.0)) fail(path, n, "a_over_b must be > 0");
-    if (!(r > 0.0) && (kind < 10 || kind == 12)) fail(path, n, "ratio must be > 0");
+    if (!(r > 0.0) && !info.heldAsIs) fail(path, n, "ratio must be > 0");
     const double logAB = std::log(ab);
     if (rows.empty() || rows.back().logAB != logAB) {
       if (!rows.empty() && !(logAB > rows.back().logAB))
         fail(path, n, "a_over_b must increase from one block to the next");
-      rows.push_back(Row{logAB, {}, {}, {}, {}, {}, {}});
+      rows.push_back(Row{ab, logAB, {}, {}, {}, {}, {}, {}});
     }
-    if (kind >= 5 && kind < 10) {
+    if (multiplier >= 0) {
       if (!given(kSpinShare) || !given(kXiShare) || !given(kSign))
         fail(path, n, "a c-kind row needs spin_share, xi_share and sign");
       const double s3 = number(path, n, f[column[kSpinShare]]),
@@ -598,7 +588,8 @@ CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& pa
       if (!(s3 > 0.0 && s3 < 1.0)) fail(path, n, "spin_share must be in (0, 1)");
       if (!(xs >= 0.0 && xs <= 1.0)) fail(path, n, "xi_share must be in [0, 1]");
       if (sg != 1.0 && sg != -1.0) fail(path, n, "sign must be 1 or -1");
-      const CorrKey key{t.meshes_.size() - 1, rows.size() - 1, kind - 5, sg < 0.0 ? 1 : 0, s3, xs};
+      const CorrKey key{
+          t.meshes_.size() - 1, rows.size() - 1, multiplier, sg < 0.0 ? 1 : 0, s3, xs};
       if (last == nullptr || key != lastKey) last = &corr[key], lastKey = key;
       auto& knots = *last;
       if (knots.first.empty() ? (e != 0.0 || r != 1.0) : !(e > knots.first.back()))
@@ -608,26 +599,15 @@ CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& pa
       continue;
     }
     Row& row = rows.back();
-    const int slot = kind == 10   ? PatchCalibration::kCouplingKind
-                     : kind == 11 ? PatchCalibration::kEtaSlopeKind
-                     : kind == 12 ? PatchCalibration::kEtaNoSpinKind
-                     : kind == 13 ? PatchCalibration::kCouplingNoSpinKind
-                     : kind == 14 ? PatchCalibration::kEtaShapeKind
-                                  : kind;
-    std::vector<double>& x = row.eps[slot];
-    if (kind == 4 && !(r <= 1.0)) fail(path, n, "a bound shape (23s) must be in (0, 1]");
-    if (kind == 11 && !(std::abs(r) <= PatchCalibration::kMaxEtaSlope))
-      fail(path, n, "eta's drive's slope (22b) must be in [-2.5, 2.5]");
-    if (kind == 14 &&
-        !(r >= PatchCalibration::kMinEtaShape && r <= PatchCalibration::kMaxBoundShape))
-      fail(path, n, "eta's bound shape (22s) must be in [-1, 2]");
+    std::vector<double>& x = row.eps[kind];
+    if (!(r >= info.min && r <= info.max)) fail(path, n, rangeMessage(kind));
     // 23s, 22c, 22b, 22cn and 22s take any value at knot 0 (a shape, a coupling, a slope: not
     // ratios to Kalker's), and 23x its linear value (L3x over L3 for exact theory's linear spin
     // moment, C33).
-    if (x.empty() ? (e != 0.0 || ((kind < 3 || kind == 12) && r != 1.0)) : !(e > x.back()))
+    if (x.empty() ? (e != 0.0 || (info.oneAtZero && r != 1.0)) : !(e > x.back()))
       fail(path, n, "the knots of a kind start at epsilon 0, ratio 1 and increase");
     x.push_back(e);
-    row.ratio[slot].push_back(r);
+    row.ratio[kind].push_back(r);
   }
   if (!header) fail(path, n, "no header");
   for (std::size_t m = 0; m < t.meshes_.size(); ++m) {
@@ -636,18 +616,18 @@ CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& pa
                                  ? " (fastsim_nx " + std::to_string(t.meshes_[m].nx) + ")"
                                  : std::string();
     for (const Row& row : rows)
-      for (int k = 0; k < PatchCalibration::kKinds; ++k)
+      for (int k = 0; k < calibration::kKinds; ++k)
         if ((k < 3 && row.eps[k].empty()) || row.eps[k] != rows.front().eps[k])
           fail(path, n, "every a/b must hold every kind, with the same epsilon knots" + mesh);
     // Eta without spin replaces the pair 22, 22c: its three kinds together, and with 22c.
     {
-      using F = PatchCalibration;
+      namespace F = calibration;
       const Row& row = rows.front();
-      const bool any = !row.eps[F::kEtaNoSpinKind].empty() ||
-                       !row.eps[F::kCouplingNoSpinKind].empty() ||
-                       !row.eps[F::kEtaShapeKind].empty();
-      if (any && (row.eps[F::kEtaNoSpinKind].empty() || row.eps[F::kCouplingNoSpinKind].empty() ||
-                  row.eps[F::kEtaShapeKind].empty() || row.eps[F::kCouplingKind].empty()))
+      const bool any = !row.eps[F::kEtaRatioNoSpin].empty() ||
+                       !row.eps[F::kEtaCouplingNoSpin].empty() ||
+                       !row.eps[F::kEtaBoundShapeNoSpin].empty();
+      if (any && (row.eps[F::kEtaRatioNoSpin].empty() || row.eps[F::kEtaCouplingNoSpin].empty() ||
+                  row.eps[F::kEtaBoundShapeNoSpin].empty() || row.eps[F::kEtaCoupling].empty()))
         fail(path, n, "22n, 22cn and 22s come together, with 22c" + mesh);
     }
     // The combined correction: a full grid (every multiplier, sign, spin share and xi share) with
@@ -678,8 +658,8 @@ CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& pa
       if (row.corrT.size() < 2 || row.corrT.front() != 0.0 || row.corrT.back() != 1.0)
         fail(path, n, "the combined correction's xi shares must run from 0 to 1" + mesh);
       const std::size_t nS = row.corrS3.size(), nT = row.corrT.size(), nE = row.corrEps.size();
-      row.corr.assign(PatchCalibration::kCorrections * 2 * nS * nT * nE, 1.0);
-      for (int p = 0; p < PatchCalibration::kCorrections; ++p)
+      row.corr.assign(calibration::kMultipliers * 2 * nS * nT * nE, 1.0);
+      for (int p = 0; p < calibration::kMultipliers; ++p)
         for (int o = 0; o < 2; ++o)
           for (std::size_t i = 0; i < nS; ++i)
             for (std::size_t j = 0; j < nT; ++j) {
@@ -706,7 +686,7 @@ bool CalibrationTable::sameKnots(const std::vector<Row>& x, const std::vector<Ro
     if (p.logAB != q.logAB || p.corrS3 != q.corrS3 || p.corrT != q.corrT ||
         p.corrEps != q.corrEps || p.corr.size() != q.corr.size())
       return false;
-    for (int k = 0; k < PatchCalibration::kKinds; ++k)
+    for (int k = 0; k < calibration::kKinds; ++k)
       if (p.eps[k] != q.eps[k] || p.ratio[k].size() != q.ratio[k].size()) return false;
   }
   return true;
@@ -720,21 +700,22 @@ CalibrationTable CalibrationTable::forMesh(int nx) const {
   // between tables of other knots, the nearest mesh.
   const Mesh *lo = nullptr, *hi = nullptr;
   double w = 0.0;
-  if (!meshesAround(meshes_, nx, &lo, &hi, &w) || !sameKnots(lo->rows, hi->rows)) {
-    t.meshes_.push_back(nearestMesh(meshes_, nx));
+  if (!meshesAround(meshes_, nx, &lo, &hi, &w) || !sameKnots(rowsOf(*lo), rowsOf(*hi))) {
+    const Mesh& m = nearestMesh(meshes_, nx);
+    t.meshes_.push_back(Mesh{m.nx, rowsOf(m)});
     return t;
   }
   auto blend = [w](double x, double y) {
     return std::exp((1.0 - w) * std::log(x) + w * std::log(y));
   };
-  Mesh m = *lo;
-  m.nx = nx;
+  Mesh m{nx, rowsOf(*lo)};
+  const std::vector<Row>& high = rowsOf(*hi);
   for (std::size_t r = 0; r < m.rows.size(); ++r) {
     Row& row = m.rows[r];
-    const Row& h = hi->rows[r];
-    for (int k = 0; k < PatchCalibration::kKinds; ++k)
+    const Row& h = high[r];
+    for (int k = 0; k < calibration::kKinds; ++k)
       for (std::size_t j = 0; j < row.ratio[k].size(); ++j)
-        row.ratio[k][j] = PatchCalibration::heldAsIs(k)
+        row.ratio[k][j] = calibration::kKindInfo[k].heldAsIs
                               ? row.ratio[k][j] + w * (h.ratio[k][j] - row.ratio[k][j])
                               : blend(row.ratio[k][j], h.ratio[k][j]);
     for (std::size_t j = 0; j < row.corr.size(); ++j) row.corr[j] = blend(row.corr[j], h.corr[j]);
@@ -761,7 +742,7 @@ void CalibrationTable::at(double a_over_b, PatchCalibration* c) const {
   if (meshes_.size() != 1)
     throw std::logic_error("CalibrationTable: a table of " + std::to_string(meshes_.size()) +
                            " FastSim meshes: narrow it with forMesh() first");
-  const std::vector<Row>& rows = meshes_.front().rows;
+  const std::vector<Row>& rows = rowsOf(meshes_.front());
   const double x = std::log(a_over_b);
   std::size_t i = 0;
   while (i + 1 < rows.size() && rows[i + 1].logAB <= x) ++i;
@@ -769,17 +750,17 @@ void CalibrationTable::at(double a_over_b, PatchCalibration* c) const {
   const Row& hi = rows[std::min(i + 1, rows.size() - 1)];
   const double t =
       (&lo == &hi || !(x > lo.logAB)) ? 0.0 : std::min(1.0, (x - lo.logAB) / (hi.logAB - lo.logAB));
-  for (int k = 0; k < PatchCalibration::kKinds; ++k) {
+  for (int k = 0; k < calibration::kKinds; ++k) {
     c->eps_[k] = lo.eps[k];  // every row has the same knots: the storage c holds is reused
     c->logRatio_[k].resize(lo.ratio[k].size());
     for (std::size_t j = 0; j < lo.ratio[k].size(); ++j) {
       const double v = lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]);
-      c->logRatio_[k][j] = PatchCalibration::heldAsIs(k) ? v : std::log(v);
+      c->logRatio_[k][j] = calibration::kKindInfo[k].heldAsIs ? v : std::log(v);
     }
     reciprocalWidths(c->eps_[k], &c->perWidth_[k]);
   }
   c->sharedKnots_ = true;
-  for (int k = 1; k < PatchCalibration::kKinds; ++k)
+  for (int k = 1; k < calibration::kKinds; ++k)
     if (!c->eps_[k].empty() && c->eps_[k] != c->eps_[0]) c->sharedKnots_ = false;
   c->corrS3_ = lo.corrS3;
   c->corrT_ = lo.corrT;
@@ -796,7 +777,7 @@ void CalibrationTable::at(double a_over_b, PatchCalibration* c) const {
   c->vectorised_ = fourStripLanesAvailable();
   // Row's layout ((((p * 2 + opposed) * nS + q) * nT + j) * nE + k) into PatchCalibration's
   // (grid point by grid point, the end rows 0).
-  constexpr int P = PatchCalibration::kCorrections;
+  constexpr int P = calibration::kMultipliers;
   c->corrLog_.assign(nS == 0 ? 0 : 2 * (nS + 2) * nT * nE * P, 0.0);
   for (int p = 0; p < P; ++p)
     for (std::size_t o = 0; o < (nS == 0 ? 0 : 2); ++o)

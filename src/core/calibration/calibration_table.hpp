@@ -77,9 +77,9 @@
 /// Table (CSV, '#' comment lines: command, Poisson ratio, grids, fit errors):
 ///   a_over_b,kind,epsilon,ratio[,...]   optional columns, named in the header, in any order:
 ///   fit_error, fastsim_nx, spin_share, xi_share, sign (an empty or missing field: not given)
-///   kind in {11, 22, 23, 23x, 23s, 22c, 22b, 22n, 22cn, 22s, c1, c2, c3, cs, c3x}; c-kinds carry
-///   their direction (sign +1 or -1); 22c's and 22cn's "ratio" is the coupling c, any sign; 22b's
-///   the slope beta, in [-2.5, 2.5]; 22s's the shape, in [kMinEtaShape, kMaxBoundShape]
+///   kind: a code or name of calibration_schema.hpp's kKindInfo and kMultiplierInfo (what each
+///   is, and its range); c-kinds carry their direction (sign +1 or -1); 22c's and 22cn's "ratio"
+///   is the coupling c, 22b's the slope beta, 22s's the shape
 /// fastsim_nx: the FastSim mesh's nodes per strip the row was identified on (FastSim's own
 /// discretisation error differs per mesh, the exact curves do not); each mesh's rows in one block.
 /// A table without the column is one mesh that serves every nx.
@@ -94,9 +94,12 @@
 #include <cmath>
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "core/calibration/calibration_schema.hpp"
 #include "core/fastsim/fastsim.hpp"
 
 namespace wheel_rail_contact {
@@ -155,43 +158,39 @@ class PatchCalibration {
   /// shape; 4: of L3x besides L3's) for creepages with squares e2 (e1^2, e2^2, e3^2), e = their
   /// root sum, and eta phi < 0 (`opposed`); 1 where the table has none.
   void correction(const double* e2, double e, bool opposed, int first, int last, double* m) const;
-  /// The bound's shape is at most this (flattenedBound stays positive below 4).
-  static constexpr double kMaxBoundShape = 2.0;
-  /// The shape whose full-slip spin moment is Hertz's: flattenedBound's moment of pure spin in
-  /// full slip, on a circle, is (8/15 + (4/105) s) mu fz a, Hertz's (3 pi / 16) mu fz a.
-  static constexpr double kHertzMomentShape = (3.0 * M_PI / 16.0 - 8.0 / 15.0) * 105.0 / 4.0;
   /// The bound's shape for combined creepages with a small spin share s3 = e3^2 / e^2, below
   /// kSmallSpinShare, on a patch of a/b = aOverB: the table's `shape` at normalised creepage e
   /// blended towards kHertzMomentShape as the patch goes into full slip (smoothly over e from
   /// fullSlipFrom(s3, aOverB) to fullSlipTo(aOverB)), by (1 - s3 / kSmallSpinShare)
-  /// min(1, s3 / 0.01). In full slip the traction is mu p along the rigid slip, which spin turns
-  /// over the patch: force and moment are the pressure's weighted sums of that direction field,
-  /// right only with Hertz's weights. From kSmallSpinShare on the identified correction decides;
-  /// without a correction (or spin), `shape` is returned.
+  /// min(1, s3 / kHertzShapeSpinShare). In full slip the traction is mu p along the rigid slip,
+  /// which spin turns over the patch: force and moment are the pressure's weighted sums of that
+  /// direction field, right only with Hertz's weights. From kSmallSpinShare on the identified
+  /// correction decides; without a correction (or spin), `shape` is returned. The shipped table's
+  /// spin-share knots below kSmallSpinShare are identified with it in the fit and, near linear
+  /// theory, hold the correction interpolated between no spin and the first knot from it on
+  /// (identify_calibration).
   double towardsFullSlip(double shape, double e, double s3, double aOverB) const;
   /// towardsFullSlip's blend itself, whatever the table (identify_calibration fits a knot below
   /// kSmallSpinShare with it).
   static double hertzShapeBlend(double shape, double e, double s3, double aOverB);
-  /// Spin's share below which towardsFullSlip acts, whatever the table's spin-share knots. The
-  /// shipped table's knots below it (0.03, 0.06, 0.1, 0.175) are identified with towardsFullSlip in
-  /// the fit and, near linear theory, hold the correction interpolated between no spin and the
-  /// first knot from it on (identify_calibration).
-  static constexpr double kSmallSpinShare = 0.25;
   /// Normalised creepage from which towardsFullSlip moves the shape: kFullSlipFrom, and
   /// heldFullSlipFrom(aOverB) where the lateral coupling is held (heldShare): the held coupling's
   /// moment fades as the patch slips, and the full-slip shape takes it over that much sooner (the
   /// six small-share rays' moment, doc/calibrated_fastsim.md, "The blend's start where the
   /// coupling is held").
   static double fullSlipFrom(double s3, double aOverB) {
+    using namespace calibration;
     return kFullSlipFrom + (heldFullSlipFrom(aOverB) - kFullSlipFrom) * heldShare(s3);
   }
   /// kHeldFullSlipFrom, and kWideHeldFullSlipFrom on a wide patch (wideness).
   static double heldFullSlipFrom(double aOverB) {
+    using namespace calibration;
     return kHeldFullSlipFrom + (kWideHeldFullSlipFrom - kHeldFullSlipFrom) * wideness(aOverB);
   }
   /// Normalised creepage from which towardsFullSlip gives its full blend: kFullSlipTo, and
   /// kWideFullSlipTo on a wide patch (wideness).
   static double fullSlipTo(double aOverB) {
+    using namespace calibration;
     return kFullSlipTo + (kWideFullSlipTo - kFullSlipTo) * wideness(aOverB);
   }
   /// How wide (b over a) the patch is, for the blend's span: 1 up to a/b = kWideTo, 0 from
@@ -200,41 +199,23 @@ class PatchCalibration {
   /// and the full-slip shape has to take the small shares' moment over sooner: from e = 0.75 to
   /// 3.5 there (doc/calibrated_fastsim.md, "Small spin shares on wide and long patches").
   static double wideness(double aOverB) {
+    using namespace calibration;
     return std::clamp((kNarrowFrom - aOverB) / (kNarrowFrom - kWideTo), 0.0, 1.0);
   }
-  static constexpr double kFullSlipFrom = 2.5, kHeldFullSlipFrom = 1.5, kFullSlipTo = 5.0;
-  static constexpr double kWideHeldFullSlipFrom = 0.75, kWideFullSlipTo = 3.5;
-  static constexpr double kWideTo = 0.2, kNarrowFrom = 0.5;
-  static constexpr int kCorrections = 5;
-  /// Ratio of kind k (0: 11, 1: 22, 2: 23, 3: 23x, 4: 23s) at normalised creepage e, and its
-  /// logarithm.
+  /// Ratio of kind k (calibration::Kind, a ratio: kXiRatio to kSpinBoundShape, kEtaRatioNoSpin)
+  /// at normalised creepage e, and its logarithm (a kind held as is: its value, for logRatio).
   double ratio(int kind, double e) const;
   double logRatio(int kind, double e) const;
-  /// Kind 5: the table's coupling c at normalised creepage e (22c; 0 where the table has none).
+  /// The table's coupling c at normalised creepage e (22c; 0 where the table has none).
   double coupling(double e) const;
-  static constexpr int kCouplingKind = 5;
-  /// Kind 6: the table's slope beta of eta's drive at normalised creepage e (22b; 0 where the
-  /// table has none).
+  /// The table's slope beta of eta's drive at normalised creepage e (22b; 0 where the table has
+  /// none).
   double etaSlope(double e) const;
-  static constexpr int kEtaSlopeKind = 6;
-  /// Kinds 7-9: eta without spin, its ratio (22n), coupling (22cn) and bound shape (22s); absent,
-  /// the pair 22, 22c holds at every share of spin.
-  static constexpr int kEtaNoSpinKind = 7, kCouplingNoSpinKind = 8, kEtaShapeKind = 9;
-  /// Whether kind k's table values are held as they are (22c, 22b, 22cn, 22s) rather than as
-  /// ratios (in ln).
-  static constexpr bool heldAsIs(int k) {
-    return k == kCouplingKind || k == kEtaSlopeKind || k == kCouplingNoSpinKind ||
-           k == kEtaShapeKind;
-  }
   /// The weight of the no-spin kinds (22n, 22cn, 22s) and of 22b's slope at spin's share s3 of
   /// e^2: 1 without spin, falling linearly to 0 at kNoSpinTo, the shipped table's first spin-share
   /// knot: from there on the combined correction, identified on the pair 22, 22c without the
   /// slope, decides.
-  static double noSpinWeight(double s3) { return std::max(0.0, 1.0 - s3 / kNoSpinTo); }
-  static constexpr double kNoSpinTo = 0.03;
-  /// 22s's range: flattenedBound stays positive above -2; below kMinEtaShape eta's bound would
-  /// peak sharper than any fit asks for.
-  static constexpr double kMinEtaShape = -1.0;
+  static double noSpinWeight(double s3) { return std::max(0.0, 1.0 - s3 / calibration::kNoSpinTo); }
   /// The weight of 22b's slope on creepages with squares e1^2, e2^2 and spin's share s3 of e^2:
   /// 4 t (1 - t), t xi's share of e1^2 + e2^2 (identified on xi = eta, t = 1/2; on eta alone the
   /// coupling carries the moment, and without eta the drive is zero), falling linearly with spin's
@@ -248,12 +229,10 @@ class PatchCalibration {
   /// elliptic patch is the uniform drive's (the strips' sum of 2 a_j^2 (1 - (beta / 3) a_j / a)).
   /// beta is clamped to [-kMaxEtaSlope, kMaxEtaSlope] (the gain stays finite and positive).
   static void setEtaSlope(double beta, double a, Flexibilities* L) {
-    beta = std::clamp(beta, -kMaxEtaSlope, kMaxEtaSlope);
+    beta = std::clamp(beta, -calibration::kMaxEtaSlope, calibration::kMaxEtaSlope);
     L->etaSlope = beta / a;
-    L->etaGain = 1.0 / (1.0 - kEtaSlopeForce * beta);
+    L->etaGain = 1.0 / (1.0 - calibration::kEtaSlopeForce * beta);
   }
-  static constexpr double kEtaSlopeForce = 3.0 * M_PI / 32.0;
-  static constexpr double kMaxEtaSlope = 2.5;
   /// Flexibilities::lateralCoupling [1/m^2] of coupling c at patch (a, b): c / (G b L1,Kalker) =
   /// 3 C11 c / (8 a b).
   static double lateralCoupling(double c, double a, double b, const CreepCoefficients& k) {
@@ -265,10 +244,10 @@ class PatchCalibration {
   /// correction carries the moment, as it was fitted to (kept to e = 4.5 rather than 1 or 3: the
   /// held-out directions, doc/calibrated_fastsim.md, "Linear theory's spin moment").
   static double linearSpinMoment(double e) {
+    using namespace calibration;
     return std::clamp((kLinearSpinMomentEnd - e) / (kLinearSpinMomentEnd - kLinearSpinMomentTo),
                       0.0, 1.0);
   }
-  static constexpr double kLinearSpinMomentTo = 2.0, kLinearSpinMomentEnd = 4.5;
   /// The share of the lateral coupling held where spin is a small share s3 = e3^2 / e^2 of the
   /// creepage, beyond the (e2^2 / (e2^2 + e3^2))^6 that spin's own parameters were identified
   /// with: 1 - e / kLinearSpinMomentEnd (0 beyond), times 1 up to s3 = kHeldCouplingFrom falling
@@ -276,13 +255,13 @@ class PatchCalibration {
   /// sixth power faded: linear theory's moment was up to 11.5 % off (doc/calibrated_fastsim.md,
   /// "The coupling held at small spin shares").
   static double heldCoupling(double e, double s3) {
-    return std::max(0.0, 1.0 - e / kLinearSpinMomentEnd) * heldShare(s3);
+    return std::max(0.0, 1.0 - e / calibration::kLinearSpinMomentEnd) * heldShare(s3);
   }
   /// heldCoupling's factor of spin's share s3: 1 up to kHeldCouplingFrom, 0 from kHeldCouplingTo.
   static double heldShare(double s3) {
+    using namespace calibration;
     return std::clamp((kHeldCouplingTo - s3) / (kHeldCouplingTo - kHeldCouplingFrom), 0.0, 1.0);
   }
-  static constexpr double kHeldCouplingFrom = 0.06, kHeldCouplingTo = 0.12;
   /// What the coupling kappa [1/m^2] on a patch of semi-axis a [m] takes from 1 / L3x [N/m^3] so
   /// that spin's moment in linear theory stays the same: kappa a^2 (4 / 21) / L3. The coupling's
   /// moment on spin's lateral traction tau_y = -(phi / (2 L3)) (a_y^2 - x^2) is
@@ -298,13 +277,11 @@ class PatchCalibration {
 
  private:
   friend class CalibrationTable;
-  static constexpr int kKinds = 10;
-  // Per kind (0-4: 11, 22, 23, 23x, 23s; 5: 22c; 6: 22b; 7-9: 22n, 22cn, 22s) its knots and ln
-  // ratio at them (heldAsIs: the value itself).
-  std::vector<double> eps_[kKinds], logRatio_[kKinds];
+  // Per kind (calibration::Kind) its knots and ln ratio at them (held as is: the value itself).
+  std::vector<double> eps_[calibration::kKinds], logRatio_[calibration::kKinds];
   // 1 / (eps_[k][i] - eps_[k][i - 1]) at i (index 0 unused): a knot cell's weight without a
   // division.
-  std::vector<double> perWidth_[kKinds];
+  std::vector<double> perWidth_[calibration::kKinds];
   // Where every kind present holds kind 11's knots (the shipped table), one search of e serves
   // them all; set by CalibrationTable::at.
   bool sharedKnots_ = false;
@@ -389,7 +366,7 @@ class PatchCalibration {
   }
   // Combined correction: spin shares (interior knots), xi shares (0 to 1), e knots, and the
   // multipliers' logarithms, the five of a grid point side by side, at index
-  // ((((opposed * (nS + 2) + i) * nT + j) * nE + k) * kCorrections + p): spin-share rows i = 0 and
+  // ((((opposed * (nS + 2) + i) * nT + j) * nE + k) * kMultipliers + p): spin-share rows i = 0 and
   // nS + 1 are the implicit ends s3 = 0 and 1 (ln multiplier 0), row i the knot corrS3_[i - 1].
   // The reciprocal widths of the spin-share cells (nS + 1, the ends included), the xi-share cells
   // and the e cells (at a cell's upper index) spare the lookup its divisions.
@@ -400,16 +377,29 @@ class PatchCalibration {
 /// The identified table over a/b, per FastSim mesh.
 class CalibrationTable {
  public:
-  /// Reads a table. Throws std::runtime_error naming the file and line on a malformed,
-  /// non-finite or non-positive ratio, knots not increasing or not starting at (0, 1), or a/b rows
-  /// whose knots differ (23x, 23s: in every a/b or in none; 23s in (0, 1], any at knot 0), an
-  /// unknown or repeated column, a fastsim_nx below 2 or missing in a row, or a mesh in two blocks.
+  /// Reads a table file: the binary format (calibration_binary.hpp; recognised by its magic) or
+  /// CSV (parse). Throws std::runtime_error naming the file (and the line, in CSV) on a malformed
+  /// table: a number not finite or out of its kind's range, knots not increasing or not starting
+  /// at (0, 1), a/b rows whose knots differ (23x, 23s: in every a/b or in none), an unknown or
+  /// repeated column, a fastsim_nx below 2 or missing in a row, a mesh in two blocks; in the binary
+  /// format besides, another magic, version or schema, a size or checksum that does not match.
   static CalibrationTable load(const std::string& path);
-  /// The same from a stream; `source` names it in messages.
+  /// A table in CSV from a stream; `source` names it in messages.
   static CalibrationTable parse(std::istream& in, const std::string& source);
-  /// The table shipped with the package (config/steady_calibration.csv, meshes 5x5 to 40x40,
-  /// compiled in; parsed once per process).
+  /// A table in the binary format from its bytes, every mesh read and checked; `source` names it
+  /// in messages.
+  static CalibrationTable fromBinary(std::string_view bytes, const std::string& source);
+  /// The table shipped with the package (config/calibration.bin, meshes 5x5 to 40x40, compiled
+  /// into the library): the header is read once per process, a mesh's block only when forMesh()
+  /// first needs it.
   static const CalibrationTable& shipped();
+  /// Writes the table in the binary format. Throws std::runtime_error where a value is not a
+  /// multiple of 1e-6 or beyond +-2147 (the format holds int32 millionths: what the identifier's
+  /// CSV held, 6 decimals, read back bit for bit).
+  void writeBinary(std::ostream& out) const;
+  /// Writes the block of mesh nx (0: every mesh) as CSV that parse() reads back to the same
+  /// values, kinds by their readable names: the table for people to read.
+  void writeCsv(std::ostream& out, int nx = 0) const;
   /// The table for a FastSim mesh of nx nodes per strip, as a table of its own: an identified
   /// mesh's own; between two identified meshes of the same knots their ratios interpolated in
   /// 1/nx (the march's step along the strip; ln ratio, the coupling itself); beyond the table's
@@ -428,16 +418,26 @@ class CalibrationTable {
 
  private:
   struct Row {
-    double logAB;
-    std::vector<double> eps[PatchCalibration::kKinds],
-        ratio[PatchCalibration::kKinds];               // PatchCalibration's kinds (heldAsIs as is)
+    double aOverB, logAB;
+    // Per kind (calibration::Kind): knots and values (ratios, or held as is).
+    std::vector<double> eps[calibration::kKinds], ratio[calibration::kKinds];
     std::vector<double> corrS3, corrT, corrEps, corr;  // as PatchCalibration's, ratios
   };
   struct Mesh {
     int nx = 0;             // 0: any
     std::vector<Row> rows;  // sorted by a/b
   };
-  std::vector<Mesh> meshes_;  // sorted by nx
+  std::vector<Mesh> meshes_;  // sorted by nx; rows empty where binary_ reads them when asked
+  // The binary form a table was read from lazily (shipped()), its meshes' blocks read once each
+  // on first use; null: every mesh's rows are in meshes_.
+  struct Binary;
+  std::shared_ptr<const Binary> binary_;
+  // Mesh m's rows (read from binary_ on first use).
+  const std::vector<Row>& rowsOf(const Mesh& m) const;
+  // The binary format's reader and writer (calibration_binary.cpp).
+  static CalibrationTable readBinary(std::string_view bytes, const std::string& source, bool lazy);
+  static std::vector<Row> readMesh(std::string_view block, std::uint32_t checksum,
+                                   const std::string& source, int nx);
   // Whether two meshes' tables hold the same a/b rows and knots (identified on the same grids).
   static bool sameKnots(const std::vector<Row>& x, const std::vector<Row>& y);
 };
