@@ -10,14 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "core/profiles/standard_profiles.hpp"
 #include "wheel_rail_contact/profiles/profile.hpp"
 
 using namespace wheel_rail_contact;
 
 namespace {
 
-const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/test/data/profiles/";
+const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/config/profiles/";
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -62,11 +61,6 @@ void expectSameCurve(const Profile& a, const Profile& b, double tol) {
 }
 
 }  // namespace
-
-TEST(Profile, BuiltInProfilesAreTheTestDataFilesVerbatim) {
-  EXPECT_EQ(std::string(standardWheelProfileText()), slurp(kDataDir + "MBench_S1002_v3.prw"));
-  EXPECT_EQ(std::string(standardRailProfileText()), slurp(kDataDir + "MBench_UIC60_v3.prr"));
-}
 
 TEST(Profile, SimpackFilesComeOutRightWayUpInTheProfileFrame) {
   const Profile rail = Profile::read(kDataDir + "MBench_UIC60_v3.prr", ProfileKind::kRail);

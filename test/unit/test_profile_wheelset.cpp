@@ -12,7 +12,7 @@ using namespace wheel_rail_contact;
 
 namespace {
 
-const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/test/data/profiles/";
+const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/config/profiles/";
 
 std::string invalidMessage(const WheelsetTrackData& d) {
   try {

@@ -364,14 +364,16 @@ Profile Profile::read(const std::string& path, ProfileKind kind,
 }
 
 std::shared_ptr<const Profile> Profile::standardWheel() {
-  static const std::shared_ptr<const Profile> p = std::make_shared<const Profile>(
-      parse(standardWheelProfileText(), "MBench_S1002_v3.prw (built in)", ProfileKind::kWheel));
+  static const std::shared_ptr<const Profile> p =
+      std::make_shared<const Profile>(parse(std::string(standardWheelProfileText()),
+                                            "MBench_S1002_v3.prw (built in)", ProfileKind::kWheel));
   return p;
 }
 
 std::shared_ptr<const Profile> Profile::standardRail() {
-  static const std::shared_ptr<const Profile> p = std::make_shared<const Profile>(
-      parse(standardRailProfileText(), "MBench_UIC60_v3.prr (built in)", ProfileKind::kRail));
+  static const std::shared_ptr<const Profile> p =
+      std::make_shared<const Profile>(parse(std::string(standardRailProfileText()),
+                                            "MBench_UIC60_v3.prr (built in)", ProfileKind::kRail));
   return p;
 }
 
