@@ -115,9 +115,10 @@ class PatchCalibration {
  public:
   bool classic() const { return eps_[0].empty(); }
   /// Whether step() interpolates the combined correction and takes its exps four at a time in the
-  /// lanes of AVX registers, where the CPU has them (the default); the results are the scalar
-  /// path's bit for bit (tests compare the two).
-  void setVectorised(bool on) { vectorised_ = on && fourStripLanesAvailable(); }
+  /// lanes of a vector register, where the CPU has them (the default, as the marches':
+  /// stripLanesAvailable); the results are the scalar path's within 1e-12 relative
+  /// (correction_lanes.hpp; tests compare the two).
+  void setVectorised(bool on) { vectorised_ = on && stripLanesAvailable(); }
   bool vectorised() const { return vectorised_; }
   /// The step's flexibilities and bound shape together (what flexibilities() and boundShape()
   /// give), from one normalised creepage, one knot search and one correction lookup: what a
@@ -293,8 +294,8 @@ class PatchCalibration {
     double we, wt, ws;
   };
   CorrectionCell correctionCell(double s3, double t, double e) const;
-  // Whether step() takes the corrected case's lookup and exps four at a time in AVX's lanes (set
-  // by CalibrationTable::at where the CPU has them; setVectorised).
+  // Whether step() takes the corrected case's lookup and exps four at a time in a vector's lanes
+  // (set by CalibrationTable::at where the CPU has them; setVectorised).
   bool vectorised_ = false;
   // The knot cell [i - 1, i] holding e and e's place t in it; i = the knot count at and beyond the
   // last knot (or for NaN), where the last value is held.
