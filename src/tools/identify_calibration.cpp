@@ -185,7 +185,7 @@ const Ray kRays[] = {{"11", {1, 0, 0}},
                      {"h8", {1, 0.4, 0.3}},
                      // r1-r12: twelve directions (s3, t, sign of eta phi) spread between the
                      // grid's, held out; r13-r16 probe spin shares 0.55-0.71, mostly eta phi < 0
-                     // (doc/calibrated_fastsim.md, "Directions spread between the grid's").
+                     // (doc/calibrated_fastsim.md, "Steady accuracy").
                      {"r1", {0.7629, 0.6229, 0.1732}},
                      {"r2", {0.6066, 0.7430, -0.2828}},
                      {"r3", {0.8798, 0.2933, 0.3742}},
@@ -778,8 +778,8 @@ double smallShareFitFrom(double g) {
 // towards 1 harder than the others above it. Fitted freely, it moved the first spin share's fit in
 // partial slip, which the small shares hold there (their moment then missed), and wandered in full
 // slip along a ridge of near-equal optima; where it is needed (xi-dominant directions with some
-// 40 % spin on long patches) it acts from partial slip's end on (doc/calibrated_fastsim.md, "L3x's
-// own multiplier").
+// 40 % spin on long patches) it acts from partial slip's end on (doc/calibrated_fastsim.md, "What
+// it is", item 5).
 constexpr double kSpinDriveFitFrom = 0.75;
 constexpr double kSpinDrivePull = 1e-2;
 
@@ -1098,7 +1098,7 @@ void identifyCorrection(const Options& o, ExactCache* exact, double g, const Pat
     // Smoothing sweeps (Jacobi: each direction against its neighbours' fits of the sweep before).
     // Five multipliers against three forces leave near-equal optima, and directions fitted alone
     // took different ones; the core interpolates between directions, and between two such fits the
-    // forces missed (doc/calibrated_fastsim.md, "A denser grid, fitted smooth").
+    // forces missed (doc/calibrated_fastsim.md, "How it is identified").
     const std::size_t nS = o.spinShares.size(), nT = o.xiShares.size();
     for (int sweep = 0; o.smoothing > 0.0 && sweep < kSmoothingSweeps; ++sweep) {
       const auto before = byShare;

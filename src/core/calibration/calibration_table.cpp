@@ -213,8 +213,8 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
   };
   // The lateral coupling, times eta's share of the lateral creepages' e2^2 + e3^2 to the sixth:
   // spin's own parameters (23, 23x, 23s) are fitted without it, and on spin's lateral traction it
-  // put a moment that those parameters already carry (doc/calibrated_fastsim.md, "Mz from eta in
-  // the core"). Where spin is a small share the rest of it is held (heldCoupling), its moment on
+  // put a moment that those parameters already carry (doc/calibrated_fastsim.md, "What it is",
+  // item 6). Where spin is a small share the rest of it is held (heldCoupling), its moment on
   // spin's traction taken back through L3x below. Without eta it is 0; without spin, c itself
   // (c_n); without friction (e infinite, the squares inf or NaN) none: every node slips with zero
   // traction.
@@ -228,7 +228,7 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
         b, k);
     // Eta's drive's slope where xi is beside eta (etaSlopeWeight): in full slip it turns the
     // traction along the strip, as exact theory's xi = eta curves do (doc/calibrated_fastsim.md,
-    // "Eta's drive's slope").
+    // "What it is", item 7).
     if (!eps_[kEtaDriveSlope].empty() && e2[0] > 0.0) {
       const double w = etaSlopeWeight(e2[0], e2[1], share[2]);
       if (w > 0.0) setEtaSlope(logRatioOf(kEtaDriveSlope) * w, a, &L);
@@ -236,8 +236,8 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
   }
   // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
-  // curves better than the arithmetic one (identify_calibration's combined rays,
-  // doc/calibrated_fastsim.md).
+  // curves better than the arithmetic one (identify_calibration's combined rays;
+  // doc/calibrated_fastsim.md, "What it is", item 2).
   const double logRho = finite
                             ? share[0] * logRatioOf(kXiRatio) +
                                   share[1] * towardsNoSpin(logRatioOf(kEtaRatio), kEtaRatioNoSpin) +
