@@ -51,7 +51,7 @@
 #include "core/calibration/calibration_table.hpp"
 #include "core/exact/halfspace_solver.hpp"
 #include "core/fastsim/fastsim.hpp"
-#include "tool_args.hpp"
+#include "tool_options.hpp"
 #include "validation/steady_curves.hpp"
 
 using namespace wheel_rail_contact;
@@ -94,98 +94,74 @@ struct Options {
   bool etaNoSpin = true;  // with both, eta without spin (kinds 22n, 22cn, 22s; 22b refitted)
 };
 
-const char* const kUsage =
-    "usage: identify_calibration [--out config/calibration.bin]\n"
-    "                       [--exact doc/data/steady_exact_curves.csv]\n"
-    "                       [--curves doc/data/steady_curves.csv] [--table FILE]\n"
-    "                       [--grid 20] [--nx 20[,...]] [--nu 0.28] [--ab R,...]\n"
-    "                       [--knots E,...] [--points 0.05,0.15,...]\n"
-    "                       [--correction-knots E,...] [--spin-shares S,...] [--xi-shares T,...]\n"
-    "                       [--smoothing 0.01] [--no-coupling] [--no-eta-slope]\n"
-    "                       [--no-eta-without-spin]\n"
-    "                       [--solve-grid [--grid-only]]\n"
-    "                       [--moment-study]\n"
-    "                       [--threads N]\n"
-    "       identify_calibration --dump NX [--table FILE] [--out FILE.csv]\n"
-    "       identify_calibration --convert FILE --out FILE.bin\n"
-    "--out:    identify and write the table: binary where FILE ends in .bin, with a summary\n"
-    "          beside it (FILE less .bin, _summary.txt: the fit errors and the command), else\n"
-    "          CSV (else --table, or the shipped one, is evaluated; --table classic: no table)\n"
-    "--table:  a table file, binary or CSV (default: the one shipped in the library)\n"
-    "--threads: identify that many meshes and a/b at once (default: the CPU's threads); the\n"
-    "          table is the same whatever the number\n"
-    "--dump:   write mesh NX of the table (0: every mesh) as CSV, to --out or stdout\n"
-    "--convert: read a table (CSV or binary) and write it to --out (.bin: binary, else CSV)\n"
-    "--exact:  the exact points' cache, read and extended (the default, relative to the\n"
-    "          repository root, must exist; a FILE that does not is a new cache)\n"
-    "--curves: write exact / classic / calibrated curves at --points for every ray\n"
-    "--ab, --knots, --correction-knots, --spin-shares, --xi-shares: the table's grid (default:\n"
-    "          the shipped table's, src/core/calibration/calibration_schema.hpp)\n"
-    "--grid:   exact solver elements per axis; --nx: FastSim nodes per axis, one table block\n"
-    "          per mesh (fastsim_nx); evaluation: each mesh on the table's, interpolated\n"
-    "          between its meshes (one --nx with --curves)\n"
-    "--spin-shares, --xi-shares: the combined correction's direction grid (none: no correction)\n"
-    "--smoothing: the pull of each direction's multipliers towards its neighbours' (mu fz per\n"
-    "          unit ln multiplier; 0: each direction fitted alone)\n"
-    "--no-coupling: no lateral coupling (kind 22c): eta's ratio fitted to the force alone\n"
-    "--no-eta-slope: no slope of eta's drive (kind 22b): uniform along the strip, as classic\n"
-    "--no-eta-without-spin: no set of eta's own without spin (kinds 22n, 22cn, 22s): the pair\n"
-    "          fitted on eta alone holds at every share of spin, 22b fitted on it\n"
-    "--solve-grid: only solve the exact points the table and curves need (a long job; the cache\n"
-    "          is saved as it goes); --grid-only: the direction grid's points, not the rays'\n"
-    "--moment-study: per ray and a/b at --points, FastSim's errors on the table (or --table) and\n"
-    "          refitted point by point with and without two terms the core does not have\n"
-    "          (doc/calibrated_fastsim.md, \"Mz from eta\"); one --nx, no table written\n";
-
-void readOption(tools::Args& a, Options* o) {
-  if (a.is("--out"))
-    o->out = a.text();
-  else if (a.is("--exact"))
-    o->exact = a.text();
-  else if (a.is("--curves"))
-    o->curves = a.text();
-  else if (a.is("--table"))
-    o->table = a.text();
-  else if (a.is("--threads"))
-    o->threads = a.integer();
-  else if (a.is("--dump"))
-    o->dump = a.integer();
-  else if (a.is("--convert"))
-    o->convert = a.text();
-  else if (a.is("--grid"))
-    o->grid = a.integer();
-  else if (a.is("--nx"))
-    o->meshes = a.integers();
-  else if (a.is("--nu"))
-    o->nu = a.real();
-  else if (a.is("--ab"))
-    o->ratios = a.reals();
-  else if (a.is("--knots"))
-    o->knots = a.reals();
-  else if (a.is("--points"))
-    o->points = a.reals();
-  else if (a.is("--correction-knots"))
-    o->corrKnots = a.reals();
-  else if (a.is("--spin-shares"))
-    o->spinShares = a.reals();
-  else if (a.is("--xi-shares"))
-    o->xiShares = a.reals();
-  else if (a.is("--smoothing"))
-    o->smoothing = a.real();
-  else if (a.is("--solve-grid"))
-    o->solveGrid = true;
-  else if (a.is("--grid-only"))
-    o->gridOnly = true;
-  else if (a.is("--moment-study"))
-    o->momentStudy = true;
-  else if (a.is("--no-eta-slope"))
-    o->etaSlope = false;
-  else if (a.is("--no-eta-without-spin"))
-    o->etaNoSpin = false;
-  else if (a.is("--no-coupling"))
-    o->coupling = false;
-  else
-    a.unknown();
+void addOptions(CLI::App& app, Options* o) {
+  app.description(
+      "Identifies the calibrated FastSim's table against the exact half-space solver and writes "
+      "the steady creep curves exact / classic / calibrated.");
+  app.footer(
+      "Modes: identify_calibration --out FILE [grid options] (identify and write a table);\n"
+      "       identify_calibration --dump NX [--table FILE] [--out FILE.csv];\n"
+      "       identify_calibration --convert FILE --out FILE.bin;\n"
+      "       without --out, --dump or --convert: --table (or the shipped one) is evaluated.");
+  tools::option(app, "--out", &o->out,
+                "identify and write the table: binary where FILE ends in .bin, with a summary "
+                "beside it (FILE less .bin, _summary.txt: the fit errors and the command), else "
+                "CSV (else --table, or the shipped one, is evaluated)");
+  tools::option(app, "--exact", &o->exact,
+                "the exact points' cache, read and extended (the default, relative to the "
+                "repository root, must exist; a FILE that does not is a new cache)");
+  tools::option(app, "--curves", &o->curves,
+                "write exact / classic / calibrated curves at --points for every ray");
+  tools::option(app, "--table", &o->table,
+                "a table file, binary or CSV (default: the one shipped in the library; classic: "
+                "no table)");
+  tools::option(app, "--threads", &o->threads,
+                "identify that many meshes and a/b at once (default: the CPU's threads); the "
+                "table is the same whatever the number");
+  tools::option(app, "--dump", &o->dump,
+                "write mesh NX of the table (0: every mesh) as CSV, to --out or stdout");
+  tools::option(app, "--convert", &o->convert,
+                "read a table (CSV or binary) and write it to --out (.bin: binary, else CSV)");
+  tools::option(app, "--grid", &o->grid, "exact solver elements per axis");
+  tools::option(app, "--nx", &o->meshes,
+                "FastSim nodes per axis, one table block per mesh (fastsim_nx); evaluation: each "
+                "mesh on the table's, interpolated between its meshes (one --nx with --curves)");
+  tools::option(app, "--nu", &o->nu, "Poisson's ratio");
+  // The grids' defaults: the shipped table's (src/core/calibration/calibration_schema.hpp).
+  tools::option(app, "--ab", &o->ratios, "the table's a/b");
+  tools::option(app, "--knots", &o->knots, "the single kinds' knots in e");
+  tools::option(app, "--points", &o->points, "the curves' points in e (--curves)");
+  tools::option(app, "--correction-knots", &o->corrKnots, "the combined correction's knots in e");
+  tools::option(app, "--spin-shares", &o->spinShares,
+                "the combined correction's direction grid, spin's shares of e^2 ('': no "
+                "correction)",
+                {}, true);
+  tools::option(app, "--xi-shares", &o->xiShares,
+                "the combined correction's direction grid, xi's shares of the rest ('': no "
+                "correction)",
+                {}, true);
+  tools::option(app, "--smoothing", &o->smoothing,
+                "the pull of each direction's multipliers towards its neighbours' (mu fz per "
+                "unit ln multiplier; 0: each direction fitted alone)");
+  app.add_flag_callback(
+      "--no-coupling", [o] { o->coupling = false; },
+      "no lateral coupling (kind 22c): eta's ratio fitted to the force alone");
+  app.add_flag_callback(
+      "--no-eta-slope", [o] { o->etaSlope = false; },
+      "no slope of eta's drive (kind 22b): uniform along the strip, as classic");
+  app.add_flag_callback(
+      "--no-eta-without-spin", [o] { o->etaNoSpin = false; },
+      "no set of eta's own without spin (kinds 22n, 22cn, 22s): the pair fitted on eta alone "
+      "holds at every share of spin, 22b fitted on it");
+  tools::flag(app, "--solve-grid", &o->solveGrid,
+              "only solve the exact points the table and curves need (a long job; the cache is "
+              "saved as it goes)");
+  tools::flag(app, "--grid-only", &o->gridOnly,
+              "with --solve-grid: the direction grid's points, not the rays'");
+  tools::flag(app, "--moment-study", &o->momentStudy,
+              "per ray and a/b at --points, FastSim's errors on the table (or --table) and "
+              "refitted point by point with and without two terms the core does not have; one "
+              "--nx, no table written");
 }
 
 struct Ray {
@@ -209,7 +185,7 @@ const Ray kRays[] = {{"11", {1, 0, 0}},
                      {"h8", {1, 0.4, 0.3}},
                      // r1-r12: twelve directions (s3, t, sign of eta phi) spread between the
                      // grid's, held out; r13-r16 probe spin shares 0.55-0.71, mostly eta phi < 0
-                     // (doc/calibrated_fastsim.md, "Directions spread between the grid's").
+                     // (doc/calibrated_fastsim.md, "Steady accuracy").
                      {"r1", {0.7629, 0.6229, 0.1732}},
                      {"r2", {0.6066, 0.7430, -0.2828}},
                      {"r3", {0.8798, 0.2933, 0.3742}},
@@ -802,8 +778,8 @@ double smallShareFitFrom(double g) {
 // towards 1 harder than the others above it. Fitted freely, it moved the first spin share's fit in
 // partial slip, which the small shares hold there (their moment then missed), and wandered in full
 // slip along a ridge of near-equal optima; where it is needed (xi-dominant directions with some
-// 40 % spin on long patches) it acts from partial slip's end on (doc/calibrated_fastsim.md, "L3x's
-// own multiplier").
+// 40 % spin on long patches) it acts from partial slip's end on (doc/calibrated_fastsim.md, "What
+// it is", item 5).
 constexpr double kSpinDriveFitFrom = 0.75;
 constexpr double kSpinDrivePull = 1e-2;
 
@@ -1122,7 +1098,7 @@ void identifyCorrection(const Options& o, ExactCache* exact, double g, const Pat
     // Smoothing sweeps (Jacobi: each direction against its neighbours' fits of the sweep before).
     // Five multipliers against three forces leave near-equal optima, and directions fitted alone
     // took different ones; the core interpolates between directions, and between two such fits the
-    // forces missed (doc/calibrated_fastsim.md, "A denser grid, fitted smooth").
+    // forces missed (doc/calibrated_fastsim.md, "How it is identified").
     const std::size_t nS = o.spinShares.size(), nT = o.xiShares.size();
     for (int sweep = 0; o.smoothing > 0.0 && sweep < kSmoothingSweeps; ++sweep) {
       const auto before = byShare;
@@ -1762,6 +1738,6 @@ int run(const Options& o, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return tools::runMain<Options>("identify_calibration", kUsage, argc, argv, readOption,
+  return tools::runMain<Options>("identify_calibration", argc, argv, addOptions,
                                  [&](const Options& o) { return run(o, argc, argv); });
 }

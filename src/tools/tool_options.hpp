@@ -38,11 +38,17 @@ CLI::Option* option(CLI::App& app, const std::string& name, T* value, const std:
 
 /// A list option: one word, comma-separated ("--meshes 5,10"), every item read as a T (an empty
 /// one is an error, as a typo); given twice, the last word counts. `allowed`: the values an item
-/// may take, if not any.
+/// may take, if not any. `mayBeEmpty`: an empty word ('') is the empty list, where that means
+/// "none" (else it is an error).
 template <class T>
 CLI::Option* option(CLI::App& app, const std::string& name, std::vector<T>* value,
-                    const std::string& help, const std::vector<std::string>& allowed = {}) {
-  const CLI::callback_t read = [value, name, allowed](const CLI::results_t& words) {
+                    const std::string& help, const std::vector<std::string>& allowed = {},
+                    bool mayBeEmpty = false) {
+  const CLI::callback_t read = [value, name, allowed, mayBeEmpty](const CLI::results_t& words) {
+    if (mayBeEmpty && words.back().empty()) {
+      value->clear();
+      return true;
+    }
     std::vector<T> items;
     std::istringstream in(words.back());
     for (std::string item; std::getline(in, item, ',');) {

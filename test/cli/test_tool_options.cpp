@@ -18,6 +18,7 @@ struct Parsed {
   double tol = 0.1;
   std::vector<int> meshes = {5, 10, 20};
   std::vector<std::string> fastsims = {"classic", "calibrated"};
+  std::vector<double> shares = {0.5};  // may be empty
   bool refresh = false;
   std::string out, err;
 };
@@ -32,6 +33,7 @@ Parsed parse(std::vector<std::string> words) {
   tools::option(app, "--tol", &p.tol, "tolerance");
   tools::option(app, "--meshes", &p.meshes, "meshes");
   tools::option(app, "--fastsim", &p.fastsims, "variants", {"classic", "calibrated"});
+  tools::option(app, "--shares", &p.shares, "shares ('': none)", {}, true);
   tools::flag(app, "--refresh", &p.refresh, "recompute");
   testing::internal::CaptureStdout();
   testing::internal::CaptureStderr();
@@ -64,6 +66,20 @@ TEST(ToolOptions, DefaultsStandAndTheLastValueWins) {
   ASSERT_TRUE(p.run) << p.err;
   EXPECT_EQ(p.grid, 50);
   EXPECT_EQ(p.meshes, (std::vector<int>{40}));
+}
+
+TEST(ToolOptions, AnEmptyWordIsTheEmptyListOnlyWhereThatMeansNone) {
+  Parsed p = parse({"--shares", ""});
+  ASSERT_TRUE(p.run) << p.err;
+  EXPECT_TRUE(p.shares.empty());
+  p = parse({"--shares", "0.25,0.75"});
+  ASSERT_TRUE(p.run) << p.err;
+  EXPECT_EQ(p.shares, (std::vector<double>{0.25, 0.75}));
+  for (const char* name : {"--meshes", "--fastsim"}) {
+    p = parse({name, ""});
+    EXPECT_FALSE(p.run) << name;
+    EXPECT_EQ(p.code, 2) << name;
+  }
 }
 
 TEST(ToolOptions, HelpListsEveryOptionWithItsDefaultAndStopsWithCodeZero) {

@@ -173,17 +173,12 @@ TEST_F(CalibratedSteady, SmallSpinShareWithEtaAlongPhiWithinTwoPercentOfMuFz) {
 
 TEST_F(CalibratedSteady, SmallSpinSharesMomentFromEtaNearerTheExactCurve) {
   // Where spin is a small share (2-8 % of e^2) the moment is mostly eta's, carried by the lateral
-  // coupling; held there (PatchCalibration::heldCoupling) rather than faded with spin's
-  // share, the six such rays' Mz was above 5 % of the peak on 15 of their 30 curves (23 before),
-  // mean 5.2 % (6.0 %), worst 9.8 % (r1 at a/b 0.2); with the bound going towards Hertz's shape
-  // from e = 1.5 there (fullSlipFrom) 9 of 30, mean 4.5 %, worst 8.1 %; with the blend's span and
-  // the correction's fit from e = 0.35 on wide patches (a/b 0.2: five of those nine) 4 of 30, mean
-  // 3.9 %, worst 7.2 %, and with that fit on long patches too (all but a/b 1) 3 of 30, mean 3.7 %,
-  // worst 6.8 %, and with the spin share 0.03 1 of 30, mean 3.0 %, worst 6.5 % (r10 at a/b 0.5),
-  // and with the shares 0.045 and 0.9375 none, mean 2.5 %, worst 4.8 % (h4 at a/b 0.2)
-  // (doc/calibrated_fastsim.md, "The coupling held at small spin shares", "The blend's start where
-  // the coupling is held", "Small spin shares on wide and long patches", "Spin's share 0.045 and
-  // xi's share 0.9375").
+  // coupling: held there (PatchCalibration::heldCoupling) rather than faded with spin's share,
+  // with the bound going towards Hertz's shape sooner where it is held (fullSlipFrom) and on wide
+  // and long patches (wideness), and with the correction's small spin shares, the six such rays'
+  // Mz is within issue 19's 5 % of the peak on all 30 curves: measured mean 2.5 %, worst 4.8 % (h4
+  // at a/b 0.2); faded with spin's share instead, half of them were above
+  // (doc/calibrated_fastsim.md, "What it is", items 6 and 8).
   int above = 0;
   double sum = 0.0, worst = 0.0;
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
@@ -225,15 +220,11 @@ TEST_F(CalibratedSteady, DirectionsSpreadBetweenTheGridsWithinTwoPercentOfMuFz) 
   // r1-r46: held-out directions between the grid's (spin shares 0.03-0.97, xi shares 0-1, both
   // signs of eta phi): r1-r16 placed by hand, r17-r28, r29-r40 and r41-r46 (spin shares
   // 0.03-0.1) drawn at random (r29-r40 after the grid and its smoothing were chosen, r41-r46
-  // after spin's share 0.045 and xi's 0.9375). Issue 19's 0.02 on every one, measured on 20x20
-  // 0.001-0.017 (before the denser, smoothed grid up to 0.064; classic 0.011-0.214); r10 (spin
-  // 4.5 % of e^2, in full slip at a/b 0.2) 0.003 since the correction's knots 3.75 and 5.5
-  // (0.006 with the shares 0.045 and 0.9375 alone, 0.0185 before them, 0.027 before the share
-  // 0.03); under half of classic's wherever classic misses
-  // the target. Mz within issue 19's 5 % of the peak, measured 0.2-4.6 % since the correction's
-  // knots 3.75 and 5.5 (r25 at a/b 5 5.3 % and r46 at a/b 0.5 5.0 % before them; r10 at a/b 0.5
-  // 6.5 % before the shares 0.045 and 0.9375). doc/calibrated_fastsim.md, "A denser grid, fitted
-  // smooth", "Linear theory's spin moment" and "Spin's share 0.045 and xi's share 0.9375".
+  // after the grid's spin and xi shares were chosen), so they test the interpolation between the
+  // correction's directions, not the fit on them. Issue 19's 0.02 on every one, measured on 20x20
+  // 0.001-0.017 (classic 0.011-0.214); under half of classic's wherever classic misses the target.
+  // Mz within issue 19's 5 % of the peak, measured 0.2-4.6 % (doc/calibrated_fastsim.md, "Steady
+  // accuracy"; the grid and its smoothing: "How it is identified").
   for (double ab : {0.2, 0.5, 1.0, 2.0, 5.0})
     for (int r = 1; r <= 46; ++r) {
       const std::string ray = "r" + std::to_string(r);

@@ -1,7 +1,7 @@
 #include "core/calibration/calibration_table.hpp"
 
+#include "core/calibration/correction_lanes.hpp"
 #include "core/csv_fields.hpp"
-#include "core/fastsim/avx_lanes.hpp"
 #include "core/fastsim/nearest_mesh.hpp"
 
 #include <algorithm>
@@ -21,51 +21,6 @@ namespace wheel_rail_contact {
 
 namespace {
 
-// The step's exps, inline: with x = (m + i / 128) ln 2 + r, |r| <= ln 2 / 256,
-// exp(x) = 2^m 2^(i / 128) exp(r), 2^(i / 128) from a table and exp(r) - 1 from its Taylor
-// polynomial to r^5 (truncation below 1e-18 relative): within an ulp of std::exp, with no call
-// and no special cases. Where |x| >= 700 (or NaN), where 2^m leaves the normal range, std::exp.
-// (The scheme is glibc's exp with a table of 128.)
-struct Exp2Table {
-  // bits of 2^(i / 128) less i << 45: adding k << 45 (k = 128 m + i) then gives 2^m 2^(i / 128).
-  std::uint64_t bits[128];
-  Exp2Table() {
-    for (int i = 0; i < 128; ++i) {
-      const double v = std::exp2(i / 128.0);
-      std::memcpy(&bits[i], &v, sizeof v);
-      bits[i] -= static_cast<std::uint64_t>(i) << 45;
-    }
-  }
-};
-const Exp2Table& exp2Table() {
-  static const Exp2Table table;
-  return table;
-}
-
-constexpr double kExpPerLn2 = 128.0 / M_LN2, kExpShift = 0x1.8p52;
-constexpr double kExpLn2Hi = 0x1.62e42fefa0000p-8, kExpLn2Lo = 0x1.cf79abc9e3b3ap-47;  // ln 2 / 128
-
-// 2^m 2^(i / 128) for k = 128 m + i in the low bits of ki.
-inline double expScale(std::uint64_t ki, const Exp2Table& table) {
-  const std::uint64_t sbits = table.bits[ki & 127] + (ki << 45);
-  double scale;
-  std::memcpy(&scale, &sbits, sizeof scale);
-  return scale;
-}
-
-inline double stepExp(double x, const Exp2Table& table) {
-  if (!(std::fabs(x) < 700.0)) return std::exp(x);
-  // k = round(x 128 / ln 2) in the low bits of kd (the shift's mantissa holds it).
-  double kd = x * kExpPerLn2 + kExpShift;
-  std::uint64_t ki;
-  std::memcpy(&ki, &kd, sizeof ki);
-  kd -= kExpShift;
-  const double r = x - kd * kExpLn2Hi - kd * kExpLn2Lo, r2 = r * r;
-  const double p = r + r2 * (0.5 + r * (1.0 / 6.0)) + r2 * r2 * (1.0 / 24.0 + r * (1.0 / 120.0));
-  const double scale = expScale(ki, table);
-  return scale + scale * p;
-}
-
 // The combined correction's ln multiplier p in a cell (PatchCalibration::correctionCell):
 // `l0` its first corner, alongT and alongS the strides to the next xi share and spin share, we,
 // wt, ws the weights along e, xi's share and spin's share.
@@ -78,71 +33,6 @@ inline double inCell(const double* l0, std::size_t alongT, std::size_t alongS, d
   const double h = (1.0 - wt) * along(h0 + p) + wt * along(h0 + alongT + p);
   return (1.0 - ws) * l + ws * h;
 }
-
-#ifdef WRC_FOUR_STRIP_LANES
-// The corrected step's interpolation (lookUpCorrection's) and four of its exps with the first four
-// multipliers in the lanes of an AVX register, the fifth (of L3x alone) as a scalar. Lane p does
-// multiplier p's operations in the scalar path's order, and AVX's plain ones (no fused
-// multiply-add): each result is the scalar path's bit for bit. The cell: `lo` its first corner,
-// alongT, alongS and branch the strides to the next xi share, spin share and branch, we, wt, ws
-// the weights along e, xi's share and spin's share. Into r the exps of logRho + lm[0..2] and of
-// logShape + lm[3], into lm4 the fifth ln multiplier.
-[[gnu::target("avx")]] void correctedExps(const double* lo, std::size_t alongT, std::size_t alongS,
-                                          std::size_t branch, double we, double wt, double ws,
-                                          double opposed, double logRho, double logShape,
-                                          const Exp2Table& table, double* r, double* lm4) {
-  using namespace avx;
-  constexpr std::size_t P = calibration::kMultipliers;
-  const V weV = _mm256_set1_pd(we), wtV = _mm256_set1_pd(wt), restT = _mm256_set1_pd(1.0 - wt),
-          wsV = _mm256_set1_pd(ws), restS = _mm256_set1_pd(1.0 - ws);
-  auto along = [&](const double* x) __attribute__((always_inline, target("avx"))) {
-    const V x0 = _mm256_loadu_pd(x);
-    return add(x0, mul(weV, sub(_mm256_loadu_pd(x + P), x0)));
-  };
-  auto inCellFour = [&](const double* l0) __attribute__((always_inline, target("avx"))) {
-    const double* h0 = l0 + alongS;
-    const V l = add(mul(restT, along(l0)), mul(wtV, along(l0 + alongT)));
-    const V h = add(mul(restT, along(h0)), mul(wtV, along(h0 + alongT)));
-    return add(mul(restS, l), mul(wsV, h));
-  };
-  auto inCellFifth = [&](const double* l0) { return inCell(l0, alongT, alongS, we, wt, ws, 4); };
-  V lm;
-  if (opposed <= 0.0) {
-    lm = inCellFour(lo);
-    *lm4 = inCellFifth(lo);
-  } else if (opposed >= 1.0) {
-    lm = inCellFour(lo + branch);
-    *lm4 = inCellFifth(lo + branch);
-  } else {
-    lm = add(mul(_mm256_set1_pd(1.0 - opposed), inCellFour(lo)),
-             mul(_mm256_set1_pd(opposed), inCellFour(lo + branch)));
-    *lm4 = (1.0 - opposed) * inCellFifth(lo) + opposed * inCellFifth(lo + branch);
-  }
-  // stepExp lane by lane; a lane outside |x| < 700 (or NaN) by std::exp, as there.
-  const V x = add(_mm256_set_pd(logShape, logRho, logRho, logRho), lm);
-  const V shift = _mm256_set1_pd(kExpShift);
-  const V kd0 = add(mul(x, _mm256_set1_pd(kExpPerLn2)), shift);
-  alignas(32) std::uint64_t ki[4];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(ki), _mm256_castpd_si256(kd0));
-  const V kd = sub(kd0, shift);
-  const V q = sub(sub(x, mul(kd, _mm256_set1_pd(kExpLn2Hi))), mul(kd, _mm256_set1_pd(kExpLn2Lo)));
-  const V q2 = mul(q, q);
-  const V p =
-      add(add(q, mul(q2, add(_mm256_set1_pd(0.5), mul(q, _mm256_set1_pd(1.0 / 6.0))))),
-          mul(mul(q2, q2), add(_mm256_set1_pd(1.0 / 24.0), mul(q, _mm256_set1_pd(1.0 / 120.0)))));
-  const V scale = _mm256_set_pd(expScale(ki[3], table), expScale(ki[2], table),
-                                expScale(ki[1], table), expScale(ki[0], table));
-  _mm256_storeu_pd(r, add(scale, mul(scale, p)));
-  const int inRange = _mm256_movemask_pd(
-      _mm256_cmp_pd(_mm256_andnot_pd(_mm256_set1_pd(-0.0), x), _mm256_set1_pd(700.0), _CMP_LT_OQ));
-  if (inRange != 15) {
-    alignas(32) double xs[4];
-    store(xs, x);
-    for (int k = 0; k < 4; ++k)
-      if (!(inRange >> k & 1)) r[k] = std::exp(xs[k]);
-  }
-}
-#endif
 
 // e1^2, e2^2, e3^2 and e (PatchCalibration::normalisedCreepage), here with internal linkage
 // so that step() inlines it.
@@ -323,8 +213,8 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
   };
   // The lateral coupling, times eta's share of the lateral creepages' e2^2 + e3^2 to the sixth:
   // spin's own parameters (23, 23x, 23s) are fitted without it, and on spin's lateral traction it
-  // put a moment that those parameters already carry (doc/calibrated_fastsim.md, "Mz from eta in
-  // the core"). Where spin is a small share the rest of it is held (heldCoupling), its moment on
+  // put a moment that those parameters already carry (doc/calibrated_fastsim.md, "What it is",
+  // item 6). Where spin is a small share the rest of it is held (heldCoupling), its moment on
   // spin's traction taken back through L3x below. Without eta it is 0; without spin, c itself
   // (c_n); without friction (e infinite, the squares inf or NaN) none: every node slips with zero
   // traction.
@@ -338,7 +228,7 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
         b, k);
     // Eta's drive's slope where xi is beside eta (etaSlopeWeight): in full slip it turns the
     // traction along the strip, as exact theory's xi = eta curves do (doc/calibrated_fastsim.md,
-    // "Eta's drive's slope").
+    // "What it is", item 7).
     if (!eps_[kEtaDriveSlope].empty() && e2[0] > 0.0) {
       const double w = etaSlopeWeight(e2[0], e2[1], share[2]);
       if (w > 0.0) setEtaSlope(logRatioOf(kEtaDriveSlope) * w, a, &L);
@@ -346,8 +236,8 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
   }
   // One ratio for the step: the kinds' ratios averaged in ln with weights their shares of e^2 (a
   // single creepage gets its own curve exactly). The geometric mean fitted the combined exact
-  // curves better than the arithmetic one (identify_calibration's combined rays,
-  // doc/calibrated_fastsim.md).
+  // curves better than the arithmetic one (identify_calibration's combined rays;
+  // doc/calibrated_fastsim.md, "What it is", item 2).
   const double logRho = finite
                             ? share[0] * logRatioOf(kXiRatio) +
                                   share[1] * towardsNoSpin(logRatioOf(kEtaRatio), kEtaRatioNoSpin) +
@@ -360,28 +250,34 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
   // one lookup; each goes into the exp of the ratio it multiplies. None for one kind or xi with
   // eta. The step's exps (inline): the ratios of L1, L2, L3 (the correction's multipliers folded
   // in), of the spin drive's L3x to L3 (below) and the bound's shape.
-  const Exp2Table& table = exp2Table();
   double lm[kMultipliers], r1, r2, r3, shapeRatio = 0.0;
   const double rest = e2[0] + e2[1];
   const bool corrected = finite && !corrS3_.empty() && e2[2] > 0.0 && rest > 0.0;
-#ifdef WRC_FOUR_STRIP_LANES
   if (corrected && vectorised_) {
+    // The first four multipliers and their exps in the lanes (correction_lanes.hpp), the fifth
+    // (of L3x alone, its exp below) as the scalar path.
     const CorrectionCell cc = correctionCell(share[2], e2[0] / rest, e);
+    const double base[4] = {logRho, logRho, logRho, logShape};
     double r[4];
-    correctedExps(cc.lo, cc.alongT, cc.alongS, cc.branch, cc.we, cc.wt, cc.ws, opposed, logRho,
-                  logShape, table, r, &lm[4]);
+    calibration::correctedExpsInLanes(cc.lo, cc.alongT, cc.alongS, cc.branch, cc.we, cc.wt, cc.ws,
+                                      opposed, base, r);
+    auto fifth = [&](const double* l0) {
+      return inCell(l0, cc.alongT, cc.alongS, cc.we, cc.wt, cc.ws, kSpinDriveMultiplier);
+    };
+    lm[kSpinDriveMultiplier] =
+        opposed <= 0.0   ? fifth(cc.lo)
+        : opposed >= 1.0 ? fifth(cc.lo + cc.branch)
+                         : (1.0 - opposed) * fifth(cc.lo) + opposed * fifth(cc.lo + cc.branch);
     r1 = r[0];
     r2 = r[1];
     r3 = r[2];
     shapeRatio = r[3];
-  } else
-#endif
-  {
+  } else {
     if (corrected) lookUpCorrection(share[2], e2[0] / rest, e, opposed, 0, kMultipliers, lm);
-    r1 = stepExp(corrected ? logRho + lm[0] : logRho, table);
-    r2 = corrected ? stepExp(logRho + lm[1], table) : r1;
-    r3 = corrected ? stepExp(logRho + lm[2], table) : r1;
-    if (shaped) shapeRatio = stepExp(logShape + (corrected ? lm[3] : 0.0), table);
+    r1 = std::exp(corrected ? logRho + lm[0] : logRho);
+    r2 = corrected ? std::exp(logRho + lm[1]) : r1;
+    r3 = corrected ? std::exp(logRho + lm[2]) : r1;
+    if (shaped) shapeRatio = std::exp(logShape + (corrected ? lm[3] : 0.0));
   }
   // Towards full slip the flexibilities blend into one, L_crss (Vollebregt and Voltr 2023,
   // CONTACT's FASTSIM): the saturated traction then points along the rigid slip, as in exact
@@ -407,7 +303,7 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
     if (!eps_[kSpinDriveRatio].empty())
       lx += share[2] * logRatioOf(kSpinDriveRatio) +
             (1.0 - share[2]) * logRatio_[kSpinDriveRatio][0] * linearSpinMoment(e);
-    L.L3x = L.L3 * stepExp(lx, table);
+    L.L3x = L.L3 * std::exp(lx);
   } else if (!eps_[kSpinDriveRatio].empty())
     L.L3x = L.L3;
   // The held coupling's moment on spin's lateral traction, in linear theory
@@ -774,7 +670,7 @@ void CalibrationTable::at(double a_over_b, PatchCalibration* c) const {
   reciprocalWidths(c->corrT_, &c->corrTPerWidth_);
   reciprocalWidths(c->corrEps_, &c->corrEpsPerWidth_);
   c->setSearchStarts();
-  c->vectorised_ = fourStripLanesAvailable();
+  c->vectorised_ = stripLanesAvailable();
   // Row's layout ((((p * 2 + opposed) * nS + q) * nT + j) * nE + k) into PatchCalibration's
   // (grid point by grid point, the end rows 0).
   constexpr int P = calibration::kMultipliers;

@@ -42,7 +42,7 @@
 /// (kind c3x, optional: 1 where the table has none) multiplies L3x besides L3's: where xi drives
 /// most of the patch and spin some 40 %, on a long patch, spin's longitudinal drive and its lateral
 /// one share the moment otherwise than under pure spin, and four multipliers could not fit force
-/// and moment together (doc/calibrated_fastsim.md, "L3x's own multiplier").
+/// and moment together (doc/calibrated_fastsim.md, "What it is", item 5).
 ///
 /// The moment from eta (kind 22c, optional: none is Kalker's FastSim's u = L tau): exact theory
 /// keeps a spin moment from lateral creepage into full slip, decaying as 1 / e, which FastSim
@@ -115,9 +115,10 @@ class PatchCalibration {
  public:
   bool classic() const { return eps_[0].empty(); }
   /// Whether step() interpolates the combined correction and takes its exps four at a time in the
-  /// lanes of AVX registers, where the CPU has them (the default); the results are the scalar
-  /// path's bit for bit (tests compare the two).
-  void setVectorised(bool on) { vectorised_ = on && fourStripLanesAvailable(); }
+  /// lanes of a vector register, where the CPU has them (the default, as the marches':
+  /// stripLanesAvailable); the results are the scalar path's within 1e-12 relative
+  /// (correction_lanes.hpp; tests compare the two).
+  void setVectorised(bool on) { vectorised_ = on && stripLanesAvailable(); }
   bool vectorised() const { return vectorised_; }
   /// The step's flexibilities and bound shape together (what flexibilities() and boundShape()
   /// give), from one normalised creepage, one knot search and one correction lookup: what a
@@ -175,9 +176,9 @@ class PatchCalibration {
   static double hertzShapeBlend(double shape, double e, double s3, double aOverB);
   /// Normalised creepage from which towardsFullSlip moves the shape: kFullSlipFrom, and
   /// heldFullSlipFrom(aOverB) where the lateral coupling is held (heldShare): the held coupling's
-  /// moment fades as the patch slips, and the full-slip shape takes it over that much sooner (the
-  /// six small-share rays' moment, doc/calibrated_fastsim.md, "The blend's start where the
-  /// coupling is held").
+  /// moment fades as the patch slips, and the full-slip shape has to take it over that much sooner
+  /// for the small spin shares' moment to stay on the exact curves (doc/calibrated_fastsim.md,
+  /// "What it is", items 6 and 8).
   static double fullSlipFrom(double s3, double aOverB) {
     using namespace calibration;
     return kFullSlipFrom + (heldFullSlipFrom(aOverB) - kFullSlipFrom) * heldShare(s3);
@@ -197,7 +198,7 @@ class PatchCalibration {
   /// kNarrowFrom, linear in a/b between. On a patch five times as wide as long, spin turns the
   /// rigid slip over the patch's width (phi b) far more than its share of e (phi sqrt(ab)) says,
   /// and the full-slip shape has to take the small shares' moment over sooner: from e = 0.75 to
-  /// 3.5 there (doc/calibrated_fastsim.md, "Small spin shares on wide and long patches").
+  /// 3.5 there (doc/calibrated_fastsim.md, "What it is", item 8).
   static double wideness(double aOverB) {
     using namespace calibration;
     return std::clamp((kNarrowFrom - aOverB) / (kNarrowFrom - kWideTo), 0.0, 1.0);
@@ -241,8 +242,8 @@ class PatchCalibration {
   /// The weight of 23x's knot 0 (linear theory's spin moment) on the share of e^2 that is not
   /// spin's: 1 up to kLinearSpinMomentTo, falling linearly to 0 at kLinearSpinMomentEnd. Through
   /// partial slip it keeps spin's moment where spin is a small share; in full slip the combined
-  /// correction carries the moment, as it was fitted to (kept to e = 4.5 rather than 1 or 3: the
-  /// held-out directions, doc/calibrated_fastsim.md, "Linear theory's spin moment").
+  /// correction carries the moment, as it was fitted to (kept to e = 4.5 rather than 1 or 3: so
+  /// the held-out directions' moment fits best; doc/calibrated_fastsim.md, "What it is", item 4).
   static double linearSpinMoment(double e) {
     using namespace calibration;
     return std::clamp((kLinearSpinMomentEnd - e) / (kLinearSpinMomentEnd - kLinearSpinMomentTo),
@@ -252,8 +253,8 @@ class PatchCalibration {
   /// creepage, beyond the (e2^2 / (e2^2 + e3^2))^6 that spin's own parameters were identified
   /// with: 1 - e / kLinearSpinMomentEnd (0 beyond), times 1 up to s3 = kHeldCouplingFrom falling
   /// linearly to 0 at kHeldCouplingTo. There the moment is mostly eta's (its coupling), which the
-  /// sixth power faded: linear theory's moment was up to 11.5 % off (doc/calibrated_fastsim.md,
-  /// "The coupling held at small spin shares").
+  /// sixth power faded, leaving linear theory's moment off there (doc/calibrated_fastsim.md,
+  /// "What it is", item 6).
   static double heldCoupling(double e, double s3) {
     return std::max(0.0, 1.0 - e / calibration::kLinearSpinMomentEnd) * heldShare(s3);
   }
@@ -293,8 +294,8 @@ class PatchCalibration {
     double we, wt, ws;
   };
   CorrectionCell correctionCell(double s3, double t, double e) const;
-  // Whether step() takes the corrected case's lookup and exps four at a time in AVX's lanes (set
-  // by CalibrationTable::at where the CPU has them; setVectorised).
+  // Whether step() takes the corrected case's lookup and exps four at a time in a vector's lanes
+  // (set by CalibrationTable::at where the CPU has them; setVectorised).
   bool vectorised_ = false;
   // The knot cell [i - 1, i] holding e and e's place t in it; i = the knot count at and beyond the
   // last knot (or for NaN), where the last value is held.

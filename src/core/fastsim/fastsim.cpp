@@ -304,13 +304,4 @@ CreepForces steadyFastSim(const PatchMesh& mesh, const Flexibilities& L, const C
   return steadyMarch<false>(mesh, L, c, f);
 }
 
-bool fourStripLanesAvailable() {
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-  static const bool avx = __builtin_cpu_supports("avx");  // asked once
-  return avx;
-#else
-  return false;
-#endif
-}
-
 }  // namespace wheel_rail_contact

@@ -194,8 +194,6 @@ CreepForces integrateTraction(const PatchMesh& mesh, const TractionField& field)
 enum class StripLanes { kAuto, kOff, kOn };
 /// Whether this CPU has the marches' lanes (strip_lanes.hpp).
 bool stripLanesAvailable();
-/// Whether this CPU has AVX, for the calibration's own vectorised step (calibration_table.cpp).
-bool fourStripLanesAvailable();
 
 /// Steady FastSim: marches each strip from the patch's leading edge in adhesion, saturates at the
 /// bound. `field.bound` and `field.entry` must be filled (parabolicBound); tx, ty and slip are
