@@ -710,8 +710,8 @@ TEST(CalibrationTable, VectorisedStepIsTheScalarStepWithinRoundOff) {
 
 TEST(CalibrationTable, TheLanesExpIsStdExpWithinTwoUlpsAndFallsBackOutsideItsRange) {
   if (!stripLanesAvailable()) GTEST_SKIP() << "this CPU has no lanes: only the scalar reference";
-  // Highway's Exp (within 1 ulp of exp) against std::exp (within 1 ulp too): at most 2 ulps apart
-  // over the step's range, |x| < 700, densely and at its ends.
+  // The lanes' table exp (within 1 ulp of exp) against std::exp (within 1 ulp too): at most 2 ulps
+  // apart over the step's range, |x| < 700, densely and at its ends.
   double worst = 0.0;  // in ulps of std::exp's value
   auto check = [&](const double* x) {
     double r[4];

@@ -6,10 +6,10 @@
 ///          strip_lanes.hpp; elsewhere stripLanesAvailable() is false and the scalar reference
 ///          runs).
 ///   Error: within 1e-12 relative of the scalar reference: the lanes fuse multiply-adds, and
-///          their exp is Highway's (hwy/contrib/math, within 1 ulp) where the reference calls
-///          std::exp.
-///   Range: every input. A lane whose exp argument is outside |x| < 700 (Highway's Exp is valid
-///          only up to +706), or NaN, takes std::exp.
+///          their exp is a table exp in Highway's operations (correction_lanes.cpp, within 1 ulp)
+///          where the reference calls std::exp.
+///   Range: every input. A lane whose exp argument is outside |x| < 700 (where the table exp's
+///          2^m leaves the normal range), or NaN, takes std::exp.
 #pragma once
 
 #include <cstddef>
