@@ -73,7 +73,8 @@ WheelsetPose mirrored(const WheelsetPose& p) {
   return m;
 }
 
-const ContactCandidate& closest(const WheelContactGeometry& g) {
+// A copy: callers pass the search's result as a temporary, which a reference would outlive.
+ContactCandidate closest(const WheelContactGeometry& g) {
   EXPECT_EQ(g.status, ContactSearchStatus::kOk) << g.message;
   EXPECT_GE(g.closest, 0);
   return g.candidates.at(g.closest);
@@ -247,7 +248,7 @@ TEST(ContactSearch, YawMovesTheContactAlongTheTrackAsFirstOrderTheorySays) {
   for (const A22Case& c : readA22()) {
     if (c.wheel != "right" || c.y_mm == 0.0) continue;
     const WheelsetPose p = poseOf(c);
-    const ContactCandidate& k = closest(cs.search(WheelSide::kRight, p));
+    const ContactCandidate k = closest(cs.search(WheelSide::kRight, p));
     const double first_order = -k.rolling_radius * std::tan(k.contact_angle) * std::sin(p.yaw);
     EXPECT_NEAR(k.lead, first_order, 0.05 * std::abs(first_order)) << "y = " << c.y_mm;
     if (k.zone == ContactZone::kFlange) {
