@@ -30,14 +30,6 @@ Profile& Profile::operator=(const Profile& o) {
 
 namespace {
 
-[[noreturn]] void refuse(const std::string& name, int line, const std::string& reason) {
-  std::ostringstream os;
-  os << name;
-  if (line > 0) os << ':' << line;
-  os << ": " << reason;
-  throw std::runtime_error(os.str());
-}
-
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
 }

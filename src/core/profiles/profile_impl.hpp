@@ -2,6 +2,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,15 @@ struct Profile::Impl {
   std::vector<double> piece_t;
   std::vector<double> piece_y;  ///< y at piece_t
 };
+
+/// Refuses a profile: std::runtime_error "name:line: reason" (no line where line <= 0).
+[[noreturn]] inline void refuse(const std::string& name, int line, const std::string& reason) {
+  std::ostringstream os;
+  os << name;
+  if (line > 0) os << ':' << line;
+  os << ": " << reason;
+  throw std::runtime_error(os.str());
+}
 
 /// A point as read, in the profile frame (m) once converted, with its line in the file.
 struct ProfileSourcePoint {

@@ -19,14 +19,6 @@ namespace wheel_rail_contact {
 
 namespace {
 
-[[noreturn]] void refuse(const std::string& name, int line, const std::string& reason) {
-  std::ostringstream os;
-  os << name;
-  if (line > 0) os << ':' << line;
-  os << ": " << reason;
-  throw std::runtime_error(os.str());
-}
-
 std::string trim(const std::string& s) {
   std::size_t a = 0, b = s.size();
   while (a < b && std::isspace(static_cast<unsigned char>(s[a]))) ++a;
