@@ -260,18 +260,21 @@ double unitFromHeader(const std::vector<std::string>& cols) {
 Parsed parseText(const std::vector<std::string>& lines, const std::string& name) {
   Parsed r;
   bool header_seen = false;
+  // A unit named on line ln (a comment's or the header's): u > 0 the unit, 0 none, < 0 refused.
+  auto takeUnit = [&](double u, int ln, const char* unknown) {
+    if (u < 0.0) refuse(name, ln, unknown);
+    if (u > 0.0) {
+      if (r.unit > 0.0 && r.unit != u) refuse(name, ln, "a second, different unit");
+      r.unit = u;
+      r.unit_line = ln;
+    }
+  };
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const int ln = static_cast<int>(i) + 1;
     const std::string t = trim(lines[i]);
     if (t.empty()) continue;
     if (isComment(t)) {
-      const double f = unitFromComment(t);
-      if (f < 0.0) refuse(name, ln, "unknown unit (mm or m)");
-      if (f > 0.0) {
-        if (r.unit > 0.0 && r.unit != f) refuse(name, ln, "a second, different unit");
-        r.unit = f;
-        r.unit_line = ln;
-      }
+      takeUnit(unitFromComment(t), ln, "unknown unit (mm or m)");
       continue;
     }
     ProfileSourcePoint p;
@@ -286,13 +289,7 @@ Parsed parseText(const std::vector<std::string>& lines, const std::string& name)
     const bool numeric_start = !f.empty() && parseNumber(f[0], &dummy);
     if (r.points.empty() && !header_seen && !numeric_start) {  // a header of column names
       header_seen = true;
-      const double u = unitFromHeader(f);
-      if (u < 0.0) refuse(name, ln, "the columns name different units");
-      if (u > 0.0) {
-        if (r.unit > 0.0 && r.unit != u) refuse(name, ln, "a second, different unit");
-        r.unit = u;
-        r.unit_line = ln;
-      }
+      takeUnit(unitFromHeader(f), ln, "the columns name different units");
       continue;
     }
     refuse(name, ln, err);
