@@ -387,6 +387,40 @@ TEST(Creepages, LeftWheelInTheMirroredStateHasTheMirroredCreepages) {
   }
 }
 
+TEST(Creepages, RollingBackwardsKeepsTheCreepagesDividedBySignedV) {
+  // Every velocity reversed reverses the sliding velocities and V together: the creepages, divided
+  // by the signed V (doc/conventions.md), are unchanged; a wheel braked while rolling backwards
+  // still has xi > 0.
+  const WheelsetTrackData data;
+  const ContactSearch cs(data);
+  WheelsetPose pose;
+  pose.y = -0.003;
+  pose.yaw = 0.004;
+  const ContactCandidate c = closest(cs.search(WheelSide::kRight, pose));
+  WheelsetMotion m;
+  m.V = 2.0;
+  m.omega = 0.99 * m.V / c.rolling_radius;
+  m.vy = 0.01;
+  m.yaw_rate = 0.03;
+  m.roll_rate = -0.002;
+  m.vz = 0.001;
+  m.curvature = 1.0 / 400.0;
+  WheelsetMotion back = m;
+  back.V = -m.V;
+  back.omega = -m.omega;
+  back.vy = -m.vy;
+  back.yaw_rate = -m.yaw_rate;
+  back.roll_rate = -m.roll_rate;
+  back.vz = -m.vz;
+  const PatchCreepages f = ok(patchCreepages(WheelSide::kRight, pose, m, c, data));
+  const PatchCreepages b = ok(patchCreepages(WheelSide::kRight, pose, back, c, data));
+  EXPECT_NEAR(b.xi, f.xi, 1e-15);
+  EXPECT_NEAR(b.eta, f.eta, 1e-15);
+  EXPECT_NEAR(b.phi, f.phi, 1e-13);
+  EXPECT_NEAR(b.slip_x, -f.slip_x, 1e-15);
+  EXPECT_GT(f.xi, 0.005);
+}
+
 TEST(Creepages, FrameIsTheContactFrameOfTheConventions) {
   // z the normal (rail into wheel), x the track's x, y = z x x: right-handed, y to the left and
   // down the flank toward the field on a right flange, up it on a left one.
