@@ -193,7 +193,8 @@ TEST(ContactSearch, A22BenchmarksRollPutsBothWheelsOnTheirRails) {
 
 TEST(ContactSearch, LeftWheelIsTheRightMirrored) {
   // Left profiles default to the right ones mirrored: the left wheel in the mirrored pose gives
-  // the right wheel's contact, point for point (the benchmark's "left" cases).
+  // the right wheel's contact, point for point. (The benchmark's "left" rows are not this: they
+  // are the left wheel of the same wheelset state as the right rows.)
   const ContactSearch cs{WheelsetTrackData()};
   WheelsetTrackData given;
   given.wheel_left = Profile::standardWheel();
