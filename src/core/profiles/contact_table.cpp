@@ -1,0 +1,589 @@
+#include "wheel_rail_contact/profiles/contact_table.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace wheel_rail_contact {
+
+namespace {
+
+constexpr double kSmallYaw = 1e-6;
+
+/// One candidate of one node, as its table's wheel sees it (the right wheel's when the left
+/// mirrors it).
+struct TableCandidate {
+  double vertical_gap0 = 0.0;  ///< vertical gap at Z = 0 (it is vertical_gap0 + Z at any Z)
+  double gap_a = 0.0;          ///< gap at the node's touching height Z_a
+  double gap_dz = 0.0;         ///< d gap / dZ
+  double angle = 0.0, radius = 0.0, point_y = 0.0, point_z = 0.0;
+  double lead_per_yaw = 0.0;  ///< lead / yaw
+  double axial = 0.0;  ///< the contact circle's position along the axle (point.x = lead - axial
+                       ///< sin(yaw) cos(roll))
+  Eigen::Vector2d rail_file = Eigen::Vector2d::Zero(), wheel_file = Eigen::Vector2d::Zero();
+  double s_rail = 0.0, s_wheel = 0.0;
+  /// Gap function on eta = eta0 + j deta: g_a at Z_a and its slope in Z (empty: the search gave
+  /// none).
+  double eta0 = 0.0, deta = 0.0, inv_deta = 0.0;
+  std::vector<float> g_a, g_dz;
+
+  double gapFunction(double eta, double dZ) const {
+    double u = (eta - eta0) * inv_deta;
+    const int last = static_cast<int>(g_a.size()) - 1;
+    int j = static_cast<int>(std::floor(u));
+    j = std::min(std::max(j, 0), last - 1);
+    u -= j;
+    const double a = g_a[j] + u * (g_a[j + 1] - g_a[j]);
+    const double b = g_dz[j] + u * (g_dz[j + 1] - g_dz[j]);
+    return a + b * dZ;
+  }
+  double etaEnd() const { return eta0 + deta * (static_cast<int>(g_a.size()) - 1); }
+};
+
+struct Node {
+  ContactSearchStatus status = ContactSearchStatus::kOk;
+  std::string message;
+  double z_a = 0.0;  ///< the height Z at which the closest candidate about touches
+  std::vector<TableCandidate> candidates;
+};
+
+/// Node coordinates of one axis: value(k) = first + k step, k = 0 .. n - 1.
+struct Axis {
+  double first = 0.0, step = 1.0;
+  int n = 1;
+  double value(int k) const { return first + k * step; }
+  /// The cell [k, k + 1] holding v and its fraction; false beyond the axis (with a tolerance of
+  /// rounding).
+  bool locate(double v, int* k, double* t) const {
+    const double u = (v - first) / step;
+    if (!(u >= -1e-9) || !(u <= (n - 1) + 1e-9)) return false;
+    *k = std::min(std::max(static_cast<int>(std::floor(u)), 0), n - 2);
+    *t = std::min(std::max(u - *k, 0.0), 1.0);
+    return true;
+  }
+};
+
+Axis symmetricAxis(double max_abs, double step) {
+  Axis a;
+  a.n = static_cast<int>(std::lround(2.0 * max_abs / step)) + 1;
+  a.n = std::max(a.n, 2);
+  a.first = -max_abs;
+  a.step = 2.0 * max_abs / (a.n - 1);
+  return a;
+}
+
+Axis positiveAxis(double max_abs, double step) {
+  Axis a;
+  a.n = std::max(static_cast<int>(std::lround(max_abs / step)) + 1, 2);
+  a.first = 0.0;
+  a.step = max_abs / (a.n - 1);
+  return a;
+}
+
+/// The wheel's place relative to its rail: see contact_table.hpp.
+struct WheelPlace {
+  double Y = 0.0, Z = 0.0;
+};
+
+WheelPlace placeOf(const WheelsetPose& p, double a0, double r0) {
+  const double cy = std::cos(p.yaw), cr = std::cos(p.roll), sr = std::sin(p.roll);
+  return {p.y + a0 * (cy * cr - 1.0) + r0 * sr * cy, p.z + a0 * sr + r0 * (1.0 - cr)};
+}
+
+WheelsetPose poseOf(double Y, double Z, double yaw, double roll, double a0, double r0) {
+  const double cy = std::cos(yaw), cr = std::cos(roll), sr = std::sin(roll);
+  WheelsetPose p;
+  p.y = Y - a0 * (cy * cr - 1.0) - r0 * sr * cy;
+  p.z = Z - a0 * sr - r0 * (1.0 - cr);
+  p.yaw = yaw;
+  p.roll = roll;
+  return p;
+}
+
+double lerp(const std::vector<GapSample>& f, double eta) {
+  // f is sampled uniformly from f.front().eta to f.back().eta.
+  const double e0 = f.front().eta, e1 = f.back().eta;
+  const int last = static_cast<int>(f.size()) - 1;
+  if (e1 <= e0) return f.front().gap;
+  double u = (eta - e0) / (e1 - e0) * last;
+  int j = std::min(std::max(static_cast<int>(std::floor(u)), 0), last - 1);
+  u -= j;
+  return f[j].gap + u * (f[j + 1].gap - f[j].gap);
+}
+
+}  // namespace
+
+struct ContactTable::Impl {
+  ContactSearch search;     ///< the caller's, for the meaning of the options and poses beyond
+  Axis lateral, yaw, roll;  // yaw's values are yaw^2
+  double r0 = 0.0;
+  bool left_mirrors_right = false;
+  struct Grid {
+    double sigma = 1.0, a0 = 0.0;
+    std::vector<Node> nodes;  // index (roll * yaw.n + yaw) * lateral.n + lateral
+  };
+  std::array<Grid, 2> grids;  // [0] right, [1] left (empty when it mirrors the right)
+
+  explicit Impl(const ContactSearch& s) : search(s) {}
+  std::size_t index(int i, int j, int k) const {
+    return (static_cast<std::size_t>(k) * yaw.n + j) * lateral.n + i;
+  }
+};
+
+namespace {
+
+/// The candidate of `others` that is `c` (within match_distance on both profiles), or null.
+const TableCandidate* match(const TableCandidate& c, const std::vector<TableCandidate>& others,
+                            double distance) {
+  const TableCandidate* best = nullptr;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (const TableCandidate& o : others) {
+    const double dw = std::abs(o.s_wheel - c.s_wheel), dr = std::abs(o.s_rail - c.s_rail);
+    if (dw < distance && dr < distance && dw + dr < best_d) {
+      best_d = dw + dr;
+      best = &o;
+    }
+  }
+  return best;
+}
+
+const ContactCandidate* matchSearched(const ContactCandidate& c,
+                                      const std::vector<ContactCandidate>& others,
+                                      double distance) {
+  const ContactCandidate* best = nullptr;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (const ContactCandidate& o : others) {
+    const double dw = std::abs(o.s_wheel - c.s_wheel), dr = std::abs(o.s_rail - c.s_rail);
+    if (dw < distance && dr < distance && dw + dr < best_d) {
+      best_d = dw + dr;
+      best = &o;
+    }
+  }
+  return best;
+}
+
+bool sameCandidates(const WheelContactGeometry& a, const WheelContactGeometry& b) {
+  if (a.candidates.size() != b.candidates.size()) return false;
+  for (std::size_t k = 0; k < a.candidates.size(); ++k)
+    if (std::abs(a.candidates[k].s_wheel - b.candidates[k].s_wheel) > 1e-6) return false;
+  return true;
+}
+
+}  // namespace
+
+ContactTable::ContactTable(const ContactSearch& search, const ContactTableOptions& options)
+    : options_(options), impl_(std::make_unique<Impl>(search)) {
+  auto positive = [](const char* name, double v, double upper) {
+    if (!std::isfinite(v) || !(v > 0.0) || v > upper) {
+      std::ostringstream m;
+      m << "ContactTableOptions: " << name << " must be finite, > 0 and <= " << upper;
+      throw std::invalid_argument(m.str());
+    }
+  };
+  const ContactSearchOptions& so = search.options();
+  positive("max_abs_lateral", options_.max_abs_lateral, so.max_abs_y);
+  positive("lateral_step", options_.lateral_step, options_.max_abs_lateral);
+  positive("max_abs_yaw", options_.max_abs_yaw, so.max_abs_yaw);
+  positive("yaw_step", options_.yaw_step, options_.max_abs_yaw);
+  positive("max_abs_roll", options_.max_abs_roll, so.max_abs_roll);
+  positive("roll_step", options_.roll_step, options_.max_abs_roll);
+  positive("max_overlap", options_.max_overlap, 5e-3);
+  positive("match_distance", options_.match_distance, 0.1);
+  if (options_.gap_samples < 3 || options_.gap_samples > 10000)
+    throw std::invalid_argument("ContactTableOptions: gap_samples must be in [3, 10000]");
+
+  Impl& im = *impl_;
+  im.lateral = symmetricAxis(options_.max_abs_lateral, options_.lateral_step);
+  im.yaw = positiveAxis(options_.max_abs_yaw * options_.max_abs_yaw,
+                        options_.max_abs_yaw * options_.max_abs_yaw /
+                            std::max(1.0, std::round(options_.max_abs_yaw / options_.yaw_step)));
+  im.roll = symmetricAxis(options_.max_abs_roll, options_.roll_step);
+  const WheelsetTrackData& d = search.data();
+  im.r0 = d.nominal_radius;
+  im.left_mirrors_right = (!d.wheel_left || d.wheel_left == d.wheel_right) &&
+                          (!d.rail_left || d.rail_left == d.rail_right);
+
+  // The table's own search: the caller's, with gap functions wide and fine enough to be cut to
+  // what the caller's options give at any height up to max_overlap of overlap.
+  ContactSearchOptions wide = so;
+  wide.gap_window = options_.max_overlap;
+  wide.gap_samples = options_.gap_samples | 1;
+  const ContactSearch table_search(d, wide);
+
+  for (int g = 0; g < (im.left_mirrors_right ? 1 : 2); ++g) {
+    Impl::Grid& grid = im.grids[g];
+    const WheelSide side = g == 0 ? WheelSide::kRight : WheelSide::kLeft;
+    grid.sigma = g == 0 ? 1.0 : -1.0;
+    grid.a0 = -grid.sigma * 0.5 * d.gauge;
+    grid.nodes.resize(static_cast<std::size_t>(im.lateral.n) * im.yaw.n * im.roll.n);
+    for (int k = 0; k < im.roll.n; ++k) {
+      for (int j = 0; j < im.yaw.n; ++j) {
+        double z_guess = 0.0;  // the previous node's touching height: the next one's is near
+        for (int i = 0; i < im.lateral.n; ++i) {
+          Node& node = grid.nodes[im.index(i, j, k)];
+          const double Y = im.lateral.value(i), yaw = std::sqrt(im.yaw.value(j)),
+                       roll = im.roll.value(k);
+          // The node at yaw 0 is searched at a yaw small enough that the even quantities do not
+          // see it (yaw^2 ~ 1e-12), to give lead's slope.
+          const double yaw_run = std::max(yaw, kSmallYaw);
+          auto run = [&](double Z, double dY = 0.0) {
+            return table_search.search(side, poseOf(Y + dY, Z, yaw_run, roll, grid.a0, im.r0));
+          };
+          WheelContactGeometry a = run(z_guess);
+          if (a.status != ContactSearchStatus::kOk) {
+            node.status = a.status;
+            node.message = a.message;
+            continue;
+          }
+          double z_a = z_guess - a.candidates[a.closest].vertical_gap;
+          if (std::abs(z_a - z_guess) > 0.2 * options_.max_overlap) {
+            a = run(z_a);
+          } else {
+            z_a = z_guess;
+          }
+          const double z_b = z_a - options_.max_overlap;
+          // The second height a nanometre aside: the two must find the same candidates (the height
+          // moves none of them). Where they do not, the search has missed a minimum at one of
+          // the two poses (it can, at isolated poses): the set with the lower smallest gap is
+          // kept and the other searched again another nanometre aside.
+          WheelContactGeometry b = run(z_b, 1e-9);
+          if (a.status == ContactSearchStatus::kOk && b.status == ContactSearchStatus::kOk &&
+              !sameCandidates(a, b)) {
+            const double ga = a.candidates[a.closest].vertical_gap - z_a;
+            const double gb = b.candidates[b.closest].vertical_gap - z_b;
+            if (ga > gb)
+              a = run(z_a, 2e-9);
+            else
+              b = run(z_b, 3e-9);
+          }
+          if (a.status != ContactSearchStatus::kOk || b.status != ContactSearchStatus::kOk) {
+            node.status = a.status != ContactSearchStatus::kOk ? a.status : b.status;
+            node.message = a.status != ContactSearchStatus::kOk ? a.message : b.message;
+            continue;
+          }
+          z_guess = z_a;
+          node.z_a = z_a;
+          for (const ContactCandidate& ca : a.candidates) {
+            TableCandidate t;
+            t.vertical_gap0 = ca.vertical_gap - z_a;
+            t.gap_a = ca.gap;
+            t.angle = ca.contact_angle;
+            t.radius = ca.rolling_radius;
+            t.point_y = ca.point.y();
+            t.point_z = ca.point.z();
+            // lead is odd in yaw: its slope lead / yaw is even and interpolated as the rest.
+            const double sy = std::sin(yaw_run) * std::cos(roll);
+            t.lead_per_yaw = ca.lead / yaw_run;
+            // point.x = lead - axial sin(yaw) cos(roll): the contact circle's place on the axle.
+            t.axial = -(ca.point.x() - ca.lead) / sy;
+            t.rail_file = ca.rail_file;
+            t.wheel_file = ca.wheel_file;
+            t.s_rail = ca.s_rail;
+            t.s_wheel = ca.s_wheel;
+            const ContactCandidate* cb = matchSearched(ca, b.candidates, options_.match_distance);
+            t.gap_dz = cb ? (cb->gap - ca.gap) / (z_b - z_a) : std::cos(ca.contact_angle);
+            if (cb && ca.gap_function.size() >= 2 && cb->gap_function.size() >= 2) {
+              const double lo = std::max(ca.gap_function.front().eta, cb->gap_function.front().eta);
+              const double hi = std::min(ca.gap_function.back().eta, cb->gap_function.back().eta);
+              if (hi > lo) {
+                const int m = wide.gap_samples;
+                t.eta0 = lo;
+                t.deta = (hi - lo) / (m - 1);
+                t.inv_deta = 1.0 / t.deta;
+                t.g_a.resize(m);
+                t.g_dz.resize(m);
+                for (int s = 0; s < m; ++s) {
+                  const double eta = lo + s * t.deta;
+                  const double ga = lerp(ca.gap_function, eta), gb = lerp(cb->gap_function, eta);
+                  t.g_a[s] = static_cast<float>(ga);
+                  t.g_dz[s] = static_cast<float>((gb - ga) / (z_b - z_a));
+                }
+              }
+            }
+            node.candidates.push_back(std::move(t));
+          }
+        }
+      }
+    }
+  }
+}
+
+ContactTable::ContactTable(const ContactTable& o)
+    : options_(o.options_), impl_(std::make_unique<Impl>(*o.impl_)) {}
+ContactTable& ContactTable::operator=(const ContactTable& o) {
+  if (this != &o) {
+    options_ = o.options_;
+    impl_ = std::make_unique<Impl>(*o.impl_);
+  }
+  return *this;
+}
+ContactTable::ContactTable(ContactTable&&) noexcept = default;
+ContactTable& ContactTable::operator=(ContactTable&&) noexcept = default;
+ContactTable::~ContactTable() = default;
+
+const ContactSearch& ContactTable::contactSearch() const {
+  return impl_->search;
+}
+std::size_t ContactTable::nodes() const {
+  return static_cast<std::size_t>(impl_->lateral.n) * impl_->yaw.n * impl_->roll.n;
+}
+int ContactTable::tables() const {
+  return impl_->left_mirrors_right ? 1 : 2;
+}
+std::size_t ContactTable::bytes() const {
+  std::size_t b = sizeof(Impl);
+  for (const Impl::Grid& g : impl_->grids)
+    for (const Node& n : g.nodes) {
+      b += sizeof(Node) + n.message.capacity() + n.candidates.capacity() * sizeof(TableCandidate);
+      for (const TableCandidate& c : n.candidates)
+        b += (c.g_a.capacity() + c.g_dz.capacity()) * sizeof(float);
+    }
+  return b;
+}
+
+WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& pose) const {
+  const Impl& im = *impl_;
+  const ContactSearchOptions& so = im.search.options();
+  // The search's own checks first: a pose it refuses is refused with its message.
+  if (!std::isfinite(pose.y) || !std::isfinite(pose.z) || !std::isfinite(pose.yaw) ||
+      !std::isfinite(pose.roll) || std::abs(pose.y) > so.max_abs_y ||
+      std::abs(pose.z) > so.max_abs_z || std::abs(pose.yaw) > so.max_abs_yaw ||
+      std::abs(pose.roll) > so.max_abs_roll)
+    return im.search.search(side, pose);
+
+  // The left wheel of a mirrored pair is the right one in the mirrored pose.
+  const bool mirror = side == WheelSide::kLeft && im.left_mirrors_right;
+  WheelsetPose p = pose;
+  if (mirror) {
+    p.y = -p.y;
+    p.yaw = -p.yaw;
+    p.roll = -p.roll;
+  }
+  const Impl::Grid& grid = im.grids[side == WheelSide::kRight || mirror ? 0 : 1];
+  const WheelPlace place = placeOf(p, grid.a0, im.r0);
+  const double abs_yaw = std::abs(p.yaw);
+
+  auto beyond = [&](const std::string& why) {
+    if (options_.beyond == ContactTableOptions::Beyond::kSearch)
+      return im.search.search(side, pose);
+    WheelContactGeometry out;
+    out.status = ContactSearchStatus::kOutOfRange;
+    out.message = why;
+    return out;
+  };
+  int ci = 0, cj = 0, ck = 0;
+  double ti = 0.0, tj = 0.0, tk = 0.0;
+  if (!im.lateral.locate(place.Y, &ci, &ti) || !im.yaw.locate(abs_yaw * abs_yaw, &cj, &tj) ||
+      !im.roll.locate(p.roll, &ck, &tk)) {
+    std::ostringstream m;
+    m << "pose beyond the contact table: the wheel's lateral displacement " << place.Y
+      << " m (table +-" << options_.max_abs_lateral << "), |yaw| " << abs_yaw << " rad (table "
+      << options_.max_abs_yaw << "), roll " << p.roll << " rad (table +-" << options_.max_abs_roll
+      << ")";
+    return beyond(m.str());
+  }
+
+  struct Corner {
+    const Node* node;
+    double w;
+  };
+  std::array<Corner, 8> corners;
+  int master = 0;
+  for (int c = 0; c < 8; ++c) {
+    const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
+    const double wi = di ? ti : 1.0 - ti, wk = dk ? tk : 1.0 - tk;
+    const double wj = dj ? tj : 1.0 - tj;
+    corners[c] = {&grid.nodes[im.index(ci + di, cj + dj, ck + dk)], wi * wj * wk};
+    if (corners[c].node->status != ContactSearchStatus::kOk)
+      return beyond("pose next to a contact-table node without contact: " +
+                    corners[c].node->message);
+    if (corners[c].w > corners[master].w) master = c;
+  }
+
+  // Quadratic in yaw^2 on the three yaw nodes around the nearest one, where the axis has three:
+  // the flange's geometry curves in yaw^2 (the lift of the contact point under yaw grows with
+  // the lead, which grows with the contact angle), which linear interpolation misses by several
+  // micrometres of gap at the default nodes.
+  std::array<Corner, 12> quad;
+  std::array<double, 12> quad_linear{};  // the linear cell's weights of the same nodes
+  bool quad_ok = im.yaw.n >= 3;
+  if (quad_ok) {
+    const double x_abs = cj + tj;
+    const int b = std::min(std::max(static_cast<int>(std::lround(x_abs)) - 1, 0), im.yaw.n - 3);
+    const double x = x_abs - b;
+    const double lagrange[3] = {0.5 * (x - 1.0) * (x - 2.0), -x * (x - 2.0), 0.5 * x * (x - 1.0)};
+    for (int q = 0; q < 12 && quad_ok; ++q) {
+      const int di = q & 1, dk = (q >> 1) & 1, l = q >> 2;
+      const double wi = di ? ti : 1.0 - ti, wk = dk ? tk : 1.0 - tk;
+      quad[q] = {&grid.nodes[im.index(ci + di, b + l, ck + dk)], wi * lagrange[l] * wk};
+      quad_linear[q] = wi * wk * (b + l == cj ? 1.0 - tj : b + l == cj + 1 ? tj : 0.0);
+      quad_ok = quad[q].node->status == ContactSearchStatus::kOk;
+    }
+  }
+
+  WheelContactGeometry out;
+  const double sigma = mirror ? -1.0 : (side == WheelSide::kRight ? 1.0 : -1.0);
+  const double sy = std::sin(p.yaw) * std::cos(p.roll);
+  for (const TableCandidate& mc : corners[master].node->candidates) {
+    // The nodes that interpolate this candidate, its match at each, and their weights: the
+    // quadratic stencil where every one of its nodes has the candidate, else the linear cell's
+    // nodes that have it, their weights renormalised.
+    std::array<const TableCandidate*, 12> m{};
+    std::array<const Node*, 12> at{};
+    std::array<double, 12> w{}, w_linear{};
+    int nm = 0;
+    if (quad_ok) {
+      for (int q = 0; q < 12; ++q) {
+        m[q] = quad[q].node == corners[master].node
+                   ? &mc
+                   : match(mc, quad[q].node->candidates, options_.match_distance);
+        if (!m[q]) break;
+        at[q] = quad[q].node;
+        w[q] = quad[q].w;
+        w_linear[q] = quad_linear[q];
+        nm = q + 1;
+      }
+      if (nm < 12) nm = 0;
+    }
+    if (nm == 0) {
+      double sw = 0.0;
+      for (int q = 0; q < 8; ++q) {
+        const TableCandidate* t =
+            q == master ? &mc : match(mc, corners[q].node->candidates, options_.match_distance);
+        if (!t) continue;
+        m[nm] = t;
+        at[nm] = corners[q].node;
+        w[nm] = corners[q].w;
+        sw += corners[q].w;
+        ++nm;
+      }
+      for (int q = 0; q < nm; ++q) {
+        w[q] = sw > 0.0 ? w[q] / sw : (m[q] == &mc ? 1.0 : 0.0);
+        w_linear[q] = w[q];
+      }
+    }
+    // The gap function's shape from the linear cell (it changes slowly with yaw), put at the
+    // gap the stencil gives.
+    double sw_gf = 0.0;
+    for (int q = 0; q < nm; ++q)
+      if (!m[q]->g_a.empty()) sw_gf += w_linear[q];
+    ContactCandidate c;
+    double vg0 = 0.0, gap = 0.0, angle = 0.0, lead = 0.0, axial = 0.0;
+    for (int q = 0; q < nm; ++q) {
+      const TableCandidate& t = *m[q];
+      vg0 += w[q] * t.vertical_gap0;
+      angle += w[q] * t.angle;
+      c.rolling_radius += w[q] * t.radius;
+      c.point.y() += w[q] * t.point_y;
+      c.point.z() += w[q] * t.point_z;
+      axial += w[q] * t.axial;
+      c.rail_file += w[q] * t.rail_file;
+      c.wheel_file += w[q] * t.wheel_file;
+      c.s_rail += w[q] * t.s_rail;
+      c.s_wheel += w[q] * t.s_wheel;
+      lead += w[q] * t.lead_per_yaw;
+    }
+    c.vertical_gap = vg0 + place.Z;
+    // Each node's gap and gap function at the candidate's vertical gap here, not at this height:
+    // the nodes' candidates then overlap alike, where each node's linearisation in the height
+    // holds, while at one height they would differ by the vertical gap's change from node to node
+    // (half a millimetre per lateral step on a flange).
+    auto heightAt = [&](int q) { return c.vertical_gap - m[q]->vertical_gap0 - at[q]->z_a; };
+    for (int q = 0; q < nm; ++q) gap += w[q] * (m[q]->gap_a + m[q]->gap_dz * heightAt(q));
+    c.contact_angle = angle;
+    c.zone = angle < so.tread_max_angle     ? ContactZone::kTread
+             : angle >= so.flange_min_angle ? ContactZone::kFlange
+                                            : ContactZone::kGaugeCorner;
+    c.lead = lead * p.yaw;
+    c.point.x() = c.lead - axial * sy;
+    c.normal = Eigen::Vector2d(sigma * std::sin(angle), std::cos(angle));
+    c.gap = gap;
+
+    if (sw_gf > 0.0) {
+      // The gap function: the nodes' functions at this height, weighted, on the stretch all of
+      // them cover; cut where the search would cut it and sampled as the search samples it.
+      double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+      struct Term {
+        const TableCandidate* t;
+        double w, dZ;
+      };
+      std::array<Term, 12> terms;
+      int nt = 0;
+      for (int q = 0; q < nm; ++q)
+        if (!m[q]->g_a.empty() && w_linear[q] > 0.0) {
+          lo = std::max(lo, m[q]->eta0);
+          hi = std::min(hi, m[q]->etaEnd());
+          terms[nt++] = {m[q], w_linear[q] / sw_gf, heightAt(q)};
+        }
+      double offset = 0.0;
+      auto G = [&](double eta) {
+        double v = offset;
+        for (int q = 0; q < nt; ++q) v += terms[q].w * terms[q].t->gapFunction(eta, terms[q].dZ);
+        return v;
+      };
+      if (nt > 0 && lo <= 0.0 && hi >= 0.0 && hi > lo) {
+        offset = c.gap - G(0.0);
+        const double level = c.gap + 2.0 * std::max(std::abs(c.gap), so.gap_window);
+        // The edges where the gap reaches the level (or the stretch ends): a march in 24 steps
+        // to the end of the stretch, then bisection.
+        const int coarse = 24;
+        double edge[2] = {lo, hi};
+        for (int dir = 0; dir < 2; ++dir) {
+          const double end = dir == 0 ? lo : hi;
+          double inside = 0.0;
+          for (int s = 1; s <= coarse; ++s) {
+            double outside = end * s / coarse;
+            if (G(outside) < level) {
+              inside = outside;
+              continue;
+            }
+            for (int it = 0; it < 12; ++it) {
+              const double mid = 0.5 * (inside + outside);
+              (G(mid) < level ? inside : outside) = mid;
+            }
+            edge[dir] = 0.5 * (inside + outside);
+            break;
+          }
+        }
+        const int ns = so.gap_samples;
+        c.gap_function.resize(ns);
+        const double de = (edge[1] - edge[0]) / (ns - 1);
+        for (int s = 0; s < ns; ++s) c.gap_function[s] = {edge[0] + s * de, offset};
+        for (int q = 0; q < nt; ++q)
+          for (int s = 0; s < ns; ++s)
+            c.gap_function[s].gap +=
+                terms[q].w * terms[q].t->gapFunction(c.gap_function[s].eta, terms[q].dZ);
+      }
+    }
+    if (mirror) {
+      c.point.y() = -c.point.y();
+      c.normal.x() = -c.normal.x();
+    }
+    out.candidates.push_back(std::move(c));
+  }
+  // As the search: drop candidates more than candidate_window above the closest.
+  double best = std::numeric_limits<double>::infinity();
+  for (const ContactCandidate& c : out.candidates) best = std::min(best, c.vertical_gap);
+  out.candidates.erase(std::remove_if(out.candidates.begin(), out.candidates.end(),
+                                      [&](const ContactCandidate& c) {
+                                        return c.vertical_gap > best + so.candidate_window;
+                                      }),
+                       out.candidates.end());
+  for (std::size_t k = 0; k < out.candidates.size(); ++k)
+    if (out.closest < 0 ||
+        out.candidates[k].vertical_gap < out.candidates[out.closest].vertical_gap)
+      out.closest = static_cast<int>(k);
+  if (out.candidates.empty()) {
+    out.status = ContactSearchStatus::kOutOfRange;
+    out.message = std::string("no contact candidate on the ") +
+                  (side == WheelSide::kLeft ? "left" : "right") + " wheel";
+  }
+  return out;
+}
+
+}  // namespace wheel_rail_contact
