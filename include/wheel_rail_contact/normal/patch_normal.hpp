@@ -88,7 +88,7 @@ struct NormalOptions {
   /// patch's interpenetration, and R_x varies by less than this fraction, over the patch.
   double hertz_tolerance = 0.03;
   bool allow_hertz = true;       ///< false: the strip method on every patch (for checks)
-  double load_tolerance = 1e-8;  ///< solveWheelLoad: relative error of the vertical load
+  double load_tolerance = 1e-6;  ///< solveWheelLoad: relative error of the vertical load
   int max_iterations = 100;      ///< solveWheelLoad: iterations on the approach
 };
 
