@@ -451,47 +451,35 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
     }
     return true;
   };
-  // Illinois false position on r = f^(2/3) - load^(2/3), nearly linear in the approach (Hertz:
-  // f ~ d^(3/2)), bracketed from first touch (r < 0). The first trial scales a probe of 10 um
-  // by that law; the bracket widens until the load is passed.
+  // Secant steps on r = f^(2/3) - load^(2/3), nearly linear in the approach (Hertz: f ~
+  // d^(3/2)), from first touch (r = -load^(2/3)) and a probe 10 um beyond; a step that leaves
+  // the bracket found so far bisects it, one beyond every trial so far (no bracket yet) goes at
+  // most eight times as deep.
   const double target = std::cbrt(load * load);
-  double lo = touch, r_lo = -target, hi = touch + 1e-5, f = 0.0;
-  if (!force(hi, &f)) return failed(bad, bad_why);
-  if (f > 0.0) hi = touch + 1e-5 * std::cbrt(load * load / (f * f));
-  double r_hi = 0.0;
+  const double inf = std::numeric_limits<double>::infinity();
+  double lo = touch, hi = inf;
+  double x0 = touch, r0 = -target, x1 = touch + 1e-5, f = 0.0;
+  double dv = x1;
   int it = 0;
-  for (; it < 40; ++it) {
-    if (!force(hi, &f)) return failed(bad, bad_why);
-    r_hi = std::cbrt(f * f) - target;
-    if (std::abs(f - load) <= o.load_tolerance * load) break;
-    if (r_hi > 0.0) break;
-    lo = hi;
-    r_lo = r_hi;
-    hi = touch + 1.5 * (hi - touch);
-  }
-  if (f < load * (1.0 - o.load_tolerance))
-    return failed(NormalStatus::kNotConverged, "no approach carries the load");
-  int side = 0;
-  double dv = hi;
-  for (it = 0; it < o.max_iterations && std::abs(f - load) > o.load_tolerance * load; ++it) {
-    dv = hi - r_hi * (hi - lo) / (r_hi - r_lo);
-    if (!(dv > lo && dv < hi)) dv = 0.5 * (lo + hi);
+  for (; it < o.max_iterations; ++it) {
     if (!force(dv, &f)) return failed(bad, bad_why);
+    if (std::abs(f - load) <= o.load_tolerance * load) break;
     const double r = std::cbrt(f * f) - target;
-    if (r > 0.0) {
-      hi = dv;
-      r_hi = r;
-      if (side == 1) r_lo *= 0.5;
-      side = 1;
-    } else {
-      lo = dv;
-      r_lo = r;
-      if (side == -1) r_hi *= 0.5;
-      side = -1;
+    (r > 0.0 ? hi : lo) = dv;
+    x1 = dv;
+    double next = r != r0 ? x1 - r * (x1 - x0) / (r - r0) : inf;
+    x0 = x1;
+    r0 = r;
+    if (hi < inf) {
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    } else if (!(next > lo) || next > touch + 8.0 * (lo - touch)) {
+      next = touch + 8.0 * (lo - touch);
     }
+    dv = next;
   }
-  if (std::abs(f - load) > o.load_tolerance * load)
-    return failed(NormalStatus::kNotConverged, "the approach iteration did not converge");
+  if (it >= o.max_iterations)
+    return failed(NormalStatus::kNotConverged, hi < inf ? "the approach iteration did not converge"
+                                                        : "no approach carries the load");
   // The patches hold the last trial's solution, at dv.
   out.vertical_approach = dv;
   return out;
