@@ -22,7 +22,8 @@ struct Options {
   std::string cases = "test/data/profiles/a22_cases.csv";
   double load = 1e4;  ///< vertical wheel load [N]
   double G = 8.2e10, nu = 0.28;
-  int grid = 40;  ///< exact grid nx = ny
+  int grid = 40;                                        ///< exact grid nx = ny
+  double min_ridge = ContactSearchOptions{}.min_ridge;  ///< the contact search's [m]
 };
 
 void addOptions(CLI::App& app, Options* o) {
@@ -32,6 +33,7 @@ void addOptions(CLI::App& app, Options* o) {
   tools::option(app, "--G", &o->G, "shear modulus [Pa]");
   tools::option(app, "--nu", &o->nu, "Poisson ratio");
   tools::option(app, "--grid", &o->grid, "exact grid nx = ny");
+  tools::option(app, "--min-ridge", &o->min_ridge, "ContactSearchOptions::min_ridge [m]");
 }
 
 double percent(double a, double b) {
@@ -41,7 +43,9 @@ double percent(double a, double b) {
 int run(const Options& o) {
   std::ifstream in(o.cases);
   if (!in) throw std::runtime_error("cannot read " + o.cases);
-  const ContactSearch search{WheelsetTrackData{}};
+  ContactSearchOptions so;
+  so.min_ridge = o.min_ridge;
+  const ContactSearch search{WheelsetTrackData{}, so};
   std::printf(
       "| y mm | patch | angle | method | fn N | fn err %% | pmax GPa | pmax err %% | "
       "extent mm (exact) | share (exact) |\n");
