@@ -31,8 +31,10 @@ WheelContactGeometry geometry(int k) {
   p.y = -kStates[k].y_mm * 1e-3;
   p.yaw = -kStates[k].yaw;
   p.roll = kStates[k].roll;
-  for (int i = 0; i < 3; ++i)
-    p.z -= search.search(WheelSide::kRight, p).candidates.at(0).vertical_gap;
+  for (int i = 0; i < 3; ++i) {  // down to first touch
+    const WheelContactGeometry g = search.search(WheelSide::kRight, p);
+    p.z -= g.candidates.at(g.closest).vertical_gap;
+  }
   return search.search(WheelSide::kRight, p);
 }
 
