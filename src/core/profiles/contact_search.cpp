@@ -89,6 +89,8 @@ ContactSearch::ContactSearch(const WheelsetTrackData& data, const ContactSearchO
   positive("min_ridge", options_.min_ridge);
   positive("candidate_window", options_.candidate_window);
   positive("gap_window", options_.gap_window);
+  positive("gap_reach", options_.gap_reach);
+  positive("max_gap_extent", options_.max_gap_extent);
   positive("max_abs_y", options_.max_abs_y);
   positive("max_abs_z", options_.max_abs_z);
   positive("max_abs_yaw", options_.max_abs_yaw);
@@ -360,7 +362,7 @@ WheelContactGeometry ContactSearch::search(WheelSide wheel_side, const WheelsetP
       return false;
     };
     double sw0 = sw, sr0 = sr;
-    auto gapAt = [&](double eta, double* gap_out) {
+    auto gapAt = [&](double eta, double* gap_out, GapSample* sample = nullptr) {
       double lw = 0.0, lr = 0.0;
       double a = sw0, b = sr0;
       if (!follow(wheelYZ, eta, s_lo, s_hi, &a, &lw)) return false;
@@ -368,6 +370,11 @@ WheelContactGeometry ContactSearch::search(WheelSide wheel_side, const WheelsetP
       sw0 = a;
       sr0 = b;
       *gap_out = lw - lr;
+      if (sample) {
+        const LocusPoint l = locus(a);  // ok: follow() evaluated it
+        sample->rolling_radius = l.radius;
+        sample->contact_angle = std::atan2(-sigma * l.n.x(), -l.n.y());
+      }
       return true;
     };
     double g0 = 0.0;
@@ -377,31 +384,29 @@ WheelContactGeometry ContactSearch::search(WheelSide wheel_side, const WheelsetP
       continue;
     }
     c.gap = g0;
-    const double level = g0 + 2.0 * std::max(std::abs(g0), options_.gap_window);
+    const double level =
+        g0 + std::max(2.0 * std::max(std::abs(g0), options_.gap_window), options_.gap_reach);
     double edge[2] = {0.0, 0.0};
-    for (int dir = 0; dir < 2; ++dir) {  // march out to the level, then bisect
-      const double step = (dir == 0 ? -1.0 : 1.0) * 1e-4;
+    // March out to the level in steps growing from 0.1 mm by half each (a few dozen steps reach
+    // max_gap_extent), then bisect to where the gap reaches the level or the curves stop.
+    for (int dir = 0; dir < 2; ++dir) {
+      const double sign = dir == 0 ? -1.0 : 1.0;
       sw0 = sw;
       sr0 = sr;
-      double inside = 0.0, outside = 0.0;
-      bool reached = false;
-      for (int m = 1; m <= 300; ++m) {
+      double inside = 0.0, outside = 0.0, reach = 0.0;
+      bool stopped = false;
+      for (double step = 1e-4; reach < options_.max_gap_extent; step *= 1.5) {
+        reach = std::min(reach + step, options_.max_gap_extent);
         double gv = 0.0;
-        const double eta = m * step;
-        if (!gapAt(eta, &gv)) {
-          outside = eta;
+        outside = sign * reach;
+        if (!gapAt(outside, &gv) || gv >= level) {
+          stopped = true;
           break;
         }
-        if (gv >= level) {
-          outside = eta;
-          reached = true;
-          break;
-        }
-        inside = eta;
-        outside = eta;
+        inside = outside;
       }
-      if (reached) {
-        for (int it = 0; it < 40; ++it) {
+      if (stopped) {
+        for (int it = 0; it < 32; ++it) {
           const double mid = 0.5 * (inside + outside);
           double gv = 0.0;
           if (gapAt(mid, &gv) && gv < level)
@@ -423,13 +428,13 @@ WheelContactGeometry ContactSearch::search(WheelSide wheel_side, const WheelsetP
     bool ok = true;
     for (int j = first_right; j < m && ok; ++j) {
       samples[j].eta = edge[0] + j * de;
-      ok = gapAt(samples[j].eta, &samples[j].gap);
+      ok = gapAt(samples[j].eta, &samples[j].gap, &samples[j]);
     }
     sw0 = sw;
     sr0 = sr;
     for (int j = first_right - 1; j >= 0 && ok; --j) {
       samples[j].eta = edge[0] + j * de;
-      ok = gapAt(samples[j].eta, &samples[j].gap);
+      ok = gapAt(samples[j].eta, &samples[j].gap, &samples[j]);
     }
     if (ok) c.gap_function = std::move(samples);
     out.candidates.push_back(std::move(c));

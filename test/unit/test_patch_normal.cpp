@@ -1,0 +1,364 @@
+// The normal problem per patch (normal/patch_normal.hpp) against Hertz and against the exact
+// half-space solver on the same gap, on the Manchester benchmark's case.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/exact/halfspace_normal.hpp"
+#include "core/normal/hertz_approach.hpp"
+#include "validation/patch_exact.hpp"
+#include "wheel_rail_contact/geometry/hertz.hpp"
+#include "wheel_rail_contact/normal/patch_normal.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+const double kG = 8.2e10, kNu = 0.28, kLoad = 1e4;
+
+/// A candidate whose gap is h = B eta^2 + x^2 / (2 r) (Hertz), with wheel radius r.
+ContactCandidate hertzCandidate(double B, double r, double half_width, int samples = 81) {
+  ContactCandidate c;
+  c.gap = 0.0;
+  c.normal = Eigen::Vector2d(0.0, 1.0);
+  for (int i = 0; i < samples; ++i) {
+    GapSample s;
+    s.eta = -half_width + 2.0 * half_width * i / (samples - 1);
+    s.gap = B * s.eta * s.eta;
+    s.rolling_radius = r;
+    s.contact_angle = 0.0;
+    c.gap_function.push_back(s);
+  }
+  return c;
+}
+
+ExactPatch exactPatch(const ContactCandidate& c, double approach, int mx, int my) {
+  return exactPatchNormal(c, approach, kG, kNu, mx, my);
+}
+
+const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/test/data/profiles/";
+
+/// The right wheel's state of case at the benchmark's y [mm], in our axes (as
+/// test_contact_search.cpp reads it; doc/profiles.md: y and yaw change sign, roll does not).
+WheelsetPose a22Right(double y_mm) {
+  std::ifstream in(kDataDir + "a22_cases.csv");
+  std::string line;
+  bool header = false;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      header = true;
+      continue;
+    }
+    std::istringstream ls(line);
+    std::string wheel, field;
+    std::getline(ls, wheel, ',');
+    std::getline(ls, field, ',');
+    std::getline(ls, field, ',');
+    const double y = std::stod(field);
+    if (wheel != "right" || std::abs(y - y_mm) > 1e-9) continue;
+    WheelsetPose p;
+    p.y = -y * 1e-3;
+    std::getline(ls, field, ',');
+    p.yaw = -std::stod(field);
+    std::getline(ls, field, ',');
+    p.roll = std::stod(field);
+    return p;
+  }
+  ADD_FAILURE() << "no right-wheel case at y = " << y_mm << " mm";
+  return {};
+}
+
+const ContactSearch& search() {
+  static const ContactSearch s{WheelsetTrackData{}};
+  return s;
+}
+
+/// The wheel's geometry at the pose's y, yaw, roll with the wheelset lowered (or raised) to first
+/// touch: the gap functions describe the profiles about where they touch.
+WheelContactGeometry atFirstTouch(WheelSide side, WheelsetPose pose) {
+  for (int k = 0; k < 3; ++k) {
+    const WheelContactGeometry g = search().search(side, pose);
+    if (g.closest < 0) return g;
+    const double vg = g.candidates[g.closest].vertical_gap;
+    if (std::abs(vg) < 1e-9) return g;
+    pose.z -= vg;
+  }
+  return search().search(side, pose);
+}
+
+}  // namespace
+
+TEST(PatchNormal, HertzFromApproachInvertsHertzFromLoad) {
+  for (double ratio : {0.1, 0.5, 1.0, 2.0, 20.0}) {
+    const double A = 1.1, B = A * ratio, d = 6e-5, Estar = contactModulus(kG, kNu);
+    const HertzApproach h = hertzFromApproach(A, B, d, Estar);
+    const HertzEllipse e = hertzFromCurvatures(h.fn, A, B, kG, kNu);
+    EXPECT_NEAR(h.a, e.a, 1e-9 * e.a) << ratio;
+    EXPECT_NEAR(h.b, e.b, 1e-9 * e.b) << ratio;
+    EXPECT_NEAR(h.p0, e.p0, 1e-9 * e.p0) << ratio;
+  }
+}
+
+TEST(PatchNormal, EllipticPatchIsHertz) {
+  // h = B eta^2 + x^2 / (2 r): the method must say Hertz and return Hertz's a, b, pmax, fn.
+  const double B = 1.6, r = 0.46, d = 5e-5;
+  const NormalPatch p = solvePatchNormal(hertzCandidate(B, r, 0.02), d, kG, kNu);
+  ASSERT_EQ(p.status, NormalStatus::kOk) << p.message;
+  EXPECT_EQ(p.method, NormalMethod::kHertz);
+  const HertzEllipse e = hertzFromCurvatures(p.fn, 0.5 / r, B, kG, kNu);
+  EXPECT_NEAR(p.a, e.a, 1e-6 * e.a);
+  EXPECT_NEAR(p.b, e.b, 1e-6 * e.b);
+  EXPECT_NEAR(p.pmax, e.p0, 1e-6 * e.p0);
+  double sum = 0.0;
+  for (const NormalStrip& s : p.strips) sum += s.force;
+  EXPECT_NEAR(sum, p.fn, 0.01 * p.fn);  // midpoint rule over 24 strips
+}
+
+TEST(PatchNormal, StripMethodOnAHertzGapApproachesHertz) {
+  // Its penetration factors come from the equivalent Hertz problem, so on a Hertz gap the strip
+  // method's patch is Hertz's ellipse; what remains is the strips' discretisation of the
+  // Boussinesq integral and of the gap (1 % with 24 strips and 81 samples).
+  for (double B : {0.3, 1.6, 8.0}) {
+    const double r = 0.46, d = 5e-5;
+    NormalOptions o;
+    o.allow_hertz = false;
+    const NormalPatch p =
+        solvePatchNormal(hertzCandidate(B, r, std::sqrt(8.0 * d / B)), d, kG, kNu, o);
+    ASSERT_EQ(p.status, NormalStatus::kOk) << p.message;
+    EXPECT_EQ(p.method, NormalMethod::kNonHertzian);
+    const HertzApproach h = hertzFromApproach(0.5 / r, B, d, contactModulus(kG, kNu));
+    EXPECT_NEAR(p.fn, h.fn, 0.01 * h.fn) << B;
+    EXPECT_NEAR(p.pmax, h.p0, 0.01 * h.p0) << B;
+    EXPECT_NEAR(p.b, h.b, 0.01 * h.b) << B;
+    EXPECT_NEAR(p.a, h.a, 0.01 * h.a) << B;
+  }
+}
+
+TEST(PatchNormal, HertzApproachAgreesWithTheExactSolver) {
+  // The approach-load relation against the exact solver on the same Hertz gap at the same
+  // approach: 2 % (piecewise-constant pressure on a 40 x 40 grid over the ellipse).
+  for (double ratio : {0.3, 1.0, 4.0}) {
+    const double A = 1.1, B = A * ratio, d = 5e-5;
+    const HertzApproach h = hertzFromApproach(A, B, d, contactModulus(kG, kNu));
+    const HalfspaceGrid g = HalfspaceGrid::covering(h.a, h.b, 40, 40);
+    Eigen::VectorXd gap(g.size());
+    for (int ix = 0; ix < g.mx; ++ix)
+      for (int iy = 0; iy < g.my; ++iy)
+        gap[g.index(ix, iy)] = A * g.xc(ix) * g.xc(ix) + B * g.yc(iy) * g.yc(iy);
+    const NormalSolution s = solveNormalGapApproach(g, kG, kNu, gap, d);
+    ASSERT_TRUE(s.converged);
+    EXPECT_NEAR(s.fz, h.fn, 0.02 * h.fn) << ratio;
+  }
+}
+
+namespace {
+
+/// The method's wheel solution at the benchmark's state y [mm] under kLoad.
+struct BenchmarkState {
+  WheelContactGeometry geo;
+  WheelNormal wheel;
+};
+
+BenchmarkState benchmarkState(double y_mm) {
+  BenchmarkState s;
+  s.geo = atFirstTouch(WheelSide::kRight, a22Right(y_mm));
+  s.wheel = solveWheelLoad(s.geo, kLoad, kG, kNu);
+  return s;
+}
+
+}  // namespace
+
+// The exact solver's own discretisation: on the patches below a 40 x 40 grid over the undeformed
+// interpenetration and a 60 x 60 one differ by under 0.3 % in fn and 0.5 % in pmax
+// (PatchNormal.ExactReferenceIsGridConverged), well below the tolerances asserted here.
+
+TEST(PatchNormal, ExactReferenceIsGridConverged) {
+  for (double y : {5.0, 6.5}) {
+    const BenchmarkState s = benchmarkState(y);
+    ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
+    for (std::size_t i = 0; i < s.wheel.patches.size(); ++i) {
+      const NormalPatch& p = s.wheel.patches[i];
+      if (p.fn <= 0.0) continue;
+      const ExactPatch e40 = exactPatch(s.geo.candidates[i], p.approach, 40, 40);
+      const ExactPatch e60 = exactPatch(s.geo.candidates[i], p.approach, 60, 60);
+      ASSERT_TRUE(e40.solution.converged && e60.solution.converged);
+      EXPECT_NEAR(e40.fn, e60.fn, 0.003 * e60.fn) << y << " " << i;
+      EXPECT_NEAR(e40.pmax, e60.pmax, 0.005 * e60.pmax) << y << " " << i;
+    }
+  }
+}
+
+TEST(PatchNormal, A22AgainstTheExactSolverAtTheSameApproach) {
+  // Right wheel of case under 10 kN, each patch at the approach the method found, the exact
+  // solver on the same gap: gauge corner (5 mm, two patches with the tread), flange (6.5 mm) and
+  // the tread at 2 mm where the gap is elliptic. Tolerances: fn 2 % and pmax 3 % (the assumed
+  // pressure shape, semi-elliptic strips under the equivalent ellipse's penetration factor, is
+  // what differs from exact: up to 1 % and 1.3 % on A-2.2's convex gaps, doc/normal_problem.md),
+  // the lateral edges within 0.15 mm (one exact element is 0.02 to 0.15 mm wide).
+  for (double y : {2.0, 5.0, 6.5}) {
+    const BenchmarkState s = benchmarkState(y);
+    ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
+    int loaded = 0;
+    for (std::size_t i = 0; i < s.wheel.patches.size(); ++i) {
+      const NormalPatch& p = s.wheel.patches[i];
+      if (p.fn <= 0.0) continue;
+      ++loaded;
+      const ExactPatch e = exactPatch(s.geo.candidates[i], p.approach, 40, 40);
+      ASSERT_TRUE(e.solution.converged);
+      EXPECT_NEAR(p.fn, e.fn, 0.02 * e.fn) << "y " << y << " patch " << i;
+      EXPECT_NEAR(p.pmax, e.pmax, 0.03 * e.pmax) << "y " << y << " patch " << i;
+      EXPECT_NEAR(p.eta_min, e.eta_min, 1.5e-4) << "y " << y << " patch " << i;
+      EXPECT_NEAR(p.eta_max, e.eta_max, 1.5e-4) << "y " << y << " patch " << i;
+      EXPECT_TRUE(p.message.empty()) << p.message;  // nothing to flag on these gaps
+    }
+    EXPECT_EQ(loaded, y == 5.0 ? 2 : 1) << y;
+  }
+}
+
+TEST(PatchNormal, A22LoadSplitOfTwoPatchesAgreesWithExact) {
+  // At 5 mm the wheel touches its rail on the tread and on the gauge corner; the exact solver's
+  // split of the same 10 kN (its own vertical approach) against the method's: the tread's share
+  // within 1 percentage point (measured: 0.2).
+  const BenchmarkState s = benchmarkState(5.0);
+  ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
+  ASSERT_EQ(s.wheel.patches.size(), 2u);
+  const std::vector<double> fe =
+      exactWheelLoad(s.geo, kLoad, kG, kNu, 40, s.wheel.vertical_approach);
+  const double share = s.wheel.patches[0].fn / (s.wheel.patches[0].fn + s.wheel.patches[1].fn);
+  const double exact_share = fe[0] / (fe[0] + fe[1]);
+  EXPECT_GT(exact_share, 0.05);  // both patches carry load
+  EXPECT_NEAR(share, exact_share, 0.01);
+  double fz = 0.0;
+  for (std::size_t i = 0; i < 2; ++i) fz += s.wheel.patches[i].fn * s.geo.candidates[i].normal.y();
+  EXPECT_NEAR(fz, kLoad, 1e-6 * kLoad);
+}
+
+TEST(PatchNormal, A22TreadPlateauIsTheMethodsWeakness) {
+  // At 0.5 mm the tread's gap has a plateau some 10 um high over 8 mm beside its minimum: under
+  // 10 kN the exact contact spreads over it, the method's strips (penetration factor some 0.4
+  // at the centre of the equivalent ellipse) stop short of it. Asserted as measured, so that a
+  // change in either direction shows: fn at the same approach 20 to 40 % low, the patch narrower.
+  const BenchmarkState s = benchmarkState(0.5);
+  ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
+  const NormalPatch& p = s.wheel.patches.at(s.geo.closest);
+  EXPECT_EQ(p.method, NormalMethod::kNonHertzian);
+  EXPECT_EQ(p.status, NormalStatus::kOk);
+  EXPECT_NE(p.message.find("concave"), std::string::npos) << p.message;  // the method says so
+  const ExactPatch e = exactPatch(s.geo.candidates[s.geo.closest], p.approach, 40, 40);
+  ASSERT_TRUE(e.solution.converged);
+  EXPECT_GT(p.fn, 0.6 * e.fn);
+  EXPECT_LT(p.fn, 0.8 * e.fn);
+  EXPECT_LT(p.eta_max - p.eta_min, e.eta_max - e.eta_min);
+  EXPECT_NEAR(p.pmax, e.pmax, 0.06 * e.pmax);
+}
+
+TEST(PatchNormal, BadInputGivesAStatusAndZeroForces) {
+  const WheelContactGeometry geo = atFirstTouch(WheelSide::kRight, a22Right(2.0));
+  for (double load : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    const WheelNormal w = solveWheelLoad(geo, load, kG, kNu);
+    EXPECT_EQ(w.status, NormalStatus::kInvalidInput) << load;
+    EXPECT_FALSE(w.message.empty());
+    for (const NormalPatch& p : w.patches) EXPECT_EQ(p.fn, 0.0);
+  }
+  const WheelNormal none = solveWheelLoad(WheelContactGeometry{}, kLoad, kG, kNu);
+  EXPECT_EQ(none.status, NormalStatus::kNoContact);
+  // A load the sampled gap cannot carry: the patch outgrows its gap function.
+  const WheelNormal deep = solveWheelLoad(geo, 1e8, kG, kNu);
+  EXPECT_EQ(deep.status, NormalStatus::kBeyondGapFunction) << deep.message;
+  for (const NormalPatch& p : deep.patches) {
+    EXPECT_EQ(p.fn, 0.0);
+    EXPECT_FALSE(std::isnan(p.pmax));
+  }
+  ContactCandidate bare = geo.candidates.at(0);
+  bare.gap_function.clear();
+  EXPECT_EQ(solvePatchNormal(bare, 1e-5, kG, kNu).status, NormalStatus::kNoGapFunction);
+  EXPECT_EQ(solvePatchNormal(geo.candidates[0], std::nan(""), kG, kNu).status,
+            NormalStatus::kInvalidInput);
+  EXPECT_EQ(solvePatchNormal(geo.candidates[0], 1e-5, -1.0, kNu).status,
+            NormalStatus::kInvalidInput);
+  const NormalPatch apart = solvePatchNormal(geo.candidates[0], -1e-5, kG, kNu);
+  EXPECT_EQ(apart.status, NormalStatus::kOk);
+  EXPECT_EQ(apart.fn, 0.0);
+}
+
+TEST(PatchNormal, GapSamplesCarryTheWheelsRadiusAndAngle) {
+  // Interpolated to eta = 0 the samples give the candidate's own point: its radius (to 1 um) and
+  // contact angle (to 2 mrad: the flange's angle turns by some 0.1 rad per mm, the samples lie
+  // some 0.06 mm apart, linear interpolation errs by a fraction of that).
+  for (double y : {2.0, 6.5}) {
+    const WheelContactGeometry geo = atFirstTouch(WheelSide::kRight, a22Right(y));
+    for (const ContactCandidate& c : geo.candidates) {
+      const auto& f = c.gap_function;
+      ASSERT_GT(f.size(), 2u);
+      std::size_t i = 0;
+      while (i + 2 < f.size() && f[i + 1].eta < 0.0) ++i;
+      const double t = -f[i].eta / (f[i + 1].eta - f[i].eta);
+      ASSERT_GE(t, 0.0);
+      ASSERT_LE(t, 1.0);
+      EXPECT_NEAR(f[i].rolling_radius + t * (f[i + 1].rolling_radius - f[i].rolling_radius),
+                  c.rolling_radius, 1e-6)
+          << y;
+      EXPECT_NEAR(f[i].contact_angle + t * (f[i + 1].contact_angle - f[i].contact_angle),
+                  c.contact_angle, 2e-3)
+          << y;
+    }
+  }
+}
+
+TEST(PatchNormal, LeftWheelMirrorsTheRight) {
+  // The left wheel in the mirror image of the right's state (y, yaw, roll of the other sign)
+  // sees the same geometry, so the same patches (to the search's and the iteration's rounding).
+  for (double y : {2.0, 5.0, 6.5}) {
+    const WheelsetPose right = a22Right(y);
+    WheelsetPose left = right;
+    left.y = -right.y;
+    left.yaw = -right.yaw;
+    left.roll = -right.roll;
+    const WheelNormal r = solveWheelLoad(atFirstTouch(WheelSide::kRight, right), kLoad, kG, kNu);
+    const WheelNormal l = solveWheelLoad(atFirstTouch(WheelSide::kLeft, left), kLoad, kG, kNu);
+    ASSERT_EQ(r.status, NormalStatus::kOk) << r.message;
+    ASSERT_EQ(l.status, NormalStatus::kOk) << l.message;
+    ASSERT_EQ(l.patches.size(), r.patches.size());
+    for (std::size_t i = 0; i < r.patches.size(); ++i) {
+      EXPECT_NEAR(l.patches[i].fn, r.patches[i].fn, 1e-4 * kLoad) << y;
+      EXPECT_NEAR(l.patches[i].pmax, r.patches[i].pmax, 1e-4 * r.patches[i].pmax) << y;
+      EXPECT_NEAR(l.patches[i].b, r.patches[i].b, 1e-4 * r.patches[i].b) << y;
+    }
+  }
+}
+
+TEST(PatchNormal, OddGapsNeverGiveNaN) {
+  // Gaps of every shape (noise, flat, hollow, steps, a flange's samples with another wheel
+  // radius), approaches from none to deep: a status, finite non-negative forces, never a NaN.
+  std::mt19937 rng(45);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const ContactCandidate base = atFirstTouch(WheelSide::kRight, a22Right(6.5)).candidates.at(0);
+  for (int k = 0; k < 300; ++k) {
+    ContactCandidate c = base;
+    const int kind = k % 5;
+    for (GapSample& s : c.gap_function) {
+      if (kind == 0) s.gap += 2e-6 * (u(rng) - 0.5);                // noise
+      if (kind == 1) s.gap = c.gap + 1e-6 * u(rng);                 // flat
+      if (kind == 2) s.gap = c.gap - 1e3 * s.eta * s.eta * u(rng);  // hollow
+      if (kind == 3) s.gap += (s.eta > 0.0 ? 5e-5 : 0.0) * u(rng);  // a step
+      if (kind == 4) s.rolling_radius *= 0.05 + 2.0 * u(rng);       // another wheel
+    }
+    const double approach = std::pow(10.0, -8.0 + 5.0 * u(rng)) * (u(rng) < 0.1 ? -1.0 : 1.0);
+    const NormalPatch p = solvePatchNormal(c, approach, kG, kNu);
+    ASSERT_TRUE(std::isfinite(p.fn) && p.fn >= 0.0) << k << " " << p.message;
+    ASSERT_TRUE(std::isfinite(p.pmax) && p.pmax >= 0.0) << k;
+    ASSERT_TRUE(std::isfinite(p.a) && std::isfinite(p.b) && std::isfinite(p.area)) << k;
+    for (const NormalStrip& s : p.strips)
+      ASSERT_TRUE(std::isfinite(s.force) && std::isfinite(s.x_lead) && std::isfinite(s.pmax)) << k;
+    if (p.status != NormalStatus::kOk) EXPECT_EQ(p.fn, 0.0) << k;
+  }
+}
