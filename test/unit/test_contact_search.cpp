@@ -319,6 +319,34 @@ TEST(ContactSearch, RailInclinationTurnsAnUprightRailIntoTheInclinedOne) {
   }
 }
 
+TEST(ContactSearch, ThePoseOfAnIsolatedMissFindsWhatPosesANanometreAsideFind) {
+  // A pose (right wheel on its flange) where one sample of the vertical gap came out 1.8 mm too
+  // low, the rail's crossing of that sample's lateral position not converged: the false sample
+  // became the smallest gap and the true minimum, 27 um below the one refined next to the false
+  // sample, fell out of the candidate window. Poses 1 and 5 nm aside never saw it.
+  const ContactSearch cs{WheelsetTrackData()};
+  WheelsetPose p;
+  p.y = -0.0079864800592553947;
+  p.yaw = 0.024494897427831779;
+  p.roll = -0.0075;
+  const WheelContactGeometry g = cs.search(WheelSide::kRight, p);
+  ASSERT_EQ(g.status, ContactSearchStatus::kOk) << g.message;
+  const ContactCandidate& c = g.candidates.at(g.closest);
+  EXPECT_FALSE(c.gap_function.empty());
+  for (double d : {-5e-9, -1e-9, 1e-9, 5e-9}) {
+    WheelsetPose q = p;
+    q.y += d;
+    const WheelContactGeometry h = cs.search(WheelSide::kRight, q);
+    ASSERT_EQ(h.status, ContactSearchStatus::kOk) << h.message;
+    ASSERT_EQ(h.candidates.size(), g.candidates.size());
+    const ContactCandidate& k = h.candidates.at(h.closest);
+    // A nanometre of y moves the flange's vertical gap by about tan(delta) nm.
+    EXPECT_NEAR(c.vertical_gap, k.vertical_gap, 2e-8) << d;
+    EXPECT_NEAR(c.contact_angle, k.contact_angle, 1e-5) << d;
+    EXPECT_NEAR(c.s_wheel, k.s_wheel, 1e-7) << d;
+  }
+}
+
 TEST(ContactSearch, BadPosesGiveAStatusNeverAThrowOrNaN) {
   const ContactSearch cs{WheelsetTrackData()};
   WheelsetPose p;

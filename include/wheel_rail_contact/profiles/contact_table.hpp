@@ -58,8 +58,9 @@ struct ContactTableOptions {
   double roll_step = 2.5e-3;
   /// The gap and gap function are tabulated at the node's touching height and max_overlap lower
   /// [m]; between and near the two they are interpolated linearly in the height. The gap
-  /// function reaches out to where the gap is 2 max_overlap above its value at touching, which
-  /// covers the search's sampling for an overlap up to max_overlap.
+  /// function (its gap, and the wheel's circle radius and contact angle at each sample) reaches
+  /// max_overlap beyond where the search's would reach for an overlap up to max_overlap
+  /// (ContactSearchOptions::gap_reach, gap_window), and no farther than its max_gap_extent.
   double max_overlap = 1.0e-4;
   int gap_samples = 101;  ///< samples of each tabulated gap function
   /// Two candidates of neighbouring nodes are the same one when both their s_wheel and their

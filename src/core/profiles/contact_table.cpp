@@ -27,22 +27,32 @@ struct TableCandidate {
                        ///< sin(yaw) cos(roll))
   Eigen::Vector2d rail_file = Eigen::Vector2d::Zero(), wheel_file = Eigen::Vector2d::Zero();
   double s_rail = 0.0, s_wheel = 0.0;
-  /// Gap function on eta = eta0 + j deta: g_a at Z_a and its slope in Z (empty: the search gave
-  /// none).
+  /// Gap function on eta = eta0 + j deta: each sample's gap, wheel circle radius and contact
+  /// angle at Z_a and their slopes in Z (empty: the search gave none).
   double eta0 = 0.0, deta = 0.0, inv_deta = 0.0;
-  std::vector<float> g_a, g_dz;
+  struct Row {
+    float gap, gap_dz, radius, radius_dz, angle, angle_dz;
+  };
+  std::vector<Row> rows;
 
-  double gapFunction(double eta, double dZ) const {
+  /// The gap function's sample at eta, dZ above Z_a (gap, radius and angle; eta left unset).
+  GapSample gapFunction(double eta, double dZ) const {
     double u = (eta - eta0) * inv_deta;
-    const int last = static_cast<int>(g_a.size()) - 1;
+    const int last = static_cast<int>(rows.size()) - 1;
     int j = static_cast<int>(std::floor(u));
     j = std::min(std::max(j, 0), last - 1);
     u -= j;
-    const double a = g_a[j] + u * (g_a[j + 1] - g_a[j]);
-    const double b = g_dz[j] + u * (g_dz[j + 1] - g_dz[j]);
-    return a + b * dZ;
+    const Row &p = rows[j], &q = rows[j + 1];
+    auto at = [&](float Row::*v, float Row::*dv) {
+      return p.*v + u * (q.*v - p.*v) + (p.*dv + u * (q.*dv - p.*dv)) * dZ;
+    };
+    GapSample s;
+    s.gap = at(&Row::gap, &Row::gap_dz);
+    s.rolling_radius = at(&Row::radius, &Row::radius_dz);
+    s.contact_angle = at(&Row::angle, &Row::angle_dz);
+    return s;
   }
-  double etaEnd() const { return eta0 + deta * (static_cast<int>(g_a.size()) - 1); }
+  double etaEnd() const { return eta0 + deta * (static_cast<int>(rows.size()) - 1); }
 };
 
 struct Node {
@@ -105,15 +115,21 @@ WheelsetPose poseOf(double Y, double Z, double yaw, double roll, double a0, doub
   return p;
 }
 
-double lerp(const std::vector<GapSample>& f, double eta) {
-  // f is sampled uniformly from f.front().eta to f.back().eta.
+/// A gap function (sampled uniformly from f.front().eta to f.back().eta) at eta, linearly.
+GapSample lerp(const std::vector<GapSample>& f, double eta) {
   const double e0 = f.front().eta, e1 = f.back().eta;
   const int last = static_cast<int>(f.size()) - 1;
-  if (e1 <= e0) return f.front().gap;
+  if (!(e1 > e0)) return f.front();
   double u = (eta - e0) / (e1 - e0) * last;
-  int j = std::min(std::max(static_cast<int>(std::floor(u)), 0), last - 1);
+  const int j = std::min(std::max(static_cast<int>(std::floor(u)), 0), last - 1);
   u -= j;
-  return f[j].gap + u * (f[j + 1].gap - f[j].gap);
+  const GapSample &p = f[j], &q = f[j + 1];
+  GapSample s;
+  s.eta = eta;
+  s.gap = p.gap + u * (q.gap - p.gap);
+  s.rolling_radius = p.rolling_radius + u * (q.rolling_radius - p.rolling_radius);
+  s.contact_angle = p.contact_angle + u * (q.contact_angle - p.contact_angle);
+  return s;
 }
 
 }  // namespace
@@ -167,13 +183,6 @@ const ContactCandidate* matchSearched(const ContactCandidate& c,
   return best;
 }
 
-bool sameCandidates(const WheelContactGeometry& a, const WheelContactGeometry& b) {
-  if (a.candidates.size() != b.candidates.size()) return false;
-  for (std::size_t k = 0; k < a.candidates.size(); ++k)
-    if (std::abs(a.candidates[k].s_wheel - b.candidates[k].s_wheel) > 1e-6) return false;
-  return true;
-}
-
 }  // namespace
 
 ContactTable::ContactTable(const ContactSearch& search, const ContactTableOptions& options)
@@ -210,8 +219,13 @@ ContactTable::ContactTable(const ContactSearch& search, const ContactTableOption
 
   // The table's own search: the caller's, with gap functions wide and fine enough to be cut to
   // what the caller's options give at any height up to max_overlap of overlap.
+  // The caller's search, at an overlap o <= max_overlap, reaches o + max(2 max(o, gap_window),
+  // gap_reach) above the gap's minimum; the table's reaches max_overlap beyond that at both
+  // heights, so that the stretch both cover holds the caller's at any height between.
   ContactSearchOptions wide = so;
   wide.gap_window = options_.max_overlap;
+  wide.gap_reach = std::max(so.gap_reach, 2.0 * std::max(options_.max_overlap, so.gap_window)) +
+                   options_.max_overlap;
   wide.gap_samples = options_.gap_samples | 1;
   const ContactSearch table_search(d, wide);
 
@@ -231,8 +245,8 @@ ContactTable::ContactTable(const ContactSearch& search, const ContactTableOption
           // The node at yaw 0 is searched at a yaw small enough that the even quantities do not
           // see it (yaw^2 ~ 1e-12), to give lead's slope.
           const double yaw_run = std::max(yaw, kSmallYaw);
-          auto run = [&](double Z, double dY = 0.0) {
-            return table_search.search(side, poseOf(Y + dY, Z, yaw_run, roll, grid.a0, im.r0));
+          auto run = [&](double Z) {
+            return table_search.search(side, poseOf(Y, Z, yaw_run, roll, grid.a0, im.r0));
           };
           WheelContactGeometry a = run(z_guess);
           if (a.status != ContactSearchStatus::kOk) {
@@ -247,20 +261,7 @@ ContactTable::ContactTable(const ContactSearch& search, const ContactTableOption
             z_a = z_guess;
           }
           const double z_b = z_a - options_.max_overlap;
-          // The second height a nanometre aside: the two must find the same candidates (the height
-          // moves none of them). Where they do not, the search has missed a minimum at one of
-          // the two poses (it can, at isolated poses): the set with the lower smallest gap is
-          // kept and the other searched again another nanometre aside.
-          WheelContactGeometry b = run(z_b, 1e-9);
-          if (a.status == ContactSearchStatus::kOk && b.status == ContactSearchStatus::kOk &&
-              !sameCandidates(a, b)) {
-            const double ga = a.candidates[a.closest].vertical_gap - z_a;
-            const double gb = b.candidates[b.closest].vertical_gap - z_b;
-            if (ga > gb)
-              a = run(z_a, 2e-9);
-            else
-              b = run(z_b, 3e-9);
-          }
+          const WheelContactGeometry b = run(z_b);
           if (a.status != ContactSearchStatus::kOk || b.status != ContactSearchStatus::kOk) {
             node.status = a.status != ContactSearchStatus::kOk ? a.status : b.status;
             node.message = a.status != ContactSearchStatus::kOk ? a.message : b.message;
@@ -295,13 +296,19 @@ ContactTable::ContactTable(const ContactSearch& search, const ContactTableOption
                 t.eta0 = lo;
                 t.deta = (hi - lo) / (m - 1);
                 t.inv_deta = 1.0 / t.deta;
-                t.g_a.resize(m);
-                t.g_dz.resize(m);
+                t.rows.resize(m);
+                const double inv_dz = 1.0 / (z_b - z_a);
                 for (int s = 0; s < m; ++s) {
                   const double eta = lo + s * t.deta;
-                  const double ga = lerp(ca.gap_function, eta), gb = lerp(cb->gap_function, eta);
-                  t.g_a[s] = static_cast<float>(ga);
-                  t.g_dz[s] = static_cast<float>((gb - ga) / (z_b - z_a));
+                  const GapSample sa = lerp(ca.gap_function, eta), sb = lerp(cb->gap_function, eta);
+                  TableCandidate::Row& r = t.rows[s];
+                  r.gap = static_cast<float>(sa.gap);
+                  r.gap_dz = static_cast<float>((sb.gap - sa.gap) * inv_dz);
+                  r.radius = static_cast<float>(sa.rolling_radius);
+                  r.radius_dz =
+                      static_cast<float>((sb.rolling_radius - sa.rolling_radius) * inv_dz);
+                  r.angle = static_cast<float>(sa.contact_angle);
+                  r.angle_dz = static_cast<float>((sb.contact_angle - sa.contact_angle) * inv_dz);
                 }
               }
             }
@@ -341,7 +348,7 @@ std::size_t ContactTable::bytes() const {
     for (const Node& n : g.nodes) {
       b += sizeof(Node) + n.message.capacity() + n.candidates.capacity() * sizeof(TableCandidate);
       for (const TableCandidate& c : n.candidates)
-        b += (c.g_a.capacity() + c.g_dz.capacity()) * sizeof(float);
+        b += c.rows.capacity() * sizeof(TableCandidate::Row);
     }
   return b;
 }
@@ -471,7 +478,7 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
     // gap the stencil gives.
     double sw_gf = 0.0;
     for (int q = 0; q < nm; ++q)
-      if (!m[q]->g_a.empty()) sw_gf += w_linear[q];
+      if (!m[q]->rows.empty()) sw_gf += w_linear[q];
     ContactCandidate c;
     double vg0 = 0.0, gap = 0.0, angle = 0.0, lead = 0.0, axial = 0.0;
     for (int q = 0; q < nm; ++q) {
@@ -514,50 +521,63 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
       };
       std::array<Term, 12> terms;
       int nt = 0;
+      // Nodes of negligible weight (a pose on a node's face, up to rounding) are left out: their
+      // stretch would cut the function short for nothing.
+      double sw_terms = 0.0;
       for (int q = 0; q < nm; ++q)
-        if (!m[q]->g_a.empty() && w_linear[q] > 0.0) {
+        if (!m[q]->rows.empty() && w_linear[q] > 1e-9 * sw_gf) {
           lo = std::max(lo, m[q]->eta0);
           hi = std::min(hi, m[q]->etaEnd());
-          terms[nt++] = {m[q], w_linear[q] / sw_gf, heightAt(q)};
+          terms[nt++] = {m[q], w_linear[q], heightAt(q)};
+          sw_terms += w_linear[q];
         }
+      for (int q = 0; q < nt; ++q) terms[q].w /= sw_terms;
+      // The nodes' weighted sample at eta; the gap shifted by `offset` so that eta = 0 gives
+      // the candidate's gap.
       double offset = 0.0;
-      auto G = [&](double eta) {
-        double v = offset;
-        for (int q = 0; q < nt; ++q) v += terms[q].w * terms[q].t->gapFunction(eta, terms[q].dZ);
+      auto sampleAt = [&](double eta) {
+        GapSample v;
+        v.eta = eta;
+        v.gap = offset;
+        for (int q = 0; q < nt; ++q) {
+          const GapSample f = terms[q].t->gapFunction(eta, terms[q].dZ);
+          v.gap += terms[q].w * f.gap;
+          v.rolling_radius += terms[q].w * f.rolling_radius;
+          v.contact_angle += terms[q].w * f.contact_angle;
+        }
         return v;
       };
+      auto G = [&](double eta) { return sampleAt(eta).gap; };
       if (nt > 0 && lo <= 0.0 && hi >= 0.0 && hi > lo) {
         offset = c.gap - G(0.0);
-        const double level = c.gap + 2.0 * std::max(std::abs(c.gap), so.gap_window);
-        // The edges where the gap reaches the level (or the stretch ends): a march in 24 steps
-        // to the end of the stretch, then bisection.
-        const int coarse = 24;
+        // The search's level and march (contact_search.cpp): steps growing from 0.1 mm by half
+        // each out to where the gap reaches the level, then bisection; the stretch's end (where
+        // the nodes' searches stopped: a ridge, the curves' end, max_gap_extent) else.
+        const double level =
+            c.gap + std::max(2.0 * std::max(std::abs(c.gap), so.gap_window), so.gap_reach);
         double edge[2] = {lo, hi};
         for (int dir = 0; dir < 2; ++dir) {
-          const double end = dir == 0 ? lo : hi;
-          double inside = 0.0;
-          for (int s = 1; s <= coarse; ++s) {
-            double outside = end * s / coarse;
+          const double end = dir == 0 ? lo : hi, sign = dir == 0 ? -1.0 : 1.0;
+          double inside = 0.0, reach = 0.0;
+          for (double step = 1e-4; reach < std::abs(end); step *= 1.5) {
+            reach = std::min(reach + step, std::abs(end));
+            double outside = sign * reach;
             if (G(outside) < level) {
               inside = outside;
               continue;
             }
-            for (int it = 0; it < 12; ++it) {
+            for (int it = 0; it < 24; ++it) {
               const double mid = 0.5 * (inside + outside);
               (G(mid) < level ? inside : outside) = mid;
             }
-            edge[dir] = 0.5 * (inside + outside);
+            edge[dir] = inside;
             break;
           }
         }
         const int ns = so.gap_samples;
         c.gap_function.resize(ns);
         const double de = (edge[1] - edge[0]) / (ns - 1);
-        for (int s = 0; s < ns; ++s) c.gap_function[s] = {edge[0] + s * de, offset};
-        for (int q = 0; q < nt; ++q)
-          for (int s = 0; s < ns; ++s)
-            c.gap_function[s].gap +=
-                terms[q].w * terms[q].t->gapFunction(c.gap_function[s].eta, terms[q].dZ);
+        for (int s = 0; s < ns; ++s) c.gap_function[s] = sampleAt(edge[0] + s * de);
       }
     }
     if (mirror) {

@@ -229,10 +229,15 @@ std::vector<double> Profile::crossings(double y) const {
       out.push_back(pt[k + 1]);
       continue;
     }
-    // Safeguarded Newton on the monotone piece [a, b].
+    // Safeguarded Newton on the monotone piece [a, b]: a Newton step is taken only if it stays
+    // inside the bracket and is less than half the step before it, else the bracket is halved.
+    // Newton alone can bounce between the two ends of a piece whose slope dy/ds is small at
+    // one end (a rail's gauge face turning vertical) and large at the other, shrinking the
+    // bracket by next to nothing, and stop far from the crossing.
     double a = pt[k], b = pt[k + 1];
     double t = a + (b - a) * ya / (ya - yb);
-    for (int it = 0; it < 60; ++it) {
+    double step_before = b - a;
+    for (int it = 0; it < 200 && b - a > 1e-15; ++it) {
       const SmoothingSpline2d::Value v = sp(t);
       const double f = v.f.x() - y;
       if (std::abs(f) < 1e-14) break;
@@ -243,12 +248,10 @@ std::vector<double> Profile::crossings(double y) const {
         b = t;
       }
       double tn = v.df.x() != 0.0 ? t - f / v.df.x() : 0.5 * (a + b);
-      if (!(tn > std::min(a, b) && tn < std::max(a, b))) tn = 0.5 * (a + b);
-      if (std::abs(tn - t) < 1e-15) {
-        t = tn;
-        break;
-      }
+      if (!(tn > a && tn < b) || !(2.0 * std::abs(tn - t) < step_before)) tn = 0.5 * (a + b);
+      step_before = std::abs(tn - t);
       t = tn;
+      if (step_before < 1e-15) break;
     }
     out.push_back(t);
   }
