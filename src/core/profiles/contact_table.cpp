@@ -43,13 +43,11 @@ struct TableCandidate {
     j = std::min(std::max(j, 0), last - 1);
     u -= j;
     const Row &p = rows[j], &q = rows[j + 1];
-    auto at = [&](float Row::*v, float Row::*dv) {
-      return p.*v + u * (q.*v - p.*v) + (p.*dv + u * (q.*dv - p.*dv)) * dZ;
-    };
+    const double v = 1.0 - u;
     GapSample s;
-    s.gap = at(&Row::gap, &Row::gap_dz);
-    s.rolling_radius = at(&Row::radius, &Row::radius_dz);
-    s.contact_angle = at(&Row::angle, &Row::angle_dz);
+    s.gap = v * (p.gap + p.gap_dz * dZ) + u * (q.gap + q.gap_dz * dZ);
+    s.rolling_radius = v * (p.radius + p.radius_dz * dZ) + u * (q.radius + q.radius_dz * dZ);
+    s.contact_angle = v * (p.angle + p.angle_dz * dZ) + u * (q.angle + q.angle_dz * dZ);
     return s;
   }
   double etaEnd() const { return eta0 + deta * (static_cast<int>(rows.size()) - 1); }
@@ -566,7 +564,7 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
               inside = outside;
               continue;
             }
-            for (int it = 0; it < 24; ++it) {
+            for (int it = 0; it < 16; ++it) {
               const double mid = 0.5 * (inside + outside);
               (G(mid) < level ? inside : outside) = mid;
             }
