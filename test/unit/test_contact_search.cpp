@@ -347,6 +347,43 @@ TEST(ContactSearch, ThePoseOfAnIsolatedMissFindsWhatPosesANanometreAsideFind) {
   }
 }
 
+TEST(ContactSearch, EveryCandidateOfALoadedFlangeHasAGapFunction) {
+  // Flange contact about the flank's steepest point (some 1.22 rad), yawed, each pose lowered
+  // until the closest candidate overlaps by 50 um. There the gap function's edge toward the field
+  // side lies where the wheel's curve turns away from the contact plane; a sample close to it,
+  // reached by Newton from the sample before, could fail and drop the whole gap function (97 of
+  // 3950 candidates of a wider sweep), which the normal problem cannot do without.
+  const ContactSearch cs{WheelsetTrackData()};
+  const double a0 = -0.5 * cs.data().gauge, r0 = cs.data().nominal_radius;
+  int candidates = 0;
+  for (double Y = -7.4e-3; Y <= -6.0e-3; Y += 0.1e-3)
+    for (double yaw : {0.02, 0.0245})
+      for (double roll : {-0.005, 0.005}) {
+        WheelsetPose p;
+        p.yaw = yaw;
+        p.roll = roll;
+        p.y = Y - a0 * (std::cos(yaw) * std::cos(roll) - 1.0) - r0 * std::sin(roll) * std::cos(yaw);
+        WheelContactGeometry g = cs.search(WheelSide::kRight, p);
+        ASSERT_EQ(g.status, ContactSearchStatus::kOk) << g.message;
+        p.z -= g.candidates[g.closest].vertical_gap + 50e-6;
+        g = cs.search(WheelSide::kRight, p);
+        ASSERT_EQ(g.status, ContactSearchStatus::kOk) << g.message;
+        for (const ContactCandidate& c : g.candidates) {
+          ++candidates;
+          ASSERT_EQ(static_cast<int>(c.gap_function.size()), cs.options().gap_samples)
+              << "Y " << Y << " yaw " << yaw << " roll " << roll << " angle " << c.contact_angle;
+          // Uniform samples, the candidate's gap at eta = 0 within the stretch.
+          const double de = c.gap_function[1].eta - c.gap_function[0].eta;
+          EXPECT_GT(de, 0.0);
+          EXPECT_NEAR(c.gap_function.back().eta - c.gap_function.front().eta,
+                      de * (c.gap_function.size() - 1), 1e-9);
+          EXPECT_LE(c.gap_function.front().eta, 0.0);
+          EXPECT_GE(c.gap_function.back().eta, 0.0);
+        }
+      }
+  EXPECT_GT(candidates, 60);
+}
+
 TEST(ContactSearch, BadPosesGiveAStatusNeverAThrowOrNaN) {
   const ContactSearch cs{WheelsetTrackData()};
   WheelsetPose p;

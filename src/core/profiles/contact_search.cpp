@@ -418,23 +418,31 @@ WheelContactGeometry ContactSearch::search(WheelSide wheel_side, const WheelsetP
       edge[dir] = inside;
     }
     const int m = options_.gap_samples;
-    sw0 = sw;
-    sr0 = sr;
-    // From the contact outward in each direction, so that every Newton start is close.
     std::vector<GapSample> samples(m);
-    const double de = (edge[1] - edge[0]) / (m - 1);
-    int first_right = 0;
-    while (first_right < m && edge[0] + first_right * de < 0.0) ++first_right;
-    bool ok = true;
-    for (int j = first_right; j < m && ok; ++j) {
-      samples[j].eta = edge[0] + j * de;
-      ok = gapAt(samples[j].eta, &samples[j].gap, &samples[j]);
-    }
-    sw0 = sw;
-    sr0 = sr;
-    for (int j = first_right - 1; j >= 0 && ok; --j) {
-      samples[j].eta = edge[0] + j * de;
-      ok = gapAt(samples[j].eta, &samples[j].gap, &samples[j]);
+    bool ok = false;
+    // From the contact outward in each direction, so that every Newton start is close. Where an
+    // edge lies where a curve is about to turn away from the contact plane (the bisection found
+    // it from other Newton starts), a sample there can fail: that edge is drawn in to the last
+    // sample reached and the function sampled again.
+    for (int attempt = 0; attempt < 4 && !ok; ++attempt) {
+      const double de = (edge[1] - edge[0]) / (m - 1);
+      int first_right = 0;
+      while (first_right < m && edge[0] + first_right * de < 0.0) ++first_right;
+      ok = true;
+      sw0 = sw;
+      sr0 = sr;
+      for (int j = first_right; j < m && ok; ++j) {
+        samples[j].eta = edge[0] + j * de;
+        ok = gapAt(samples[j].eta, &samples[j].gap, &samples[j]);
+        if (!ok) edge[1] = j > first_right ? samples[j - 1].eta : 0.5 * edge[1];
+      }
+      sw0 = sw;
+      sr0 = sr;
+      for (int j = first_right - 1; j >= 0 && ok; --j) {
+        samples[j].eta = edge[0] + j * de;
+        ok = gapAt(samples[j].eta, &samples[j].gap, &samples[j]);
+        if (!ok) edge[0] = j < first_right - 1 ? samples[j + 1].eta : 0.5 * edge[0];
+      }
     }
     if (ok) c.gap_function = std::move(samples);
     out.candidates.push_back(std::move(c));
