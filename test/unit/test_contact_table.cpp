@@ -372,7 +372,8 @@ TEST(ContactTable, AtItsNodesTheSearchItself) {
     EXPECT_NEAR((a.wheel_file - b.wheel_file).norm(), 0.0, 1e-9);
     EXPECT_NEAR(a.rolling_radius, b.rolling_radius, 1e-9);
     ASSERT_EQ(a.gap_function.size(), b.gap_function.size());
-    if (a.gap_function.empty()) continue;  // a steep flank the search gives no gap function
+    if (a.gap_function.empty())
+      continue;  // none from the search (nor the table): nothing to compare
     // The ends: where the gap reaches its level, or where a ridge to the neighbouring candidate
     // stops the curves, whose place moves by some 0.05 mm between the node's two heights (the
     // table takes the shorter).
