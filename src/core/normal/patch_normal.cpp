@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
 #include "core/normal/hertz_approach.hpp"
+#include "core/normal/merge_candidates.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
 
 namespace wheel_rail_contact {
@@ -218,7 +220,7 @@ constexpr double kConcave = 1e-3;
 std::string beyondMessage(const PatchGeometry& g, double d0) {
   if (std::min(g.h.front(), g.h.back()) - g.h0 < d0)
     return "the patch reaches the ridge to a neighbouring candidate, where its gap function ends: "
-           "the two patches merge (ContactSearchOptions::min_ridge keeps them apart)";
+           "the two patches merge (solveWheelLoad joins them once the approach crosses the ridge)";
   return "the patch reaches the end of the gap function: the approach is deeper than the contact "
          "search sampled (ContactSearchOptions::gap_reach)";
 }
@@ -457,20 +459,55 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
       return failed(NormalStatus::kInvalidInput, "a candidate's normal does not point up");
     touch = std::min(touch, c.gap / c.normal.y());
   }
+  // The vertical approach beyond which the wheel overlaps the rail across the ridge between
+  // candidates i and i + 1 (infinite where their gap functions do not meet at a ridge).
+  const int nc = static_cast<int>(geo.candidates.size());
+  std::vector<double> ridge(nc - 1);
+  for (int i = 0; i + 1 < nc; ++i)
+    ridge[i] = ridgeApproach(geo.candidates[i], geo.candidates[i + 1]);
+  std::map<std::pair<int, int>, ContactCandidate> merged;  // by (first, last), built once
   // Vertical force at a vertical approach; false on a patch's failure (its status in *bad).
   NormalStatus bad = NormalStatus::kOk;
   std::string bad_why;
   auto force = [&](double dv, double* fz) {
     *fz = 0.0;
-    for (std::size_t i = 0; i < geo.candidates.size(); ++i) {
-      const ContactCandidate& c = geo.candidates[i];
-      out.patches[i] = solvePatchNormal(c, dv * c.normal.y() - c.gap, G, nu, o);
-      if (out.patches[i].status != NormalStatus::kOk) {
-        bad = out.patches[i].status;
-        bad_why = "candidate " + std::to_string(i) + ": " + out.patches[i].message;
+    for (int i = 0; i < nc;) {
+      int last = i;  // the candidates [i, last] joined across ridges below the approach
+      while (last + 1 < nc && dv > ridge[last]) ++last;
+      int p = i;  // the one with the smallest vertical gap carries the merged patch
+      for (int k = i + 1; k <= last; ++k)
+        if (geo.candidates[k].vertical_gap < geo.candidates[p].vertical_gap) p = k;
+      const ContactCandidate* c = &geo.candidates[p];
+      if (last > i) {
+        auto it = merged.find({i, last});
+        if (it == merged.end())
+          it = merged.emplace(std::make_pair(i, last), mergeCandidates(geo.candidates, i, last, p))
+                   .first;
+        c = &it->second;
+      }
+      NormalPatch& patch = out.patches[p];
+      patch = solvePatchNormal(*c, dv * c->normal.y() - c->gap, G, nu, o);
+      if (patch.status != NormalStatus::kOk) {
+        bad = patch.status;
+        bad_why = "candidate " + std::to_string(p) +
+                  (last > i ? " (merged with its neighbours)" : "") + ": " + patch.message;
         return false;
       }
-      *fz += out.patches[i].fn * c.normal.y();
+      if (last > i) {
+        std::string note = "merged with candidates " + std::to_string(i) + " to " +
+                           std::to_string(last) + " across the ridge between them";
+        patch.message = patch.message.empty() ? note : note + "; " + patch.message;
+        for (int k = i; k <= last; ++k) {
+          if (k == p) continue;
+          const ContactCandidate& ck = geo.candidates[k];
+          out.patches[k] = NormalPatch{};
+          out.patches[k].approach = dv * ck.normal.y() - ck.gap;
+          out.patches[k].merged_into = p;
+          out.patches[k].message = "merged into candidate " + std::to_string(p) + "'s patch";
+        }
+      }
+      *fz += patch.fn * c->normal.y();
+      i = last + 1;
     }
     return true;
   };
