@@ -320,6 +320,25 @@ TEST(PatchNormal, A22CentredTreadsMergeAcrossTheirRidge) {
   EXPECT_NEAR(patch.eta_max, at_load.eta_max, 3e-4);
 }
 
+TEST(PatchNormal, A22CentredStateSolvesAtEveryLoad) {
+  // Light loads keep the two tread candidates apart, heavier ones merge them: the load iteration
+  // needs the force continuous across the merge (a patch that jumped to the ridge would leave
+  // loads no approach carries). Every load from 0.5 to 25 kN is carried.
+  const WheelContactGeometry geo = atFirstTouch(WheelSide::kRight, a22Right(0.0));
+  ASSERT_EQ(geo.candidates.size(), 2u);
+  int merged = 0, apart = 0;
+  for (double load = 500.0; load < 2.5e4; load *= 1.03) {
+    const WheelNormal w = solveWheelLoad(geo, load, kG, kNu);
+    ASSERT_EQ(w.status, NormalStatus::kOk) << load << " " << w.message;
+    double fz = 0.0;
+    for (std::size_t i = 0; i < 2; ++i) fz += w.patches[i].fn * geo.candidates[i].normal.y();
+    EXPECT_NEAR(fz, load, 1e-6 * load);
+    (w.patches[0].merged_into >= 0 || w.patches[1].merged_into >= 0 ? merged : apart) += 1;
+  }
+  EXPECT_GT(merged, 0);
+  EXPECT_GT(apart, 0);
+}
+
 TEST(PatchNormal, BadInputGivesAStatusAndZeroForces) {
   const WheelContactGeometry geo = atFirstTouch(WheelSide::kRight, a22Right(2.0));
   for (double load : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {

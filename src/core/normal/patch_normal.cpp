@@ -480,30 +480,32 @@ bool lumpStrips(const PatchGeometry& g, double approach, bool ridge_lo, bool rid
     const double u = (e - ymid) / bb;
     return std::max(0.0, ex - (ex - ey) * u * u) - (g.gap(e) - g.h0);
   };
+  // The lump's extent: out to its outermost sample in contact, the strips between at zero where
+  // the penetration dips below zero. Stopping at the first such dip instead would make the patch
+  // jump to the ridge when the dip fills, and with it the force the load iteration needs
+  // continuous in the approach.
   auto edge = [&](int dir, double* at) {
-    double inner = g.eta0;
-    for (int i = dir > 0 ? g.imin + 1 : g.imin - 1;; i += dir) {
-      if (i < 0 || i >= m) {
-        *at = dir < 0 ? g.eta.front() : g.eta.back();
-        return dir < 0 ? ridge_lo : ridge_hi;
-      }
-      if (penetration(g.eta[i]) <= 0.0) {
-        double outer = g.eta[i], p_in = penetration(inner), p_out = penetration(outer);
-        for (int it = 0; it < 16; ++it) {
-          const double mid = 0.5 * (inner + outer), p = penetration(mid);
-          if (p > 0.0) {
-            inner = mid;
-            p_in = p;
-          } else {
-            outer = mid;
-            p_out = p;
-          }
-        }
-        *at = inner + (outer - inner) * p_in / (p_in - p_out);
-        return true;
-      }
-      inner = g.eta[i];
+    int last = g.imin;
+    for (int i = g.imin + dir; i >= 0 && i < m; i += dir)
+      if (penetration(g.eta[i]) > 0.0) last = i;
+    if (last + dir < 0 || last + dir >= m) {
+      *at = g.eta[last];
+      return dir < 0 ? ridge_lo : ridge_hi;
     }
+    double inner = last == g.imin ? g.eta0 : g.eta[last], outer = g.eta[last + dir];
+    double p_in = penetration(inner), p_out = penetration(outer);
+    for (int it = 0; it < 16; ++it) {
+      const double mid = 0.5 * (inner + outer), p = penetration(mid);
+      if (p > 0.0) {
+        inner = mid;
+        p_in = p;
+      } else {
+        outer = mid;
+        p_out = p;
+      }
+    }
+    *at = inner + (outer - inner) * p_in / (p_in - p_out);
+    return true;
   };
   if (!edge(-1, &k->lo) || !edge(+1, &k->hi)) return false;
   k->w = (k->hi - k->lo) / n;
