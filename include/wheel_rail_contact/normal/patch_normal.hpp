@@ -125,8 +125,11 @@ struct WheelNormal {
 /// search cuts at that ridge, are joined into the contact plane of the one with the smallest
 /// vertical gap (its samples kept, the neighbour's moved by the small angle between the normals)
 /// and solved there as one patch, reported at that candidate (message "merged ..."); the others
-/// get fn = 0 and merged_into. Patches not joined across a ridge are solved as by
-/// solvePatchNormal.
+/// get fn = 0 and merged_into. The merged patch is solved lump by lump: each lump (its part of
+/// the gap between the ridges) by the strips above from its own gap at the shared approach, up to
+/// the ridge, one amplitude per lump such that the displacement at every lump's deepest point,
+/// from all lumps' strips, equals the interpenetration there. Patches not joined across a ridge
+/// are solved as by solvePatchNormal.
 WheelNormal solveWheelLoad(const WheelContactGeometry& geometry, double vertical_load, double G,
                            double nu, const NormalOptions& options = {});
 
