@@ -82,6 +82,9 @@ struct NormalPatch {
   double eta_min = 0.0, eta_max = 0.0;  ///< lateral extent [m]
   double area = 0.0;                    ///< contact area [m^2]
   std::vector<NormalStrip> strips;      ///< from eta_min to eta_max
+  /// solveWheelLoad: the candidate whose patch this candidate's has merged into (this one's fn
+  /// 0), -1 if none. The merged patch lies in that candidate's contact plane.
+  int merged_into = -1;
 };
 
 struct NormalOptions {
@@ -115,6 +118,18 @@ struct WheelNormal {
 /// functions describe the profiles about the searched pose: search near first touch. Never
 /// throws; bad input (load not finite or <= 0, no candidate, a patch beyond its gap function)
 /// gives a status and message with zero forces.
+///
+/// Candidates whose separating ridge lies below the approach form one patch: where the rigid
+/// wheel at vertical approach dv overlaps the rail across the ridge between neighbouring
+/// candidates (dv n_z > the gap at the ridge, from either side), their gap functions, which the
+/// search cuts at that ridge, are joined into the contact plane of the one with the smallest
+/// vertical gap (its samples kept, the neighbour's moved by the small angle between the normals)
+/// and solved there as one patch, reported at that candidate (message "merged ..."); the others
+/// get fn = 0 and merged_into. The merged patch is solved lump by lump: each lump (its part of
+/// the gap between the ridges) by the strips above from its own gap at the shared approach, up to
+/// the ridge, one amplitude per lump such that the displacement at every lump's deepest point,
+/// from all lumps' strips, equals the interpenetration there. Patches not joined across a ridge
+/// are solved as by solvePatchNormal.
 WheelNormal solveWheelLoad(const WheelContactGeometry& geometry, double vertical_load, double G,
                            double nu, const NormalOptions& options = {});
 

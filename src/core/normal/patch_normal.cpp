@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
 #include "core/normal/hertz_approach.hpp"
+#include "core/normal/merge_candidates.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
 
 namespace wheel_rail_contact {
@@ -218,7 +220,7 @@ constexpr double kConcave = 1e-3;
 std::string beyondMessage(const PatchGeometry& g, double d0) {
   if (std::min(g.h.front(), g.h.back()) - g.h0 < d0)
     return "the patch reaches the ridge to a neighbouring candidate, where its gap function ends: "
-           "the two patches merge (ContactSearchOptions::min_ridge keeps them apart)";
+           "the two patches merge (solveWheelLoad joins them once the approach crosses the ridge)";
   return "the patch reaches the end of the gap function: the approach is deeper than the contact "
          "search sampled (ContactSearchOptions::gap_reach)";
 }
@@ -428,6 +430,221 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   return out;
 }
 
+namespace {
+
+/// One lump of a merged patch: the strips of Kik-Piotrowski's method over its own part of the
+/// gap function (between the ridges that bound it), at the shared approach.
+struct Lump {
+  double eta0 = 0.0, d0 = 0.0;  ///< its deepest point and interpenetration there
+  double lo = 0.0, hi = 0.0, w = 0.0;
+  std::vector<double> L;  ///< strips' half-lengths
+  double P = 0.0;         ///< amplitude: p = P sqrt(L^2 - x^2)
+};
+
+/// The strips of one lump: KPEC's equivalent ellipse and penetration factor from the lump's own
+/// gap, the patch stopping at a ridge that bounds the lump (where the neighbouring lump takes
+/// over) or where the penetration ends. False if it reaches the end of the gap function.
+bool lumpStrips(const PatchGeometry& g, double approach, bool ridge_lo, bool ridge_hi, double Estar,
+                int n, Lump* k) {
+  k->eta0 = g.eta0;
+  k->d0 = approach - g.h0;
+  if (!(k->d0 > 0.0)) return true;  // not in contact
+  const double A0 = g.curvature(g.eta0);
+  if (!(A0 > 0.0)) return false;
+  const double d0 = k->d0;
+  const int m = static_cast<int>(g.eta.size());
+  // Extent at half the interpenetration, stopping at a bounding ridge.
+  auto halfEdge = [&](int dir, double* at) {
+    int i = g.imin;
+    while (i + dir >= 0 && i + dir < m && g.h[i + dir] - g.h0 < 0.5 * d0) i += dir;
+    if (i + dir < 0 || i + dir >= m) {
+      *at = g.eta[i];
+      return dir < 0 ? ridge_lo : ridge_hi;
+    }
+    const double u = g.h[i + dir] - g.h0 - 0.5 * d0, v = g.h[i] - g.h0 - 0.5 * d0;
+    *at = g.eta[i + dir] + (g.eta[i] - g.eta[i + dir]) * u / (u - v);
+    return true;
+  };
+  double ys = 0.0, ye = 0.0;
+  if (!halfEdge(-1, &ys) || !halfEdge(+1, &ye)) return false;
+  ys = std::min(ys, g.eta0);
+  ye = std::max(ye, g.eta0);
+  const double spacing = g.eta[1] - g.eta[0];
+  const double ymid = 0.5 * (ys + ye);
+  const double half = std::max(0.5 * (ye - ys), 1e-3 * spacing);
+  const double B = std::max(0.5 * d0 / (half * half), 1e-3 * A0);
+  const HertzApproach hz = hertzFromApproach(A0, B, d0, Estar);
+  const double bb = std::max(hz.b, 1.1 * std::abs(g.eta0 - ymid));
+  const double ex = A0 * hz.a * hz.a, ey = B * bb * bb;
+  auto penetration = [&](double e) {
+    const double u = (e - ymid) / bb;
+    return std::max(0.0, ex - (ex - ey) * u * u) - (g.gap(e) - g.h0);
+  };
+  // The lump's extent: out to its outermost sample in contact, the strips between at zero where
+  // the penetration dips below zero. Stopping at the first such dip instead would make the patch
+  // jump to the ridge when the dip fills, and with it the force the load iteration needs
+  // continuous in the approach.
+  auto edge = [&](int dir, double* at) {
+    int last = g.imin;
+    for (int i = g.imin + dir; i >= 0 && i < m; i += dir)
+      if (penetration(g.eta[i]) > 0.0) last = i;
+    if (last + dir < 0 || last + dir >= m) {
+      *at = g.eta[last];
+      return dir < 0 ? ridge_lo : ridge_hi;
+    }
+    double inner = last == g.imin ? g.eta0 : g.eta[last], outer = g.eta[last + dir];
+    double p_in = penetration(inner), p_out = penetration(outer);
+    for (int it = 0; it < 16; ++it) {
+      const double mid = 0.5 * (inner + outer), p = penetration(mid);
+      if (p > 0.0) {
+        inner = mid;
+        p_in = p;
+      } else {
+        outer = mid;
+        p_out = p;
+      }
+    }
+    *at = inner + (outer - inner) * p_in / (p_in - p_out);
+    return true;
+  };
+  if (!edge(-1, &k->lo) || !edge(+1, &k->hi)) return false;
+  k->w = (k->hi - k->lo) / n;
+  k->L.assign(n, 0.0);
+  for (int j = 0; j < n; ++j) {
+    const double e = k->lo + (j + 0.5) * k->w;
+    const double pen = penetration(e), Ae = g.curvature(e);
+    k->L[j] = pen > 0.0 && Ae > 0.0 ? std::sqrt(pen / Ae) : 0.0;
+  }
+  return true;
+}
+
+/// Displacement at lateral position e (x = 0) per unit amplitude of lump k's strips, times
+/// pi E*: exact in eta for the strips next to e, midpoint further out.
+double lumpInfluence(const Lump& k, double e) {
+  double s = 0.0;
+  const int n = static_cast<int>(k.L.size());
+  for (int j = 0; j < n; ++j) {
+    const double y1 = k.lo + j * k.w - e, y2 = y1 + k.w;
+    if (y2 > -3.0 * k.w && y1 < 3.0 * k.w) {
+      if (y1 < 0.0 && y2 > 0.0)
+        s += centralStrip(k.L[j], -y1) + centralStrip(k.L[j], y2);
+      else
+        s += std::abs(centralStrip(k.L[j], std::max(std::abs(y1), std::abs(y2))) -
+                      centralStrip(k.L[j], std::min(std::abs(y1), std::abs(y2))));
+    } else {
+      s += k.w * stripLine(k.L[j], 0.5 * (y1 + y2));
+    }
+  }
+  return s;
+}
+
+/// A merged patch (candidates joined across ridges at `ridges`, eta in the merged candidate's
+/// plane) lump by lump: each lump's strips by KPEC on its own gap at the shared approach, the
+/// amplitudes such that the displacement at every lump's deepest point, from all lumps' strips,
+/// equals its interpenetration there. A lump whose amplitude comes out negative is lifted off.
+}  // namespace
+
+NormalPatch solveMergedPatch(const ContactCandidate& c, const std::vector<double>& ridges,
+                             double approach, double G, double nu, const NormalOptions& o) {
+  NormalPatch out;
+  out.approach = approach;
+  out.method = NormalMethod::kNonHertzian;
+  const double Estar = contactModulus(G, nu);
+  // The lumps' parts of the gap function: split at the sample nearest each ridge.
+  std::vector<int> cut{0};
+  for (double r : ridges) {
+    int best = cut.back();
+    for (int i = cut.back(); i < static_cast<int>(c.gap_function.size()); ++i)
+      if (std::abs(c.gap_function[i].eta - r) < std::abs(c.gap_function[best].eta - r)) best = i;
+    cut.push_back(best);
+  }
+  cut.push_back(static_cast<int>(c.gap_function.size()) - 1);
+  const int nl = static_cast<int>(cut.size()) - 1;
+  std::vector<Lump> lumps(nl);
+  std::vector<ContactCandidate> parts(nl, c);
+  std::vector<PatchGeometry> geos(nl);
+  for (int k = 0; k < nl; ++k) {
+    parts[k].gap_function.assign(c.gap_function.begin() + cut[k],
+                                 c.gap_function.begin() + cut[k + 1] + 1);
+    std::string why;
+    if (!buildGeometry(parts[k], &geos[k], &why))
+      return fail(NormalStatus::kNoGapFunction, why, approach);
+    if (!lumpStrips(geos[k], approach, k > 0, k + 1 < nl, Estar, o.strips, &lumps[k]))
+      return fail(NormalStatus::kBeyondGapFunction,
+                  "the merged patch reaches the end of the gap function", approach);
+  }
+  std::vector<bool> on(nl);
+  for (int k = 0; k < nl; ++k) on[k] = lumps[k].d0 > 0.0 && !lumps[k].L.empty();
+  // Amplitudes: sum_l M_kl P_l = pi E* d0_k over the lumps in contact (Gauss, a few unknowns).
+  for (int pass = 0; pass < nl; ++pass) {
+    std::vector<int> idx;
+    for (int k = 0; k < nl; ++k)
+      if (on[k]) idx.push_back(k);
+    const int m = static_cast<int>(idx.size());
+    if (m == 0) break;
+    std::vector<std::vector<double>> M(m, std::vector<double>(m + 1));
+    for (int a = 0; a < m; ++a) {
+      for (int b = 0; b < m; ++b) M[a][b] = lumpInfluence(lumps[idx[b]], lumps[idx[a]].eta0);
+      M[a][m] = kPi * Estar * lumps[idx[a]].d0;
+    }
+    for (int a = 0; a < m; ++a)
+      for (int r = a + 1; r < m; ++r) {
+        const double f = M[r][a] / M[a][a];
+        for (int b = a; b <= m; ++b) M[r][b] -= f * M[a][b];
+      }
+    std::vector<double> P(m);
+    for (int a = m - 1; a >= 0; --a) {
+      double s = M[a][m];
+      for (int b = a + 1; b < m; ++b) s -= M[a][b] * P[b];
+      P[a] = s / M[a][a];
+    }
+    bool lifted = false;
+    for (int a = 0; a < m; ++a) {
+      lumps[idx[a]].P = P[a];
+      if (!(P[a] > 0.0)) {
+        on[idx[a]] = false;
+        lumps[idx[a]].P = 0.0;
+        lifted = true;
+      }
+    }
+    if (!lifted) break;
+  }
+  double fn = 0.0, area = 0.0, pmax = 0.0;
+  out.eta_min = std::numeric_limits<double>::infinity();
+  out.eta_max = -out.eta_min;
+  for (int k = 0; k < nl; ++k) {
+    if (!on[k]) continue;
+    const Lump& l = lumps[k];
+    out.eta_min = std::min(out.eta_min, l.lo);
+    out.eta_max = std::max(out.eta_max, l.hi);
+    for (std::size_t j = 0; j < l.L.size(); ++j) {
+      NormalStrip s;
+      s.eta = l.lo + (j + 0.5) * l.w;
+      s.width = l.w;
+      s.x_lead = l.L[j];
+      s.x_trail = -l.L[j];
+      s.pmax = l.P * l.L[j];
+      s.force = 0.5 * kPi * l.P * l.L[j] * l.L[j] * l.w;
+      fn += s.force;
+      area += 2.0 * l.L[j] * l.w;
+      pmax = std::max(pmax, s.pmax);
+      out.strips.push_back(s);
+    }
+  }
+  if (out.strips.empty()) {
+    out.eta_min = out.eta_max = out.eta_centre = geos[0].eta0;
+    out.message = "not in contact at this approach";
+    return out;
+  }
+  out.fn = fn;
+  out.pmax = pmax;
+  out.area = area;
+  out.eta_centre = 0.5 * (out.eta_min + out.eta_max);
+  out.b = 0.5 * (out.eta_max - out.eta_min);
+  out.a = out.b > 0.0 ? area / (kPi * out.b) : 0.0;
+  return out;
+}
+
 WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double G, double nu,
                            const NormalOptions& o) {
   WheelNormal out;
@@ -457,20 +674,63 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
       return failed(NormalStatus::kInvalidInput, "a candidate's normal does not point up");
     touch = std::min(touch, c.gap / c.normal.y());
   }
+  // The vertical approach beyond which the wheel overlaps the rail across the ridge between
+  // candidates i and i + 1 (infinite where their gap functions do not meet at a ridge).
+  const int nc = static_cast<int>(geo.candidates.size());
+  std::vector<double> ridge(nc - 1);
+  for (int i = 0; i + 1 < nc; ++i)
+    ridge[i] = ridgeApproach(geo.candidates[i], geo.candidates[i + 1]);
+  struct Merged {
+    ContactCandidate candidate;
+    std::vector<double> ridges;
+  };
+  std::map<std::pair<int, int>, Merged> merged;  // by (first, last), built once
   // Vertical force at a vertical approach; false on a patch's failure (its status in *bad).
   NormalStatus bad = NormalStatus::kOk;
   std::string bad_why;
   auto force = [&](double dv, double* fz) {
     *fz = 0.0;
-    for (std::size_t i = 0; i < geo.candidates.size(); ++i) {
-      const ContactCandidate& c = geo.candidates[i];
-      out.patches[i] = solvePatchNormal(c, dv * c.normal.y() - c.gap, G, nu, o);
-      if (out.patches[i].status != NormalStatus::kOk) {
-        bad = out.patches[i].status;
-        bad_why = "candidate " + std::to_string(i) + ": " + out.patches[i].message;
+    for (int i = 0; i < nc;) {
+      int last = i;  // the candidates [i, last] joined across ridges below the approach
+      while (last + 1 < nc && dv > ridge[last]) ++last;
+      int p = i;  // the one with the smallest vertical gap carries the merged patch
+      for (int k = i + 1; k <= last; ++k)
+        if (geo.candidates[k].vertical_gap < geo.candidates[p].vertical_gap) p = k;
+      const ContactCandidate* c = &geo.candidates[p];
+      NormalPatch& patch = out.patches[p];
+      if (last > i) {
+        auto it = merged.find({i, last});
+        if (it == merged.end()) {
+          Merged m;
+          m.candidate = mergeCandidates(geo.candidates, i, last, p, &m.ridges);
+          it = merged.emplace(std::make_pair(i, last), std::move(m)).first;
+        }
+        c = &it->second.candidate;
+        patch = solveMergedPatch(*c, it->second.ridges, dv * c->normal.y() - c->gap, G, nu, o);
+      } else {
+        patch = solvePatchNormal(*c, dv * c->normal.y() - c->gap, G, nu, o);
+      }
+      if (patch.status != NormalStatus::kOk) {
+        bad = patch.status;
+        bad_why = "candidate " + std::to_string(p) +
+                  (last > i ? " (merged with its neighbours)" : "") + ": " + patch.message;
         return false;
       }
-      *fz += out.patches[i].fn * c.normal.y();
+      if (last > i) {
+        std::string note = "merged with candidates " + std::to_string(i) + " to " +
+                           std::to_string(last) + " across the ridge between them";
+        patch.message = patch.message.empty() ? note : note + "; " + patch.message;
+        for (int k = i; k <= last; ++k) {
+          if (k == p) continue;
+          const ContactCandidate& ck = geo.candidates[k];
+          out.patches[k] = NormalPatch{};
+          out.patches[k].approach = dv * ck.normal.y() - ck.gap;
+          out.patches[k].merged_into = p;
+          out.patches[k].message = "merged into candidate " + std::to_string(p) + "'s patch";
+        }
+      }
+      *fz += patch.fn * c->normal.y();
+      i = last + 1;
     }
     return true;
   };

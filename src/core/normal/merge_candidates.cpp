@@ -1,0 +1,125 @@
+#include "core/normal/merge_candidates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace wheel_rail_contact {
+
+namespace {
+
+/// The lateral direction of a candidate's contact plane, toward the track centre (the search's
+/// convention): the normal turned by a quarter, its sign from the wheel's side (the right wheel's
+/// point has y < 0, its track centre lies toward +y).
+Eigen::Vector2d lateral(const ContactCandidate& c) {
+  const double sigma = c.point.y() < 0.0 ? 1.0 : -1.0;
+  return sigma * Eigen::Vector2d(c.normal.y(), -c.normal.x());
+}
+
+/// Sample `s` of candidate `k` in candidate `p`'s contact plane.
+GapSample moved(const GapSample& s, const ContactCandidate& k, const ContactCandidate& p) {
+  const Eigen::Vector2d ok(k.point.y(), k.point.z()), op(p.point.y(), p.point.z());
+  GapSample m = s;
+  m.eta = (ok + s.eta * lateral(k) - op).dot(lateral(p));
+  m.gap = s.gap / k.normal.normalized().dot(p.normal.normalized());
+  return m;
+}
+
+/// A gap function the merge can take: at least five samples (as the normal problem needs),
+/// finite, strictly increasing in eta at one spacing, the wheel's radius > 0.
+bool usable(const std::vector<GapSample>& f) {
+  if (f.size() < 5) return false;
+  const double de = f[1].eta - f[0].eta;
+  if (!(de > 0.0) || !std::isfinite(de)) return false;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const GapSample& s = f[i];
+    if (!std::isfinite(s.eta) || !std::isfinite(s.gap) || !std::isfinite(s.contact_angle) ||
+        !(s.rolling_radius > 0.0) || !std::isfinite(s.rolling_radius))
+      return false;
+    if (i > 0 && !(std::abs(s.eta - f[i - 1].eta - de) <= 1e-6 * de)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+double ridgeApproach(const ContactCandidate& a, const ContactCandidate& b) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto& fa = a.gap_function;
+  const auto& fb = b.gap_function;
+  if (fa.size() < 2 || fb.size() < 2 || !(a.normal.y() > 0.0) || !(b.normal.y() > 0.0)) return inf;
+  const double spacing =
+      std::max(fa[1].eta - fa[0].eta, fb[1].eta - fb[0].eta);  // both uniform, > 0
+  const GapSample b_first = moved(fb.front(), b, a);
+  if (!(std::abs(b_first.eta - fa.back().eta) <= 2.0 * spacing)) return inf;
+  return std::min(fa.back().gap / a.normal.y(), fb.front().gap / b.normal.y());
+}
+
+ContactCandidate mergeCandidates(const std::vector<ContactCandidate>& cs, int first, int last,
+                                 int primary, std::vector<double>* ridges) {
+  const ContactCandidate& p = cs[primary];
+  ContactCandidate out = p;
+  if (ridges) {
+    ridges->clear();
+    for (int k = first + 1; k <= last; ++k)
+      ridges->push_back(moved(cs[k].gap_function.front(), cs[k], p).eta);
+  }
+  // Every sample in the primary's plane, in order of eta; the others' samples only beyond the
+  // primary's own range (the ridge cuts them apart, so at most an end sample overlaps).
+  const auto& own = p.gap_function;
+  std::vector<GapSample> all(own.begin(), own.end());
+  for (int k = first; k <= last; ++k) {
+    if (k == primary) continue;
+    for (const GapSample& s : cs[k].gap_function) {
+      const GapSample m = moved(s, cs[k], p);
+      if (m.eta < own.front().eta || m.eta > own.back().eta) all.push_back(m);
+    }
+  }
+  std::sort(all.begin(), all.end(),
+            [](const GapSample& u, const GapSample& v) { return u.eta < v.eta; });
+  // Four-point (Lagrange) cubic through the samples nearest e; the wheel's radius and angle
+  // linearly between the two that bracket it.
+  auto at = [&](double e) {
+    const int n = static_cast<int>(all.size());
+    int i =
+        static_cast<int>(std::lower_bound(all.begin(), all.end(), e,
+                                          [](const GapSample& s, double v) { return s.eta < v; }) -
+                         all.begin());
+    i = std::clamp(i, 1, n - 1);  // all[i - 1].eta < e <= all[i].eta
+    GapSample s;
+    s.eta = e;
+    const GapSample &l = all[i - 1], &r = all[i];
+    const double t = std::clamp((e - l.eta) / (r.eta - l.eta), 0.0, 1.0);
+    s.rolling_radius = l.rolling_radius + t * (r.rolling_radius - l.rolling_radius);
+    s.contact_angle = l.contact_angle + t * (r.contact_angle - l.contact_angle);
+    const int j0 = std::clamp(i - 2, 0, std::max(0, n - 4));
+    const int j1 = std::min(n, j0 + 4);
+    s.gap = 0.0;
+    for (int j = j0; j < j1; ++j) {
+      double w = 1.0;
+      for (int q = j0; q < j1; ++q)
+        if (q != j) w *= (e - all[q].eta) / (all[j].eta - all[q].eta);
+      s.gap += w * all[j].gap;
+    }
+    return s;
+  };
+  // Drop samples closer together than a tenth of the primary's spacing (an end that meets its
+  // neighbour's), which would make the interpolation ill-conditioned.
+  const double de = own[1].eta - own[0].eta;
+  {
+    std::vector<GapSample> kept;
+    for (const GapSample& s : all)
+      if (kept.empty() || s.eta - kept.back().eta > 0.1 * de) kept.push_back(s);
+    all.swap(kept);
+  }
+  std::vector<GapSample> merged;
+  const int below = static_cast<int>(std::floor((own.front().eta - all.front().eta) / de));
+  for (int j = below; j >= 1; --j) merged.push_back(at(own.front().eta - j * de));
+  merged.insert(merged.end(), own.begin(), own.end());
+  const int above = static_cast<int>(std::floor((all.back().eta - own.back().eta) / de));
+  for (int j = 1; j <= above; ++j) merged.push_back(at(own.back().eta + j * de));
+  out.gap_function = std::move(merged);
+  return out;
+}
+
+}  // namespace wheel_rail_contact
