@@ -58,32 +58,54 @@ WheelSide sideOf(const std::string& s, const std::string& path) {
   throw std::runtime_error(path + ": wheel '" + s + "' is neither left nor right");
 }
 
-/// Linear interpolation of the gap function's samples at eta; false outside them.
-bool gapAt(const std::vector<GapSample>& f, double eta, GapSample* out) {
-  if (f.size() < 2 || eta < f.front().eta || eta > f.back().eta) return false;
-  auto it = std::lower_bound(f.begin(), f.end(), eta,
-                             [](const GapSample& s, double e) { return s.eta < e; });
-  if (it == f.begin()) ++it;
-  const GapSample& a = *(it - 1);
-  const GapSample& b = *it;
-  const double t = (eta - a.eta) / (b.eta - a.eta);
-  out->eta = eta;
-  out->gap = a.gap + t * (b.gap - a.gap);
-  out->rolling_radius = a.rolling_radius + t * (b.rolling_radius - a.rolling_radius);
-  out->contact_angle = a.contact_angle + t * (b.contact_angle - a.contact_angle);
-  return true;
-}
+/// The gap function between its samples: the gap by a natural cubic spline, the wheel's radius and
+/// angle linearly. Linear interpolation of the gap itself would put a kink at every sample, and a
+/// kink of the gap is a concentrated curvature under which the exact pressure peaks, more sharply
+/// the finer the grid: a fine exact grid would then resolve the sampling, not the profiles.
+class GapInterpolant {
+ public:
+  explicit GapInterpolant(const std::vector<GapSample>& f) : f_(f), m_(f.size(), 0.0) {
+    const size_t n = f.size();
+    if (n < 3) return;
+    // Second derivatives m_i, m_0 = m_{n-1} = 0: the tridiagonal system by the Thomas algorithm.
+    std::vector<double> c(n, 0.0), d(n, 0.0);
+    for (size_t i = 1; i + 1 < n; ++i) {
+      const double h0 = f[i].eta - f[i - 1].eta, h1 = f[i + 1].eta - f[i].eta;
+      const double rhs = 6.0 * ((f[i + 1].gap - f[i].gap) / h1 - (f[i].gap - f[i - 1].gap) / h0);
+      const double diag = 2.0 * (h0 + h1) - h0 * c[i - 1];
+      c[i] = h1 / diag;
+      d[i] = (rhs - h0 * d[i - 1]) / diag;
+    }
+    for (size_t i = n - 2; i >= 1; --i) m_[i] = d[i] - c[i] * m_[i + 1];
+  }
 
-/// The gap at eta = 0 (the candidate's point, where patch_normal.hpp measures first touch).
-double gapAtCentre(const ContactCandidate& c) {
-  GapSample s;
-  return gapAt(c.gap_function, 0.0, &s) ? s.gap : c.gap;
-}
+  /// False outside the samples.
+  bool at(double eta, GapSample* out) const {
+    if (f_.size() < 2 || eta < f_.front().eta || eta > f_.back().eta) return false;
+    auto it = std::lower_bound(f_.begin(), f_.end(), eta,
+                               [](const GapSample& s, double e) { return s.eta < e; });
+    if (it == f_.begin()) ++it;
+    const size_t i = static_cast<size_t>(it - f_.begin());
+    const GapSample& a = f_[i - 1];
+    const GapSample& b = f_[i];
+    const double h = b.eta - a.eta, t = (eta - a.eta) / h, u = 1.0 - t;
+    out->eta = eta;
+    out->gap = u * a.gap + t * b.gap +
+               h * h / 6.0 * ((u * u * u - u) * m_[i - 1] + (t * t * t - t) * m_[i]);
+    out->rolling_radius = u * a.rolling_radius + t * b.rolling_radius;
+    out->contact_angle = u * a.contact_angle + t * b.contact_angle;
+    return true;
+  }
+
+ private:
+  const std::vector<GapSample>& f_;
+  std::vector<double> m_;
+};
 
 /// The box on the contact plane where h(x, eta) < level: its eta range and largest |x|.
 bool interpenetrationBox(const ContactCandidate& c, double level, double* eta_lo, double* eta_hi,
                          double* x_half) {
-  const double g0 = gapAtCentre(c);
+  const double g0 = c.gap;  // at eta = 0, where patch_normal.hpp measures first touch
   bool any = false;
   *x_half = 0.0;
   for (const GapSample& s : c.gap_function) {
@@ -163,8 +185,7 @@ Eigen::Vector2d railFilePointAt(const ContactCandidate& c, double eta) {
   // The contact plane's lateral direction, toward the track centre, is (cos delta, -sin delta)
   // in the profile frame (y toward the centre, z up); the file's axes are that frame turned half
   // a turn about x (doc/profiles.md).
-  return c.rail_file +
-         eta * Eigen::Vector2d(-std::cos(c.contact_angle), std::sin(c.contact_angle));
+  return c.rail_file + eta * Eigen::Vector2d(-std::cos(c.contact_angle), std::sin(c.contact_angle));
 }
 
 A22Exact solveExactPatch(const ContactCandidate& c, double approach, const A22Options& o) {
@@ -180,25 +201,26 @@ A22Exact solveExactPatch(const ContactCandidate& c, double approach, const A22Op
     return e;
   }
   // At least two samples' spacing across, so a narrow patch still gets a few elements.
-  const double spacing = c.gap_function.size() > 1
-                             ? (c.gap_function.back().eta - c.gap_function.front().eta) /
-                                   (c.gap_function.size() - 1)
-                             : 1e-4;
+  const double spacing =
+      c.gap_function.size() > 1
+          ? (c.gap_function.back().eta - c.gap_function.front().eta) / (c.gap_function.size() - 1)
+          : 1e-4;
   double width = std::max(eta_hi - eta_lo, 2.0 * spacing);
   double centre = 0.5 * (eta_lo + eta_hi);
   double length = 2.0 * std::max(x_half, 1e-5);
-  const double g0 = gapAtCentre(c);
+  const double g0 = c.gap;  // at eta = 0, where patch_normal.hpp measures first touch
   for (int attempt = 0; attempt < 4; ++attempt) {
     HalfspaceGrid g;
     g.mx = o.exact_mx;
     g.my = o.exact_my;
     g.dx = length / g.mx;
     g.dy = width / g.my;
+    const GapInterpolant gap(c.gap_function);
     Eigen::VectorXd h(g.size());
     bool beyond = false;  // part of the grid lies past the sampled gap function
     for (int iy = 0; iy < g.my; ++iy) {
       GapSample s;
-      const bool inside = gapAt(c.gap_function, centre + g.yc(iy), &s);
+      const bool inside = gap.at(centre + g.yc(iy), &s);
       for (int ix = 0; ix < g.mx; ++ix) {
         const double x = g.xc(ix);
         // Past the samples the gap exceeds what the search sampled: out of contact at this
@@ -251,15 +273,26 @@ A22Exact solveExactPatch(const ContactCandidate& c, double approach, const A22Op
 A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A22Options& o) {
   A22Wheel w;
   w.state = state;
-  const WheelsetPose pose = a22Pose(state);
+  // The wheelset lowered (or raised) to first touch of this wheel: the gap functions describe the
+  // profiles about where they touch, and the benchmark's vertical position is its own result.
+  WheelsetPose pose = a22Pose(state);
   const std::string where = std::string(state.side == WheelSide::kLeft ? "left" : "right") +
                             " wheel, case " + std::to_string(state.number) + ": ";
+  for (int k = 0; k < 3; ++k) {
+    w.geometry = search.search(state.side, pose);
+    if (w.geometry.closest < 0) break;
+    const double vg = w.geometry.candidates[w.geometry.closest].vertical_gap;
+    if (std::abs(vg) < 1e-9) break;
+    pose.z -= vg;
+  }
   w.geometry = search.search(state.side, pose);
   if (w.geometry.status != ContactSearchStatus::kOk)
     throw std::runtime_error(where + "contact search: " + w.geometry.message);
   w.normal = solveWheelLoad(w.geometry, state.fz, o.G, o.nu, o.normal);
-  if (w.normal.status != NormalStatus::kOk)
-    throw std::runtime_error(where + "normal problem: " + w.normal.message);
+  if (w.normal.status != NormalStatus::kOk) {
+    w.message = "normal problem: " + w.normal.message;
+    return w;
+  }
   const WheelsetMotion motion = a22Motion(state);
   const size_t n = w.geometry.candidates.size();
   for (size_t i = 0; i < n; ++i) {
@@ -277,11 +310,11 @@ A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A
   for (int it = 0; it < o.exact_iterations; ++it) {
     double F = 0.0;
     for (A22Patch& p : w.patches) {
-      const double d = V * p.candidate.normal.y() - p.candidate.gap;
+      const double d = V * p.candidate.normal.y() - p.candidate.gap;  // normal: (y, z)
       p.exact = solveExactPatch(p.candidate, d, o);
       if (!p.exact.solved) throw std::runtime_error(where + p.exact.message);
       if (it == 0) p.exact_fn_at_our_approach = p.exact.fn;
-      F += p.exact.fn * p.candidate.normal.y();
+      F += p.exact.fn * p.candidate.normal.y();  // the vertical component
     }
     w.exact_vertical_approach = V;
     if (std::abs(F - state.fz) <= o.exact_load_tolerance * state.fz) {

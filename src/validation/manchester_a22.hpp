@@ -44,10 +44,10 @@ WheelsetMotion a22Motion(const A22State& s);  ///< V = vs, omega = -vpitch, no y
 struct A22Reference {
   WheelSide side = WheelSide::kRight;
   int number = 0, patch = 0;
-  double y_rail = 0.0, z_rail = 0.0;  ///< [m], file coordinates (z down, as the file)
-  double contact_angle = 0.0;         ///< [rad], ours
-  double fn = 0.0, pmax = 0.0;        ///< [N], [Pa]
-  double approach = 0.0;              ///< [m]
+  double y_rail = 0.0, z_rail = 0.0;          ///< [m], file coordinates (z down, as the file)
+  double contact_angle = 0.0;                 ///< [rad], ours
+  double fn = 0.0, pmax = 0.0;                ///< [N], [Pa]
+  double approach = 0.0;                      ///< [m]
   double cksi = 0.0, ceta = 0.0, cphi = 0.0;  ///< CONTACT's creepages, its signs, cphi [1/m]
 };
 
@@ -56,7 +56,7 @@ std::vector<A22Reference> readA22Reference(const std::string& path);
 /// The exact half-space solution of one patch on its own grid.
 struct A22Exact {
   bool solved = false;
-  std::string message;  ///< why not solved, or empty
+  std::string message;          ///< why not solved, or empty
   double fn = 0.0, pmax = 0.0;  ///< [N], [Pa]
   double approach = 0.0;        ///< along the candidate's normal beyond first touch [m]
   /// Extent of the loaded elements (their outer edges) on the contact plane [m]: x along rolling,
@@ -95,6 +95,8 @@ struct A22Patch {
 
 struct A22Wheel {
   A22State state;
+  /// Empty when solved; else why our normal problem failed on this wheel (no patches then).
+  std::string message;
   WheelContactGeometry geometry;
   WheelNormal normal;
   double exact_vertical_approach = 0.0;
@@ -104,8 +106,8 @@ struct A22Wheel {
 
 /// Runs one wheel of one state: search, our normal problem under state.fz, creepages, and the exact
 /// solver on every candidate's gap, its vertical approach iterated until the patches' vertical
-/// forces add up to state.fz. Throws std::runtime_error if the search or our normal problem fails
-/// (the benchmark's states are all valid: a failure is a bug to see, not a row to skip).
+/// forces add up to state.fz. Throws std::runtime_error if the search or the exact solver fails
+/// (the benchmark's states are all valid); our normal problem's failure is A22Wheel::message.
 A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A22Options& o);
 
 /// The exact normal problem of one candidate at a rigid approach along its normal beyond first
