@@ -13,6 +13,7 @@
 
 #include "core/exact/halfspace_normal.hpp"
 #include "core/normal/hertz_approach.hpp"
+#include "validation/patch_exact.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
 #include "wheel_rail_contact/normal/patch_normal.hpp"
 
@@ -38,63 +39,8 @@ ContactCandidate hertzCandidate(double B, double r, double half_width, int sampl
   return c;
 }
 
-/// The exact solution on the patch's own gap: a grid over the region where the bodies
-/// interpenetrate undeformed (the contact lies inside it), the gap interpolated linearly between
-/// the gap function's samples as the method does, h = g(eta) - g(0) + cos(delta) x^2 / (2 r).
-struct ExactPatch {
-  NormalSolution s;
-  HalfspaceGrid grid;
-  double eta_offset = 0.0;
-  double fn = 0.0, pmax = 0.0, eta_min = 0.0, eta_max = 0.0;
-};
-
-double interp(const ContactCandidate& c, double e, int what) {
-  const auto& f = c.gap_function;
-  std::size_t i = 0;
-  while (i + 2 < f.size() && f[i + 1].eta < e) ++i;
-  const double t = std::clamp((e - f[i].eta) / (f[i + 1].eta - f[i].eta), 0.0, 1.0);
-  auto v = [&](const GapSample& s) {
-    return what == 0 ? s.gap - c.gap : std::cos(s.contact_angle) / (2.0 * s.rolling_radius);
-  };
-  return v(f[i]) + t * (v(f[i + 1]) - v(f[i]));
-}
-
 ExactPatch exactPatch(const ContactCandidate& c, double approach, int mx, int my) {
-  double lo = 1e9, hi = -1e9, xmax = 0.0;
-  for (const GapSample& s : c.gap_function) {
-    const double pen = approach - (s.gap - c.gap);
-    if (pen <= 0.0) continue;
-    lo = std::min(lo, s.eta);
-    hi = std::max(hi, s.eta);
-    xmax = std::max(xmax, std::sqrt(pen / interp(c, s.eta, 1)));
-  }
-  const double de = c.gap_function[1].eta - c.gap_function[0].eta;
-  lo -= de;
-  hi += de;
-  ExactPatch e;
-  e.grid.mx = mx;
-  e.grid.my = my;
-  e.grid.dx = 2.0 * 1.02 * xmax / mx;
-  e.grid.dy = (hi - lo) / my;
-  e.eta_offset = 0.5 * (lo + hi);
-  Eigen::VectorXd h(e.grid.size());
-  for (int ix = 0; ix < mx; ++ix)
-    for (int iy = 0; iy < my; ++iy) {
-      const double x = e.grid.xc(ix), eta = e.eta_offset + e.grid.yc(iy);
-      h[e.grid.index(ix, iy)] = interp(c, eta, 0) + interp(c, eta, 1) * x * x;
-    }
-  e.s = solveNormalGapApproach(e.grid, kG, kNu, h, approach);
-  e.fn = e.s.fz;
-  e.pmax = e.s.p.maxCoeff();
-  e.eta_min = 1e9;
-  e.eta_max = -1e9;
-  for (int ix = 0; ix < mx; ++ix)
-    for (int iy = 0; iy < my; ++iy)
-      if (e.s.p[e.grid.index(ix, iy)] > 0.0) {
-        e.eta_min = std::min(e.eta_min, e.eta_offset + e.grid.yc(iy) - 0.5 * e.grid.dy);
-        e.eta_max = std::max(e.eta_max, e.eta_offset + e.grid.yc(iy) + 0.5 * e.grid.dy);
-      }
-  return e;
+  return exactPatchNormal(c, approach, kG, kNu, mx, my);
 }
 
 const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/test/data/profiles/";
@@ -228,39 +174,11 @@ BenchmarkState benchmarkState(double y_mm) {
   return s;
 }
 
-/// The exact load split: the vertical approach at which the exact patches carry kLoad, by the
-/// secant method on f^(2/3) from the method's approach; the exact normal forces per candidate.
-std::vector<double> exactSplit(const BenchmarkState& s, int m) {
-  auto forces = [&](double dv, std::vector<double>* fn) {
-    double fz = 0.0;
-    fn->assign(s.geo.candidates.size(), 0.0);
-    for (std::size_t i = 0; i < s.geo.candidates.size(); ++i) {
-      const ContactCandidate& c = s.geo.candidates[i];
-      const double d = dv * c.normal.y() - c.gap;
-      if (d <= 0.0) continue;
-      (*fn)[i] = exactPatch(c, d, m, m).fn;
-      fz += (*fn)[i] * c.normal.y();
-    }
-    return std::cbrt(fz * fz) - std::cbrt(kLoad * kLoad);
-  };
-  std::vector<double> fn;
-  double d0 = s.wheel.vertical_approach, d1 = 1.02 * d0;
-  double r0 = forces(d0, &fn), r1 = forces(d1, &fn);
-  for (int it = 0; it < 20 && std::abs(r1) > 1e-6 * std::cbrt(kLoad * kLoad); ++it) {
-    const double d2 = d1 - r1 * (d1 - d0) / (r1 - r0);
-    d0 = d1;
-    r0 = r1;
-    d1 = d2;
-    r1 = forces(d1, &fn);
-  }
-  return fn;
-}
-
 }  // namespace
 
 // The exact solver's own discretisation: on the patches below a 40 x 40 grid over the undeformed
-// interpenetration and a 60 x 60 one differ by under 1 % in fn and 3 % in pmax
-// (PatchNormal.ExactReferenceIsGridConverged), below the tolerances asserted here.
+// interpenetration and a 60 x 60 one differ by under 0.3 % in fn and 0.5 % in pmax
+// (PatchNormal.ExactReferenceIsGridConverged), well below the tolerances asserted here.
 
 TEST(PatchNormal, ExactReferenceIsGridConverged) {
   for (double y : {5.0, 6.5}) {
@@ -271,9 +189,9 @@ TEST(PatchNormal, ExactReferenceIsGridConverged) {
       if (p.fn <= 0.0) continue;
       const ExactPatch e40 = exactPatch(s.geo.candidates[i], p.approach, 40, 40);
       const ExactPatch e60 = exactPatch(s.geo.candidates[i], p.approach, 60, 60);
-      ASSERT_TRUE(e40.s.converged && e60.s.converged);
-      EXPECT_NEAR(e40.fn, e60.fn, 0.01 * e60.fn) << y << " " << i;
-      EXPECT_NEAR(e40.pmax, e60.pmax, 0.03 * e60.pmax) << y << " " << i;
+      ASSERT_TRUE(e40.solution.converged && e60.solution.converged);
+      EXPECT_NEAR(e40.fn, e60.fn, 0.003 * e60.fn) << y << " " << i;
+      EXPECT_NEAR(e40.pmax, e60.pmax, 0.005 * e60.pmax) << y << " " << i;
     }
   }
 }
@@ -281,11 +199,10 @@ TEST(PatchNormal, ExactReferenceIsGridConverged) {
 TEST(PatchNormal, A22AgainstTheExactSolverAtTheSameApproach) {
   // Right wheel of case under 10 kN, each patch at the approach the method found, the exact
   // solver on the same gap: gauge corner (5 mm, two patches with the tread), flange (6.5 mm) and
-  // the tread at 2 mm where the gap is elliptic. Tolerances: fn 3 % (the method's Boussinesq
-  // integral is exact for its pressure; what differs is the pressure's shape), pmax 10 % (the
-  // strips' semi-elliptic profile from the equivalent ellipse misses a sharper bottom of the gap
-  // by some 5 to 8 %), the lateral edges within 0.15 mm (one exact element is some 0.05 to 0.1
-  // mm wide).
+  // the tread at 2 mm where the gap is elliptic. Tolerances: fn 2 % and pmax 3 % (the assumed
+  // pressure shape, semi-elliptic strips under the equivalent ellipse's penetration factor, is
+  // what differs from exact: up to 1 % and 1.3 % on A-2.2's convex gaps, doc/normal_problem.md),
+  // the lateral edges within 0.15 mm (one exact element is 0.02 to 0.15 mm wide).
   for (double y : {2.0, 5.0, 6.5}) {
     const BenchmarkState s = benchmarkState(y);
     ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
@@ -295,11 +212,12 @@ TEST(PatchNormal, A22AgainstTheExactSolverAtTheSameApproach) {
       if (p.fn <= 0.0) continue;
       ++loaded;
       const ExactPatch e = exactPatch(s.geo.candidates[i], p.approach, 40, 40);
-      ASSERT_TRUE(e.s.converged);
-      EXPECT_NEAR(p.fn, e.fn, 0.03 * e.fn) << "y " << y << " patch " << i;
-      EXPECT_NEAR(p.pmax, e.pmax, 0.10 * e.pmax) << "y " << y << " patch " << i;
+      ASSERT_TRUE(e.solution.converged);
+      EXPECT_NEAR(p.fn, e.fn, 0.02 * e.fn) << "y " << y << " patch " << i;
+      EXPECT_NEAR(p.pmax, e.pmax, 0.03 * e.pmax) << "y " << y << " patch " << i;
       EXPECT_NEAR(p.eta_min, e.eta_min, 1.5e-4) << "y " << y << " patch " << i;
       EXPECT_NEAR(p.eta_max, e.eta_max, 1.5e-4) << "y " << y << " patch " << i;
+      EXPECT_TRUE(p.message.empty()) << p.message;  // nothing to flag on these gaps
     }
     EXPECT_EQ(loaded, y == 5.0 ? 2 : 1) << y;
   }
@@ -308,15 +226,16 @@ TEST(PatchNormal, A22AgainstTheExactSolverAtTheSameApproach) {
 TEST(PatchNormal, A22LoadSplitOfTwoPatchesAgreesWithExact) {
   // At 5 mm the wheel touches its rail on the tread and on the gauge corner; the exact solver's
   // split of the same 10 kN (its own vertical approach) against the method's: the tread's share
-  // within 2 percentage points.
+  // within 1 percentage point (measured: 0.2).
   const BenchmarkState s = benchmarkState(5.0);
   ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
   ASSERT_EQ(s.wheel.patches.size(), 2u);
-  const std::vector<double> fe = exactSplit(s, 40);
+  const std::vector<double> fe =
+      exactWheelLoad(s.geo, kLoad, kG, kNu, 40, s.wheel.vertical_approach);
   const double share = s.wheel.patches[0].fn / (s.wheel.patches[0].fn + s.wheel.patches[1].fn);
   const double exact_share = fe[0] / (fe[0] + fe[1]);
   EXPECT_GT(exact_share, 0.05);  // both patches carry load
-  EXPECT_NEAR(share, exact_share, 0.02);
+  EXPECT_NEAR(share, exact_share, 0.01);
   double fz = 0.0;
   for (std::size_t i = 0; i < 2; ++i) fz += s.wheel.patches[i].fn * s.geo.candidates[i].normal.y();
   EXPECT_NEAR(fz, kLoad, 1e-6 * kLoad);
@@ -331,12 +250,14 @@ TEST(PatchNormal, A22TreadPlateauIsTheMethodsWeakness) {
   ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
   const NormalPatch& p = s.wheel.patches.at(s.geo.closest);
   EXPECT_EQ(p.method, NormalMethod::kNonHertzian);
+  EXPECT_EQ(p.status, NormalStatus::kOk);
+  EXPECT_NE(p.message.find("concave"), std::string::npos) << p.message;  // the method says so
   const ExactPatch e = exactPatch(s.geo.candidates[s.geo.closest], p.approach, 40, 40);
-  ASSERT_TRUE(e.s.converged);
+  ASSERT_TRUE(e.solution.converged);
   EXPECT_GT(p.fn, 0.6 * e.fn);
   EXPECT_LT(p.fn, 0.8 * e.fn);
   EXPECT_LT(p.eta_max - p.eta_min, e.eta_max - e.eta_min);
-  EXPECT_NEAR(p.pmax, e.pmax, 0.10 * e.pmax);
+  EXPECT_NEAR(p.pmax, e.pmax, 0.06 * e.pmax);
 }
 
 TEST(PatchNormal, BadInputGivesAStatusAndZeroForces) {
