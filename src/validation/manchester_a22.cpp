@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/exact/halfspace_normal.hpp"
+#include "validation/patch_exact.hpp"
 
 namespace wheel_rail_contact {
 
@@ -56,68 +57,6 @@ WheelSide sideOf(const std::string& s, const std::string& path) {
   if (s == "left") return WheelSide::kLeft;
   if (s == "right") return WheelSide::kRight;
   throw std::runtime_error(path + ": wheel '" + s + "' is neither left nor right");
-}
-
-/// The gap function between its samples: the gap by a natural cubic spline, the wheel's radius and
-/// angle linearly. Linear interpolation of the gap itself would put a kink at every sample, and a
-/// kink of the gap is a concentrated curvature under which the exact pressure peaks, more sharply
-/// the finer the grid: a fine exact grid would then resolve the sampling, not the profiles.
-class GapInterpolant {
- public:
-  explicit GapInterpolant(const std::vector<GapSample>& f) : f_(f), m_(f.size(), 0.0) {
-    const size_t n = f.size();
-    if (n < 3) return;
-    // Second derivatives m_i, m_0 = m_{n-1} = 0: the tridiagonal system by the Thomas algorithm.
-    std::vector<double> c(n, 0.0), d(n, 0.0);
-    for (size_t i = 1; i + 1 < n; ++i) {
-      const double h0 = f[i].eta - f[i - 1].eta, h1 = f[i + 1].eta - f[i].eta;
-      const double rhs = 6.0 * ((f[i + 1].gap - f[i].gap) / h1 - (f[i].gap - f[i - 1].gap) / h0);
-      const double diag = 2.0 * (h0 + h1) - h0 * c[i - 1];
-      c[i] = h1 / diag;
-      d[i] = (rhs - h0 * d[i - 1]) / diag;
-    }
-    for (size_t i = n - 2; i >= 1; --i) m_[i] = d[i] - c[i] * m_[i + 1];
-  }
-
-  /// False outside the samples.
-  bool at(double eta, GapSample* out) const {
-    if (f_.size() < 2 || eta < f_.front().eta || eta > f_.back().eta) return false;
-    auto it = std::lower_bound(f_.begin(), f_.end(), eta,
-                               [](const GapSample& s, double e) { return s.eta < e; });
-    if (it == f_.begin()) ++it;
-    const size_t i = static_cast<size_t>(it - f_.begin());
-    const GapSample& a = f_[i - 1];
-    const GapSample& b = f_[i];
-    const double h = b.eta - a.eta, t = (eta - a.eta) / h, u = 1.0 - t;
-    out->eta = eta;
-    out->gap = u * a.gap + t * b.gap +
-               h * h / 6.0 * ((u * u * u - u) * m_[i - 1] + (t * t * t - t) * m_[i]);
-    out->rolling_radius = u * a.rolling_radius + t * b.rolling_radius;
-    out->contact_angle = u * a.contact_angle + t * b.contact_angle;
-    return true;
-  }
-
- private:
-  const std::vector<GapSample>& f_;
-  std::vector<double> m_;
-};
-
-/// The box on the contact plane where h(x, eta) < level: its eta range and largest |x|.
-bool interpenetrationBox(const ContactCandidate& c, double level, double* eta_lo, double* eta_hi,
-                         double* x_half) {
-  const double g0 = c.gap;  // at eta = 0, where patch_normal.hpp measures first touch
-  bool any = false;
-  *x_half = 0.0;
-  for (const GapSample& s : c.gap_function) {
-    const double h = s.gap - g0;
-    if (h >= level) continue;
-    const double rx = s.rolling_radius / std::max(std::cos(s.contact_angle), 1e-3);
-    *x_half = std::max(*x_half, std::sqrt(2.0 * rx * (level - h)));
-    *eta_lo = any ? std::min(*eta_lo, s.eta) : s.eta;
-    *eta_hi = any ? std::max(*eta_hi, s.eta) : s.eta;
-    any = true;
-  }
-  return any;
 }
 
 }  // namespace
@@ -190,83 +129,33 @@ Eigen::Vector2d railFilePointAt(const ContactCandidate& c, double eta) {
 
 A22Exact solveExactPatch(const ContactCandidate& c, double approach, const A22Options& o) {
   A22Exact e;
-  if (!(approach > 0.0)) {
-    e.solved = true;  // out of contact
+  e.solved = true;
+  if (!(approach > 0.0)) return e;  // out of contact
+  const ExactPatch x = exactPatchNormal(c, approach, o.G, o.nu, o.exact_mx, o.exact_my);
+  if (x.grid.size() == 0) return e;  // no sample interpenetrates: out of contact
+  if (!x.solution.converged) {
+    e.solved = false;
+    e.message = "exact active set did not converge";
     return e;
   }
-  double eta_lo = 0.0, eta_hi = 0.0, x_half = 0.0;
-  if (!interpenetrationBox(c, o.box_fraction * approach, &eta_lo, &eta_hi, &x_half) &&
-      !interpenetrationBox(c, approach, &eta_lo, &eta_hi, &x_half)) {
-    e.solved = true;
-    return e;
-  }
-  // At least two samples' spacing across, so a narrow patch still gets a few elements.
-  const double spacing =
-      c.gap_function.size() > 1
-          ? (c.gap_function.back().eta - c.gap_function.front().eta) / (c.gap_function.size() - 1)
-          : 1e-4;
-  double width = std::max(eta_hi - eta_lo, 2.0 * spacing);
-  double centre = 0.5 * (eta_lo + eta_hi);
-  double length = 2.0 * std::max(x_half, 1e-5);
-  const double g0 = c.gap;  // at eta = 0, where patch_normal.hpp measures first touch
-  for (int attempt = 0; attempt < 4; ++attempt) {
-    HalfspaceGrid g;
-    g.mx = o.exact_mx;
-    g.my = o.exact_my;
-    g.dx = length / g.mx;
-    g.dy = width / g.my;
-    const GapInterpolant gap(c.gap_function);
-    Eigen::VectorXd h(g.size());
-    bool beyond = false;  // part of the grid lies past the sampled gap function
-    for (int iy = 0; iy < g.my; ++iy) {
-      GapSample s;
-      const bool inside = gap.at(centre + g.yc(iy), &s);
-      for (int ix = 0; ix < g.mx; ++ix) {
-        const double x = g.xc(ix);
-        // Past the samples the gap exceeds what the search sampled: out of contact at this
-        // approach unless the patch reaches there, which the edge check below reports.
-        h[g.index(ix, iy)] =
-            inside ? s.gap - g0 + x * x * std::cos(s.contact_angle) / (2.0 * s.rolling_radius)
-                   : 1.0;
-      }
-      beyond = beyond || !inside;
-    }
-    const NormalSolution s = solveNormalGapApproach(g, o.G, o.nu, h, approach);
-    if (!s.converged) {
-      e.message = "exact active set did not converge";
-      return e;
-    }
-    bool edge_x = false, edge_y = false;
-    e.x_min = e.eta_min = 1e9;
-    e.x_max = e.eta_max = -1e9;
-    for (int ix = 0; ix < g.mx; ++ix)
-      for (int iy = 0; iy < g.my; ++iy) {
-        if (s.p[g.index(ix, iy)] <= 0.0) continue;
-        edge_x = edge_x || ix == 0 || ix == g.mx - 1;
-        edge_y = edge_y || iy == 0 || iy == g.my - 1;
+  e.fn = x.fn;
+  e.pmax = x.pmax;
+  e.approach = approach;
+  e.grid = x.grid;
+  e.eta_offset = x.eta_offset;
+  e.p = x.solution.p;
+  if (e.fn <= 0.0) return e;
+  e.eta_min = x.eta_min;
+  e.eta_max = x.eta_max;
+  const HalfspaceGrid& g = x.grid;
+  e.x_min = 1e9;
+  e.x_max = -1e9;
+  for (int ix = 0; ix < g.mx; ++ix)
+    for (int iy = 0; iy < g.my; ++iy)
+      if (e.p[g.index(ix, iy)] > 0.0) {
         e.x_min = std::min(e.x_min, g.xc(ix) - 0.5 * g.dx);
         e.x_max = std::max(e.x_max, g.xc(ix) + 0.5 * g.dx);
-        e.eta_min = std::min(e.eta_min, centre + g.yc(iy) - 0.5 * g.dy);
-        e.eta_max = std::max(e.eta_max, centre + g.yc(iy) + 0.5 * g.dy);
       }
-    if (edge_y && beyond) {
-      e.message = "the exact patch reaches the end of the sampled gap function";
-      return e;
-    }
-    if (edge_x) length *= 1.4;
-    if (edge_y) width *= 1.4;
-    if (edge_x || edge_y) continue;
-    e.solved = true;
-    e.fn = s.fz;
-    e.pmax = s.p.maxCoeff();
-    e.approach = approach;
-    e.grid = g;
-    e.eta_offset = centre;
-    e.p = s.p;
-    if (s.fz <= 0.0) e.x_min = e.x_max = e.eta_min = e.eta_max = 0.0;
-    return e;
-  }
-  e.message = "the exact patch outgrew its grid four times";
   return e;
 }
 

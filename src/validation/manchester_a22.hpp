@@ -70,12 +70,9 @@ struct A22Exact {
 struct A22Options {
   double G = 82e9, nu = 0.28;
   NormalOptions normal;
-  /// Exact grid: mx elements along x and my across, over the box where the undeformed bodies
-  /// interpenetrate by more than box_fraction of the approach (a Hertz patch fills sqrt(1/2) of
-  /// the interpenetration's extent, so 0.75 leaves a fifth to spare); grown when the pressure
-  /// reaches the grid's edge.
+  /// Exact grid (validation/patch_exact.hpp): mx elements along x and my across, over the box
+  /// where the undeformed bodies interpenetrate at the approach (the contact lies inside it).
   int exact_mx = 32, exact_my = 24;
-  double box_fraction = 0.75;
   /// The exact wheel load is met within this relative error (iterations on the vertical
   /// approach, at most exact_iterations).
   double exact_load_tolerance = 1e-3;
@@ -112,7 +109,8 @@ A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A
 
 /// The exact normal problem of one candidate at a rigid approach along its normal beyond first
 /// touch, on the gap h(x, eta) = g(eta) - g(0) + x^2 cos(delta(eta)) / (2 r(eta)) of its gap
-/// function (normal/patch_normal.hpp's geometry).
+/// function (normal/patch_normal.hpp's geometry; exactPatchNormal, validation/patch_exact.hpp),
+/// with the loaded elements' extent along x too.
 A22Exact solveExactPatch(const ContactCandidate& c, double approach, const A22Options& o);
 
 /// The candidate's point moved eta along its contact plane, in the right rail file's coordinates
