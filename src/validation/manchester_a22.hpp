@@ -1,0 +1,120 @@
+/// The Manchester contact benchmark's case A-2.2 (S1002 on UIC60 1:40, 10 kN per wheel, y from 0 to
+/// 10 mm with 2.4 mrad of yaw per mm) run through our chain: contact search, the normal problem
+/// under the wheel load, creepages, and the exact half-space solver on each patch's gap as the
+/// reference (doc/manchester.md). CONTACT's published results are read beside ours as reference
+/// points only. Used by src/tools/manchester_a22.cpp and test/unit/test_manchester_a22.cpp.
+///
+/// Signs. The benchmark's (CONTACT's) axes are ours turned half a turn about x (doc/profiles.md):
+/// y_ours = -y, yaw_ours = -yaw, roll_ours = roll, omega = -vpitch, V = vs. Both wheels of a case
+/// belong to the same wheelset state (CONTACT's left-wheel output is that state's left wheel).
+/// CONTACT gives a left profile point in the track's lateral direction, ours in the right file's
+/// (mirrored): y_rail_ours = -YCP(R) on the left, +YCP(R) on the right; its contact angle is
+/// ours with the sign of the right wheel's reversed: delta_ours = -DELTCP on the right, +DELTCP on
+/// the left.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/exact/halfspace_influence.hpp"
+#include "wheel_rail_contact/normal/patch_normal.hpp"
+#include "wheel_rail_contact/profiles/contact_search.hpp"
+#include "wheel_rail_contact/wheelset/creepages.hpp"
+
+namespace wheel_rail_contact {
+
+/// One wheel of one wheelset state as test/data/profiles/a22_cases.csv gives it (the benchmark's
+/// axes and units: mm, rad, N, mm/s, rad/s).
+struct A22State {
+  WheelSide side = WheelSide::kRight;
+  int number = 0;  ///< the benchmark's case number, 1..21
+  double y_mm = 0.0, yaw = 0.0, roll = 0.0, fz = 0.0, vs_mm_s = 0.0, vpitch = 0.0;
+};
+
+/// Reads a22_cases.csv; throws std::runtime_error naming the file and line on a bad one.
+std::vector<A22State> readA22States(const std::string& path);
+
+WheelsetPose a22Pose(const A22State& s);      ///< ours (REP 103, SI), z = 0
+WheelsetMotion a22Motion(const A22State& s);  ///< V = vs, omega = -vpitch, no yaw rate, tangent
+
+/// One of CONTACT's patches (test/data/profiles/contact_a22_reference.csv), turned into our signs
+/// and SI units (see the header's "Signs"): the contact point on the rail in the right rail file's
+/// coordinates, the contact angle, normal force, peak pressure, approach, creepages as printed.
+struct A22Reference {
+  WheelSide side = WheelSide::kRight;
+  int number = 0, patch = 0;
+  double y_rail = 0.0, z_rail = 0.0;          ///< [m], file coordinates (z down, as the file)
+  double contact_angle = 0.0;                 ///< [rad], ours
+  double fn = 0.0, pmax = 0.0;                ///< [N], [Pa]
+  double approach = 0.0;                      ///< [m]
+  double cksi = 0.0, ceta = 0.0, cphi = 0.0;  ///< CONTACT's creepages, its signs, cphi [1/m]
+};
+
+std::vector<A22Reference> readA22Reference(const std::string& path);
+
+/// The exact half-space solution of one patch on its own grid.
+struct A22Exact {
+  bool solved = false;
+  std::string message;          ///< why not solved, or empty
+  double fn = 0.0, pmax = 0.0;  ///< [N], [Pa]
+  double approach = 0.0;        ///< along the candidate's normal beyond first touch [m]
+  /// Extent of the loaded elements (their outer edges) on the contact plane [m]: x along rolling,
+  /// eta as ContactCandidate::gap_function.
+  double x_min = 0.0, x_max = 0.0, eta_min = 0.0, eta_max = 0.0;
+  HalfspaceGrid grid;
+  double eta_offset = 0.0;  ///< eta of the grid's centre
+  Eigen::VectorXd p;        ///< pressure per element [Pa]
+};
+
+struct A22Options {
+  double G = 82e9, nu = 0.28;
+  NormalOptions normal;
+  /// Exact grid (validation/patch_exact.hpp): mx elements along x and my across, over the box
+  /// where the undeformed bodies interpenetrate at the approach (the contact lies inside it).
+  int exact_mx = 32, exact_my = 24;
+  /// The exact wheel load is met within this relative error (iterations on the vertical
+  /// approach, at most exact_iterations).
+  double exact_load_tolerance = 1e-3;
+  int exact_iterations = 8;
+};
+
+/// One patch (candidate) of one wheel: ours, the exact solution, and the creepages.
+struct A22Patch {
+  int index = 0;  ///< the candidate's index in the geometry
+  ContactCandidate candidate;
+  NormalPatch ours;
+  PatchCreepages creepages;
+  /// Exact at the wheel's vertical load, and at our own approach (its force only).
+  A22Exact exact;
+  double exact_fn_at_our_approach = 0.0;
+};
+
+struct A22Wheel {
+  A22State state;
+  /// Empty when solved; else why our normal problem failed on this wheel (no patches then).
+  std::string message;
+  WheelContactGeometry geometry;
+  WheelNormal normal;
+  double exact_vertical_approach = 0.0;
+  bool exact_converged = false;
+  std::vector<A22Patch> patches;  ///< every candidate, in the geometry's order
+};
+
+/// Runs one wheel of one state: search, our normal problem under state.fz, creepages, and the exact
+/// solver on every candidate's gap, its vertical approach iterated until the patches' vertical
+/// forces add up to state.fz. Throws std::runtime_error if the search or the exact solver fails
+/// (the benchmark's states are all valid); our normal problem's failure is A22Wheel::message.
+A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A22Options& o);
+
+/// The exact normal problem of one candidate at a rigid approach along its normal beyond first
+/// touch, on the gap h(x, eta) = g(eta) - g(0) + x^2 cos(delta(eta)) / (2 r(eta)) of its gap
+/// function (normal/patch_normal.hpp's geometry; exactPatchNormal, validation/patch_exact.hpp),
+/// with the loaded elements' extent along x too.
+A22Exact solveExactPatch(const ContactCandidate& c, double approach, const A22Options& o);
+
+/// The candidate's point moved eta along its contact plane, in the right rail file's coordinates
+/// (y, z down) [m]: the tangent line, good to curvature * eta^2 / 2.
+Eigen::Vector2d railFilePointAt(const ContactCandidate& c, double eta);
+
+}  // namespace wheel_rail_contact
