@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,7 @@ struct Options {
   std::string map_wheel = "right";
   int exact_mx = 48, exact_my = 32;
   double G = 82e9, nu = 0.28;
-  // 20 um, not the search's 1 um: see doc/manchester.md ("Two tread minima at y = 0").
-  double min_ridge = 2e-5;
+  bool contact_table = false;
 };
 
 void addOptions(CLI::App& app, Options* o) {
@@ -46,8 +46,10 @@ void addOptions(CLI::App& app, Options* o) {
       ->check(CLI::IsMember({"left", "right"}));
   tools::option(app, "--exact-mx", &o->exact_mx, "exact grid: elements along x per patch");
   tools::option(app, "--exact-my", &o->exact_my, "exact grid: elements across per patch");
-  tools::option(app, "--min-ridge", &o->min_ridge,
-                "contact search: least ridge between two candidates [m]");
+  app.add_flag("--contact-table", o->contact_table,
+               "take the geometry from the contact table (ContactTable, default options) instead "
+               "of the direct search, and print the largest differences between the two in our "
+               "normal force, peak pressure and contact point");
   tools::option(app, "--G", &o->G, "shear modulus [Pa]");
   tools::option(app, "--nu", &o->nu, "Poisson's ratio");
 }
@@ -60,6 +62,21 @@ const char* zoneName(ContactZone z) {
 }
 const char* methodName(NormalMethod m) {
   return m == NormalMethod::kHertz ? "hertz" : "non-hertzian";
+}
+/// Our method on patch p: "lumps" for a patch other candidates merged into, "merged" for one
+/// merged into another.
+std::string methodOf(const A22Patch& p) {
+  if (p.ours.merged_into >= 0) return "merged";
+  if (p.merged_last > p.merged_first) return "lumps";
+  return methodName(p.ours.method);
+}
+/// The row's status: ok, or which patch took this candidate over.
+std::string statusOf(const A22Patch& p) {
+  if (p.ours.merged_into >= 0) return "merged into patch " + std::to_string(p.ours.merged_into);
+  if (p.merged_last > p.merged_first)
+    return "ok: candidates " + std::to_string(p.merged_first) + " to " +
+           std::to_string(p.merged_last) + " merged";
+  return "ok";
 }
 
 /// v printed with fmt, or "-" when NaN (no reference point).
@@ -84,9 +101,14 @@ int run(const Options& o) {
   ao.nu = o.nu;
   ao.exact_mx = o.exact_mx;
   ao.exact_my = o.exact_my;
-  ContactSearchOptions so;
-  so.min_ridge = o.min_ridge;
-  const ContactSearch search{WheelsetTrackData{}, so};
+  const ContactSearch search{WheelsetTrackData{}};
+  std::unique_ptr<ContactTable> table;
+  if (o.contact_table) table = std::make_unique<ContactTable>(search);
+  // The contact table's results against the direct search's: the largest differences over the
+  // wheels in our loaded patches' normal force, peak pressure and contact point on the rail.
+  double most_fn = 0.0, most_pmax = 0.0, most_point = 0.0;
+  std::string where_fn, where_pmax, where_point;
+  int unmatched = 0;
   std::ofstream out = tools::writeFile(o.out);
   std::ofstream strips, exactMap;
   if (!o.maps.empty()) {
@@ -106,7 +128,34 @@ int run(const Options& o) {
               "zone", "method", "y_rail", "CONTACT", "fn", "exact", "CONTACT", "pmax", "exact",
               "CONTACT");
   for (const A22State& s : states) {
-    const A22Wheel w = runA22Wheel(search, s, ao);
+    const A22Wheel w = table ? runA22Wheel(*table, s, ao) : runA22Wheel(search, s, ao);
+    const std::string here =
+        std::string(sideName(s.side)) + " wheel, y " + shown(s.y_mm, "%.1f") + " mm";
+    if (table) {
+      const A22Wheel d = runA22Wheel(search, s, ao);
+      int loaded_w = 0, loaded_d = 0;
+      for (const A22Patch& p : w.patches) loaded_w += p.ours.fn > 0.0;
+      for (const A22Patch& p : d.patches) loaded_d += p.ours.fn > 0.0;
+      if (!w.message.empty() || !d.message.empty() || loaded_w != loaded_d) ++unmatched;
+      for (const A22Patch& p : w.patches) {
+        if (p.ours.fn <= 0.0) continue;
+        // the direct search's loaded patch nearest on the rail
+        const double y = railFilePointAt(p.candidate, p.ours.eta_centre).x();
+        const A22Patch* q = nullptr;
+        double dist = std::numeric_limits<double>::infinity();
+        for (const A22Patch& r : d.patches) {
+          if (r.ours.fn <= 0.0) continue;
+          const double e = std::abs(railFilePointAt(r.candidate, r.ours.eta_centre).x() - y);
+          if (e < dist) dist = e, q = &r;
+        }
+        if (!q) continue;
+        const double dfn = std::abs(p.ours.fn / q->ours.fn - 1.0);
+        const double dp = std::abs(p.ours.pmax / q->ours.pmax - 1.0);
+        if (dfn > most_fn) most_fn = dfn, where_fn = here;
+        if (dp > most_pmax) most_pmax = dp, where_pmax = here;
+        if (dist > most_point) most_point = dist, where_point = here;
+      }
+    }
     if (!w.message.empty()) {
       std::printf("%-5s %4.1f failed: %s\n", sideName(s.side), s.y_mm, w.message.c_str());
       std::string why = w.message;
@@ -129,7 +178,7 @@ int run(const Options& o) {
       if (best >= 0) beside[best] = &r;
     }
     for (const A22Patch& p : w.patches) {
-      if (p.ours.fn <= 0.0 && p.exact.fn <= 0.0) continue;
+      if (p.ours.fn <= 0.0 && p.exact.fn <= 0.0 && p.ours.merged_into < 0) continue;
       const ContactCandidate& c = p.candidate;
       const Eigen::Vector2d centre = railFilePointAt(c, p.ours.eta_centre);
       char line[1024];
@@ -139,7 +188,7 @@ int run(const Options& o) {
                     sideName(s.side), s.number, s.y_mm, p.index, zoneName(c.zone),
                     c.rail_file.x() * 1e3, c.rail_file.y() * 1e3, centre.x() * 1e3, c.contact_angle,
                     c.rolling_radius * 1e3, p.creepages.xi, p.creepages.eta, p.creepages.phi,
-                    methodName(p.ours.method), p.ours.approach * 1e6, p.ours.fn, p.ours.pmax * 1e-6,
+                    methodOf(p).c_str(), p.ours.approach * 1e6, p.ours.fn, p.ours.pmax * 1e-6,
                     p.ours.a * 1e3, p.ours.b * 1e3, p.ours.eta_min * 1e3, p.ours.eta_max * 1e3,
                     p.exact.fn, p.exact.pmax * 1e-6, p.exact.approach * 1e6,
                     p.exact_fn_at_our_approach, p.exact.eta_min * 1e3, p.exact.eta_max * 1e3,
@@ -148,26 +197,32 @@ int run(const Options& o) {
       const auto r = beside.find(p.index);
       if (r != beside.end()) {
         const A22Reference& ref = *r->second;
-        std::snprintf(line, sizeof line, ",%.4f,%.4f,%.4f,%.0f,%.1f,%.2f,%.4e,%.4e,%.4e,ok\n",
+        std::snprintf(line, sizeof line, ",%.4f,%.4f,%.4f,%.0f,%.1f,%.2f,%.4e,%.4e,%.4e,",
                       ref.y_rail * 1e3, ref.z_rail * 1e3, ref.contact_angle, ref.fn,
                       ref.pmax * 1e-6, ref.approach * 1e6, ref.cksi, ref.ceta, ref.cphi);
-        out << line;
+        out << line << statusOf(p) << "\n";
       } else {
-        out << ",,,,,,,,,,ok\n";
+        out << ",,,,,,,,,," << statusOf(p) << "\n";
       }
       const A22Reference* ref = r != beside.end() ? r->second : nullptr;
+      if (p.ours.merged_into >= 0) {
+        std::printf("%-5s %4.1f %5d %6s merged into patch %d\n", sideName(s.side), s.y_mm, p.index,
+                    zoneName(c.zone), p.ours.merged_into);
+        continue;
+      }
       std::printf("%-5s %4.1f %5d %6s %6s %8.2f %8s %8.0f %8.0f %8s %8.0f %8.0f %8s\n",
                   sideName(s.side), s.y_mm, p.index, zoneName(c.zone),
-                  p.ours.method == NormalMethod::kHertz ? "hertz" : "strips", centre.x() * 1e3,
-                  shown(ref ? ref->y_rail * 1e3 : NAN, "%.2f").c_str(), p.ours.fn, p.exact.fn,
-                  shown(ref ? ref->fn : NAN, "%.0f").c_str(), p.ours.pmax * 1e-6,
+                  p.merged_last > p.merged_first          ? "lumps"
+                  : p.ours.method == NormalMethod::kHertz ? "hertz"
+                                                          : "strips",
+                  centre.x() * 1e3, shown(ref ? ref->y_rail * 1e3 : NAN, "%.2f").c_str(), p.ours.fn,
+                  p.exact.fn, shown(ref ? ref->fn : NAN, "%.0f").c_str(), p.ours.pmax * 1e-6,
                   p.exact.pmax * 1e-6, shown(ref ? ref->pmax * 1e-6 : NAN, "%.0f").c_str());
       if (o.maps.empty() || !onMap(o, s.y_mm) || o.map_wheel != sideName(s.side)) continue;
       for (const NormalStrip& st : p.ours.strips)
-        strips << sideName(s.side) << "," << s.y_mm << "," << p.index << ","
-               << methodName(p.ours.method) << "," << st.eta * 1e3 << "," << st.width * 1e3 << ","
-               << st.x_lead * 1e3 << "," << st.x_trail * 1e3 << "," << st.pmax * 1e-6 << ","
-               << st.force << "\n";
+        strips << sideName(s.side) << "," << s.y_mm << "," << p.index << "," << methodOf(p) << ","
+               << st.eta * 1e3 << "," << st.width * 1e3 << "," << st.x_lead * 1e3 << ","
+               << st.x_trail * 1e3 << "," << st.pmax * 1e-6 << "," << st.force << "\n";
       const HalfspaceGrid& g = p.exact.grid;
       for (int ix = 0; ix < g.mx; ++ix)
         for (int iy = 0; iy < g.my; ++iy) {
@@ -182,6 +237,13 @@ int run(const Options& o) {
       std::fprintf(stderr, "%s wheel, case %d: the exact wheel load did not converge\n",
                    sideName(s.side), s.number);
   }
+  if (table)
+    std::printf(
+        "\ncontact table against the direct search, our loaded patches: fn at most %.3f %% "
+        "(%s), pmax %.3f %% (%s), contact point on the rail %.4f mm (%s); wheels whose loaded "
+        "patches differ in number or that fail on either: %d\n",
+        100.0 * most_fn, where_fn.c_str(), 100.0 * most_pmax, where_pmax.c_str(), most_point * 1e3,
+        where_point.c_str(), unmatched);
   return 0;
 }
 

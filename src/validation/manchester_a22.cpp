@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 
 #include "core/exact/halfspace_normal.hpp"
+#include "core/normal/merge_candidates.hpp"
 #include "validation/patch_exact.hpp"
 
 namespace wheel_rail_contact {
@@ -159,7 +161,12 @@ A22Exact solveExactPatch(const ContactCandidate& c, double approach, const A22Op
   return e;
 }
 
-A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A22Options& o) {
+namespace {
+
+using GeometrySource = std::function<WheelContactGeometry(WheelSide, const WheelsetPose&)>;
+
+A22Wheel runWheel(const GeometrySource& geometry, const WheelsetTrackData& data,
+                  const A22State& state, const A22Options& o) {
   A22Wheel w;
   w.state = state;
   // The wheelset lowered (or raised) to first touch of this wheel: the gap functions describe the
@@ -168,13 +175,13 @@ A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A
   const std::string where = std::string(state.side == WheelSide::kLeft ? "left" : "right") +
                             " wheel, case " + std::to_string(state.number) + ": ";
   for (int k = 0; k < 3; ++k) {
-    w.geometry = search.search(state.side, pose);
+    w.geometry = geometry(state.side, pose);
     if (w.geometry.closest < 0) break;
     const double vg = w.geometry.candidates[w.geometry.closest].vertical_gap;
     if (std::abs(vg) < 1e-9) break;
     pose.z -= vg;
   }
-  w.geometry = search.search(state.side, pose);
+  w.geometry = geometry(state.side, pose);
   if (w.geometry.status != ContactSearchStatus::kOk)
     throw std::runtime_error(where + "contact search: " + w.geometry.message);
   w.normal = solveWheelLoad(w.geometry, state.fz, o.G, o.nu, o.normal);
@@ -189,8 +196,21 @@ A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A
     p.index = static_cast<int>(i);
     p.candidate = w.geometry.candidates[i];
     p.ours = w.normal.patches.at(i);
-    p.creepages = patchCreepages(state.side, pose, motion, p.candidate, search.data());
+    p.creepages = patchCreepages(state.side, pose, motion, p.candidate, data);
+    p.merged_first = p.merged_last = p.index;
     w.patches.push_back(p);
+  }
+  for (A22Patch& p : w.patches) {
+    if (p.ours.merged_into >= 0) continue;
+    for (const A22Patch& q : w.patches)
+      if (q.ours.merged_into == p.index) {
+        p.merged_first = std::min(p.merged_first, q.index);
+        p.merged_last = std::max(p.merged_last, q.index);
+      }
+    p.exact_candidate =
+        p.merged_last > p.merged_first
+            ? mergeCandidates(w.geometry.candidates, p.merged_first, p.merged_last, p.index)
+            : p.candidate;
   }
   // The exact wheel: the vertical approach V at which sum_i fn_i n_z,i = fz, candidate i at
   // approach V n_z,i - gap_i (patch_normal.hpp's WheelNormal). fz grows about as V^1.5 (Hertz), so
@@ -199,8 +219,13 @@ A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A
   for (int it = 0; it < o.exact_iterations; ++it) {
     double F = 0.0;
     for (A22Patch& p : w.patches) {
+      if (p.ours.merged_into >= 0) {  // solved on the merged gap of the patch that took it
+        p.exact = A22Exact{};
+        p.exact.solved = true;
+        continue;
+      }
       const double d = V * p.candidate.normal.y() - p.candidate.gap;  // normal: (y, z)
-      p.exact = solveExactPatch(p.candidate, d, o);
+      p.exact = solveExactPatch(p.exact_candidate, d, o);
       if (!p.exact.solved) throw std::runtime_error(where + p.exact.message);
       if (it == 0) p.exact_fn_at_our_approach = p.exact.fn;
       F += p.exact.fn * p.candidate.normal.y();  // the vertical component
@@ -214,6 +239,20 @@ A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A
     V *= std::pow(state.fz / F, 2.0 / 3.0);
   }
   return w;
+}
+
+}  // namespace
+
+A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A22Options& o) {
+  return runWheel(
+      [&search](WheelSide side, const WheelsetPose& pose) { return search.search(side, pose); },
+      search.data(), state, o);
+}
+
+A22Wheel runA22Wheel(const ContactTable& table, const A22State& state, const A22Options& o) {
+  return runWheel(
+      [&table](WheelSide side, const WheelsetPose& pose) { return table.search(side, pose); },
+      table.contactSearch().data(), state, o);
 }
 
 }  // namespace wheel_rail_contact

@@ -20,6 +20,7 @@
 #include "core/exact/halfspace_influence.hpp"
 #include "wheel_rail_contact/normal/patch_normal.hpp"
 #include "wheel_rail_contact/profiles/contact_search.hpp"
+#include "wheel_rail_contact/profiles/contact_table.hpp"
 #include "wheel_rail_contact/wheelset/creepages.hpp"
 
 namespace wheel_rail_contact {
@@ -85,6 +86,13 @@ struct A22Patch {
   ContactCandidate candidate;
   NormalPatch ours;
   PatchCreepages creepages;
+  /// The candidates [merged_first, merged_last] whose patches solveWheelLoad merged into this
+  /// one (ours.merged_into < 0 here, the others' naming this index); both equal to index when
+  /// nothing merged into it. A candidate merged into another has no exact solution of its own
+  /// (fn 0): the exact solver sees the merged gap (mergeCandidates) on the patch that took it.
+  int merged_first = 0, merged_last = 0;
+  /// The geometry the exact solver solves: the candidate, or the merged candidate.
+  ContactCandidate exact_candidate;
   /// Exact at the wheel's vertical load, and at our own approach (its force only).
   A22Exact exact;
   double exact_fn_at_our_approach = 0.0;
@@ -102,10 +110,13 @@ struct A22Wheel {
 };
 
 /// Runs one wheel of one state: search, our normal problem under state.fz, creepages, and the exact
-/// solver on every candidate's gap, its vertical approach iterated until the patches' vertical
-/// forces add up to state.fz. Throws std::runtime_error if the search or the exact solver fails
-/// (the benchmark's states are all valid); our normal problem's failure is A22Wheel::message.
+/// solver on every candidate's gap (a merged patch's on the merged gap), its vertical approach
+/// iterated until the patches' vertical forces add up to state.fz. Throws std::runtime_error if
+/// the search or the exact solver fails (the benchmark's states are all valid); our normal
+/// problem's failure is A22Wheel::message.
 A22Wheel runA22Wheel(const ContactSearch& search, const A22State& state, const A22Options& o);
+/// The same with the contact table's geometry in place of the direct search's.
+A22Wheel runA22Wheel(const ContactTable& table, const A22State& state, const A22Options& o);
 
 /// The exact normal problem of one candidate at a rigid approach along its normal beyond first
 /// touch, on the gap h(x, eta) = g(eta) - g(0) + x^2 cos(delta(eta)) / (2 r(eta)) of its gap
