@@ -53,6 +53,9 @@ print("| wheel | y (mm) | zone | rail y ours / CONTACT (mm) | angle ours / CONTA
       "fn ours / exact / CONTACT (kN) | pmax ours / exact / CONTACT (MPa) |")
 print("| --- | --- | --- | --- | --- | --- | --- |")
 for r in rows:
+    if r["method"] == "merged":  # a candidate whose patch another took over (fn 0)
+        print(f"| {r['wheel']} | {num(r, 'y_mm'):.1f} | {r['zone']} | {r['status']} | - | - | - |")
+        continue
     ref = not math.isnan(num(r, "contact_fn_N"))
 
     def pair(a, b, fmt):

@@ -24,7 +24,7 @@ struct Options {
   std::string reference = "test/data/profiles/contact_a22_reference.csv";
   std::string out = "doc/data/manchester_a22.csv";
   std::string maps = "doc/data/manchester_a22";  ///< prefix of the pressure maps' files
-  std::vector<double> map_y = {0.5, 5.0, 6.5};
+  std::vector<double> map_y = {0.0, 0.5, 5.0, 6.5};
   std::string map_wheel = "right";
   int exact_mx = 48, exact_my = 32;
   double G = 82e9, nu = 0.28;

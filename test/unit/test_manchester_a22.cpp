@@ -23,12 +23,6 @@ const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/test/data/profiles/
 /// at most 0.3 % on the force at a given approach and 2.8 % on the peak pressure.
 constexpr int kExactMx = 24, kExactMy = 18;
 
-/// The search's least ridge between two candidates for a 10 kN wheel: 20 um, the tread's elastic
-/// approach under that load, not the default 1 um. At y = 0 the tread's gap has two minima under
-/// a ridge lower than that: loaded, they are one patch, and with 1 um the normal problem refuses
-/// the first as reaching past its gap function (doc/manchester.md).
-constexpr double kMinRidge = 2e-5;
-
 A22Options testOptions() {
   A22Options o;
   o.exact_mx = kExactMx;
@@ -39,9 +33,7 @@ A22Options testOptions() {
 /// All 42 wheels, run once for the whole file.
 const std::vector<A22Wheel>& wheels() {
   static const std::vector<A22Wheel> all = [] {
-    ContactSearchOptions so;
-    so.min_ridge = kMinRidge;
-    const ContactSearch search{WheelsetTrackData{}, so};
+    const ContactSearch search{WheelsetTrackData{}};
     std::vector<A22Wheel> out;
     for (const A22State& s : readA22States(kDataDir + "a22_cases.csv"))
       out.push_back(runA22Wheel(search, s, testOptions()));
@@ -59,11 +51,17 @@ bool loaded(const A22Patch& p) {
   return p.ours.fn > 0.0 || p.exact.fn > 0.0;
 }
 
-/// The tread's plateau: at y = 0 (both wheels) and y = 0.5 mm (right wheel) the tread's gap is
-/// flat to within the load's approach over several millimetres, and the strip method's patch is
-/// not the exact one there (normal/patch_normal.hpp, "Where it is weak").
+/// The centred state (y = 0, both wheels): the tread's gap has two minima under a ridge lower than
+/// the load's approach, two candidates that solveWheelLoad merges into one patch.
+bool centred(const A22Wheel& w) {
+  return w.state.y_mm == 0.0;
+}
+
+/// The tread's plateau: at y = 0.5 mm (right wheel) the tread's gap is flat to within the load's
+/// approach over several millimetres beside its minimum, and the strip method's patch is not the
+/// exact one there (normal/patch_normal.hpp, "Where it is weak").
 bool onThePlateau(const A22Wheel& w) {
-  return w.state.y_mm == 0.0 || (w.state.y_mm == 0.5 && w.state.side == WheelSide::kRight);
+  return w.state.y_mm == 0.5 && w.state.side == WheelSide::kRight;
 }
 
 }  // namespace
@@ -87,9 +85,9 @@ TEST(ManchesterA22, NormalForceAndPeakPressureAgainstTheExactSolver) {
   //   wheel load (the load split between two patches: 0.3 % at 5 mm; one patch carries the whole
   //   load by construction).
   // - At our own approach: the force within 2 % (0.3 % grid, 1.1 % method), and the approaches
-  //   at the load within 2 % likewise, except on the tread's
-  //   plateau, where the strip method is known to be off and is asserted as measured below, so
-  //   that a change either way shows.
+  //   at the load within 2 % likewise, except on the tread's plateau, where the strip method is
+  //   known to be off and is asserted as measured below, so that a change either way shows, and
+  //   in the centred state, whose merged patch has its own tolerances below.
   int patches = 0, two = 0;
   for (const A22Wheel& w : wheels()) {
     ASSERT_TRUE(w.message.empty()) << w.message;
@@ -101,7 +99,7 @@ TEST(ManchesterA22, NormalForceAndPeakPressureAgainstTheExactSolver) {
       ASSERT_TRUE(p.exact.solved) << label(w, p) << ": " << p.exact.message;
       EXPECT_NEAR(p.ours.pmax, p.exact.pmax, 0.06 * p.exact.pmax) << label(w, p);
       EXPECT_NEAR(p.ours.fn, p.exact.fn, 0.01 * w.state.fz) << label(w, p);
-      if (onThePlateau(w)) continue;
+      if (onThePlateau(w) || centred(w)) continue;
       EXPECT_NEAR(p.ours.fn, p.exact_fn_at_our_approach, 0.02 * p.exact_fn_at_our_approach)
           << label(w, p);
       EXPECT_NEAR(p.ours.approach, p.exact.approach, 0.02 * p.exact.approach) << label(w, p);
@@ -113,24 +111,61 @@ TEST(ManchesterA22, NormalForceAndPeakPressureAgainstTheExactSolver) {
 }
 
 TEST(ManchesterA22, TheTreadPlateauIsWhereTheStripMethodIsOff) {
-  // As measured (64 x 48: the force at the same approach +44 % at y = 0, -30 % at 0.5 mm), each
-  // within a band, so that an improvement or a regression shows: at y = 0 the merged patch of the
-  // tread's two minima is too stiff, at 0.5 mm the patch stops short of the plateau beside the
-  // minimum and is too soft.
+  // As measured (64 x 48: the force at the same approach -30 % at 0.5 mm on the right wheel),
+  // within a band, so that an improvement or a regression shows: the patch stops short of the
+  // plateau beside the minimum and is too soft.
+  int checked = 0;
   for (const A22Wheel& w : wheels()) {
     if (!onThePlateau(w)) continue;
     for (const A22Patch& p : w.patches) {
       if (!loaded(p)) continue;
       const double ratio = p.ours.fn / p.exact_fn_at_our_approach;
-      if (w.state.y_mm == 0.0) {
-        EXPECT_GT(ratio, 1.3) << label(w, p);
-        EXPECT_LT(ratio, 1.6) << label(w, p);
-      } else {
-        EXPECT_GT(ratio, 0.6) << label(w, p);
-        EXPECT_LT(ratio, 0.8) << label(w, p);
-      }
+      EXPECT_GT(ratio, 0.6) << label(w, p);
+      EXPECT_LT(ratio, 0.8) << label(w, p);
+      ++checked;
     }
   }
+  EXPECT_EQ(checked, 1);
+}
+
+TEST(ManchesterA22, TheCentredStateIsOneMergedPatchNearTheExactOne) {
+  // At y = 0 the search finds the tread's two minima as two candidates; under 10 kN the ridge
+  // between them lies below the approach, and solveWheelLoad solves them as one patch lump by
+  // lump at the first, the second merged into it with fn 0. The exact solver sees the merged gap.
+  // Against it (24 x 18; 64 x 48 in brackets): the force at our approach +6.0 % (+6.3 %), the
+  // approach at the load -3.3 % (-3.5 %), the peak pressure at the load -4.0 % (-4.3 %), the
+  // patch's lateral edges 0.22 and 0.26 mm inside the exact loaded elements' outer edges (0.09,
+  // 0.01 mm). Tolerances: 9 % on the force (the lumps' assumed semi-elliptic strips over a
+  // gap with two minima, doc/normal_problem.md), 5 % on the approach, 6 % on the peak pressure
+  // (above), and the exact grid's element (some 0.9 mm across here) bounding the exact edges:
+  // 0.5 mm on each edge.
+  int checked = 0;
+  for (const A22Wheel& w : wheels()) {
+    if (!centred(w)) continue;
+    ASSERT_EQ(w.patches.size(), 2u);
+    const A22Patch& first = w.patches[0];
+    const A22Patch& second = w.patches[1];
+    EXPECT_EQ(second.ours.merged_into, 0);
+    EXPECT_EQ(second.ours.fn, 0.0);
+    EXPECT_EQ(second.exact.fn, 0.0);
+    EXPECT_EQ(first.ours.merged_into, -1);
+    EXPECT_EQ(first.merged_first, 0);
+    EXPECT_EQ(first.merged_last, 1);
+    // The merged gap reaches past the first candidate's own toward the second's.
+    ASSERT_FALSE(first.candidate.gap_function.empty());
+    ASSERT_FALSE(first.exact_candidate.gap_function.empty());
+    EXPECT_GT(first.exact_candidate.gap_function.back().eta,
+              first.candidate.gap_function.back().eta);
+    EXPECT_NEAR(first.ours.fn, first.exact_fn_at_our_approach,
+                0.09 * first.exact_fn_at_our_approach)
+        << label(w, first);
+    EXPECT_NEAR(first.ours.approach, first.exact.approach, 0.05 * first.exact.approach)
+        << label(w, first);
+    EXPECT_NEAR(first.ours.eta_min, first.exact.eta_min, 5e-4) << label(w, first);
+    EXPECT_NEAR(first.ours.eta_max, first.exact.eta_max, 5e-4) << label(w, first);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 2);
 }
 
 TEST(ManchesterA22, ContactPointOnTheRailNearContactsReferenceLocation) {
