@@ -37,6 +37,7 @@
 /// Units SI: m, N, Pa, rad.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,12 @@ struct NormalOptions {
   bool allow_hertz = true;       ///< false: the strip method on every patch (for checks)
   double load_tolerance = 1e-6;  ///< solveWheelLoad: relative error of the vertical load
   int max_iterations = 100;      ///< solveWheelLoad: iterations on the approach
+  /// solveWheelLoad's warm start: its first trial vertical approach [m] (as
+  /// WheelNormal::vertical_approach, from the pose the geometry was searched at), e.g. the
+  /// previous step's vertical_approach corrected by the change of the searched pose's z. NaN
+  /// (default) or a value not beyond first touch: a cold start 10 um beyond first touch. Only
+  /// the cost depends on it; the result is the same within load_tolerance.
+  double start_vertical_approach = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The normal problem of one candidate at a rigid approach [m] along its normal beyond first

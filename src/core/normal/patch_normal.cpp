@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -688,11 +689,30 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
   // Vertical force at a vertical approach; false on a patch's failure (its status in *bad).
   NormalStatus bad = NormalStatus::kOk;
   std::string bad_why;
-  auto force = [&](double dv, double* fz) {
+  // Ridges that a patch reached before the rigid overlap crossed them (the strips' region
+  // reaches beyond the interpenetration where the penetration factor exceeds 1): joined at every
+  // approach from the one that reached them (the region grows with the approach).
+  std::vector<double> reached(nc > 1 ? nc - 1 : 0, std::numeric_limits<double>::infinity());
+  auto joined = [&](int k, double dv) { return dv > ridge[k] || dv >= reached[k]; };
+  // On a patch of [i, last] outgrowing its gap function: the ridge at its lower end beyond which
+  // a neighbour lies, -1 if none (then the gap function's sampled height is the limit).
+  auto ridgeReached = [&](int i, int last) {
+    const bool left = i > 0 && std::isfinite(ridge[i - 1]);
+    const bool right = last + 1 < nc && std::isfinite(ridge[last]);
+    if (left && right) {
+      const ContactCandidate& a = geo.candidates[i];
+      const ContactCandidate& b = geo.candidates[last];
+      return a.gap_function.front().gap / a.normal.y() < b.gap_function.back().gap / b.normal.y()
+                 ? i - 1
+                 : last;
+    }
+    return left ? i - 1 : right ? last : -1;
+  };
+  std::function<bool(double, double*)> force = [&](double dv, double* fz) {
     *fz = 0.0;
     for (int i = 0; i < nc;) {
       int last = i;  // the candidates [i, last] joined across ridges below the approach
-      while (last + 1 < nc && dv > ridge[last]) ++last;
+      while (last + 1 < nc && joined(last, dv)) ++last;
       int p = i;  // the one with the smallest vertical gap carries the merged patch
       for (int k = i + 1; k <= last; ++k)
         if (geo.candidates[k].vertical_gap < geo.candidates[p].vertical_gap) p = k;
@@ -709,6 +729,13 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
         patch = solveMergedPatch(*c, it->second.ridges, dv * c->normal.y() - c->gap, G, nu, o);
       } else {
         patch = solvePatchNormal(*c, dv * c->normal.y() - c->gap, G, nu, o);
+      }
+      if (patch.status == NormalStatus::kBeyondGapFunction) {
+        const int k = ridgeReached(i, last);
+        if (k >= 0 && !joined(k, dv)) {
+          reached[k] = dv;
+          return force(dv, fz);
+        }
       }
       if (patch.status != NormalStatus::kOk) {
         bad = patch.status;
@@ -735,34 +762,64 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
     return true;
   };
   // Secant steps on r = f^(2/3) - load^(2/3), nearly linear in the approach (Hertz: f ~
-  // d^(3/2)), from first touch (r = -load^(2/3)) and a probe 10 um beyond; a step that leaves
-  // the bracket found so far bisects it, one beyond every trial so far (no bracket yet) goes at
-  // most eight times as deep.
+  // d^(3/2)), from first touch (r = -load^(2/3)) and a first trial 10 um beyond (or at the
+  // caller's start). A step that leaves the bracket [lo, hi] found so far, or two steps that did
+  // not halve it, bisect it; a step beyond every trial so far (no bracket yet) goes at most eight
+  // times as deep. The bracket closing to kJumpWidth without the load met is a jump of the
+  // patches' force in the approach (the strips' region spreading at once over a plateau, two
+  // patches joining): the side whose force is nearer the load is taken.
+  constexpr double kJumpWidth = 1e-13;  // m, far below any approach the tolerance resolves
   const double target = std::cbrt(load * load);
   const double inf = std::numeric_limits<double>::infinity();
-  double lo = touch, hi = inf;
-  double x0 = touch, r0 = -target, x1 = touch + 1e-5, f = 0.0;
-  double dv = x1;
+  double lo = touch, hi = inf, f_lo = 0.0, f_hi = inf;
+  double x0 = touch, r0 = -target, f = 0.0;
+  double dv = touch + 1e-5;
+  if (std::isfinite(o.start_vertical_approach) && o.start_vertical_approach > touch)
+    dv = o.start_vertical_approach;
+  double width_before = inf;  // the bracket two steps ago
+  int since_check = 0;
   int it = 0;
   for (; it < o.max_iterations; ++it) {
     if (!force(dv, &f)) return failed(bad, bad_why);
     if (std::abs(f - load) <= o.load_tolerance * load) break;
     const double r = std::cbrt(f * f) - target;
-    (r > 0.0 ? hi : lo) = dv;
-    x1 = dv;
+    if (r > 0.0) {
+      hi = dv;
+      f_hi = f;
+    } else {
+      lo = dv;
+      f_lo = f;
+    }
+    if (hi < inf && hi - lo <= kJumpWidth) {
+      const bool take_hi = f_hi - load < load - f_lo;
+      dv = take_hi ? hi : lo;
+      if (!force(dv, &f)) return failed(bad, bad_why);
+      std::ostringstream m;
+      m << "the patches' vertical force jumps from " << f_lo << " N to " << f_hi
+        << " N at vertical approach " << lo
+        << " m (the strips' region spreading at once, or patches joining): the side nearer the "
+           "load is taken, "
+        << f << " N";
+      out.message = m.str();
+      break;
+    }
+    const double x1 = dv;
     double next = r != r0 ? x1 - r * (x1 - x0) / (r - r0) : inf;
     x0 = x1;
     r0 = r;
     if (hi < inf) {
+      const double width = hi - lo;
+      if (++since_check >= 2) {
+        if (width > 0.5 * width_before) next = inf;  // the secant stalls: bisect
+        width_before = width;
+        since_check = 0;
+      }
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     } else if (!(next > lo) || next > touch + 8.0 * (lo - touch)) {
       next = touch + 8.0 * (lo - touch);
     }
     dv = next;
   }
-  if (it >= o.max_iterations)
-    return failed(NormalStatus::kNotConverged, hi < inf ? "the approach iteration did not converge"
-                                                        : "no approach carries the load");
   // The patches hold the last trial's solution, at dv.
   out.vertical_approach = dv;
   return out;
