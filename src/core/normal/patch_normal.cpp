@@ -772,6 +772,7 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
   const double target = std::cbrt(load * load);
   const double inf = std::numeric_limits<double>::infinity();
   double lo = touch, hi = inf, f_lo = 0.0, f_hi = inf;
+  bool lo_solved = false;
   double x0 = touch, r0 = -target, f = 0.0;
   double dv = touch + 1e-5;
   if (std::isfinite(o.start_vertical_approach) && o.start_vertical_approach > touch)
@@ -789,12 +790,24 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
     } else {
       lo = dv;
       f_lo = f;
+      lo_solved = true;
     }
     if (hi < inf && hi - lo <= kJumpWidth) {
+      if (!lo_solved) {  // first touch itself, its force taken as 0 so far
+        if (!force(lo, &f_lo)) return failed(bad, bad_why);
+        if (f_lo > load) {
+          std::ostringstream m;
+          m << "the patches carry " << f_lo
+            << " N already at first touch (gap functions below their candidates' gaps), more "
+               "than the load";
+          return failed(NormalStatus::kNotConverged, m.str());
+        }
+      }
       const bool take_hi = f_hi - load < load - f_lo;
       dv = take_hi ? hi : lo;
       if (!force(dv, &f)) return failed(bad, bad_why);
       std::ostringstream m;
+      m.precision(9);
       m << "the patches' vertical force jumps from " << f_lo << " N to " << f_hi
         << " N at vertical approach " << lo
         << " m (the strips' region spreading at once, or patches joining): the side nearer the "
