@@ -116,7 +116,8 @@ TEST(WheelLoad, CoarseSweepCarriesEveryLoad) {
 }
 
 TEST(WheelLoad, WarmStartGivesTheColdResult) {
-  // The previous step's vertical approach, its pose 0.01 mm away (same z), as the first trial.
+  // The previous step's approach beyond first touch, its pose 0.01 mm away, as the first trial
+  // (or one twice or half as deep, or none).
   for (double y : {-6.5, -5.0, -2.0, -0.5, 0.0, 3.0})
     for (double load : {5e3, 1e4, 2e4}) {
       const WheelContactGeometry prev = atFirstTouch(WheelSide::kRight, y - 0.01, 0.0);
@@ -124,10 +125,11 @@ TEST(WheelLoad, WarmStartGivesTheColdResult) {
       const WheelNormal before = solveWheelLoad(prev, load, kG, kNu);
       ASSERT_EQ(before.status, NormalStatus::kOk) << y << " " << before.message;
       const WheelNormal cold = solveWheelLoad(g, load, kG, kNu);
+      EXPECT_GT(cold.trials, 0);
       NormalOptions o;
-      for (double start :
-           {before.vertical_approach, 2.0 * before.vertical_approach, -1.0, std::nan("")}) {
-        o.start_vertical_approach = start;
+      const double beyond = before.vertical_approach - before.touch_approach;
+      for (double start : {beyond, 2.0 * beyond, 0.5 * beyond, -1.0, std::nan("")}) {
+        o.start_beyond_touch = start;
         const WheelNormal warm = solveWheelLoad(g, load, kG, kNu, o);
         ASSERT_EQ(warm.status, cold.status) << y << " " << warm.message;
         const double fz = verticalForce(g, warm);

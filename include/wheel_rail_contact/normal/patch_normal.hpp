@@ -96,12 +96,15 @@ struct NormalOptions {
   bool allow_hertz = true;       ///< false: the strip method on every patch (for checks)
   double load_tolerance = 1e-6;  ///< solveWheelLoad: relative error of the vertical load
   int max_iterations = 100;      ///< solveWheelLoad: iterations on the approach
-  /// solveWheelLoad's warm start: its first trial vertical approach [m] (as
-  /// WheelNormal::vertical_approach, from the pose the geometry was searched at), e.g. the
-  /// previous step's vertical_approach corrected by the change of the searched pose's z. NaN
-  /// (default) or a value not beyond first touch: a cold start 10 um beyond first touch. Only
-  /// the cost depends on it; the result is the same within load_tolerance.
-  double start_vertical_approach = std::numeric_limits<double>::quiet_NaN();
+  /// solveWheelLoad's warm start: its first trial's vertical approach beyond first touch [m],
+  /// e.g. the previous step's WheelNormal::vertical_approach - WheelNormal::touch_approach (under
+  /// a load that changes little between steps the approach beyond first touch changes little,
+  /// wherever the wheel has moved). NaN (default) or <= 0: a cold start, 10 um. Only the cost
+  /// depends on it; the result is the same within load_tolerance.
+  double start_beyond_touch = std::numeric_limits<double>::quiet_NaN();
+  /// With start_beyond_touch: the load's growth with the approach there, d ln f / d ln(dv -
+  /// touch), e.g. the previous step's WheelNormal::load_exponent; NaN or <= 0: 3/2 (Hertz).
+  double start_exponent = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The normal problem of one candidate at a rigid approach [m] along its normal beyond first
@@ -118,6 +121,12 @@ struct WheelNormal {
   /// rail, > 0 to close a gap): candidate i takes the approach
   ///   vertical_approach * n_z,i - gap_i   along its normal (n_z,i its normal's z component).
   double vertical_approach = 0.0;
+  /// The vertical approach at which the first candidate touches, min_i gap_i / n_z,i [m].
+  double touch_approach = 0.0;
+  int trials = 0;  ///< approaches at which the patches were solved
+  /// d ln f / d ln(vertical_approach - touch_approach) near the solution, from the last two
+  /// trials (3/2 if fewer): NormalOptions::start_exponent for the next step.
+  double load_exponent = 1.5;
 };
 
 /// The vertical approach at which sum_i fn_i n_z,i = vertical_load [N] (> 0), each candidate's

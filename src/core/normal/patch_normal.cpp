@@ -761,30 +761,41 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
     }
     return true;
   };
-  // Secant steps on r = f^(2/3) - load^(2/3), nearly linear in the approach (Hertz: f ~
-  // d^(3/2)), from first touch (r = -load^(2/3)) and a first trial 10 um beyond (or at the
-  // caller's start). A step that leaves the bracket [lo, hi] found so far, or two steps that did
-  // not halve it, bisect it; a step beyond every trial so far (no bracket yet) goes at most eight
-  // times as deep. The bracket closing to kJumpWidth without the load met is a jump of the
-  // patches' force in the approach (the strips' region spreading at once over a plateau, two
-  // patches joining): the side whose force is nearer the load is taken.
+  // Secant steps on w = ln(f / load) against u = ln(dv - first touch), a straight line for a
+  // force growing as a power of the approach (Hertz: f ~ d^(3/2)): the first trial 10 um beyond
+  // first touch (or at the caller's start), the second as if f ~ (dv - touch)^(3/2), then the
+  // secant through the last two trials. A step that leaves the bracket [lo, hi] found so far,
+  // or is more than half the step before last (the secant stalls), bisects it; a step beyond
+  // every trial so far (no bracket yet) goes at most eight times as deep. The bracket closing
+  // to kJumpWidth without the load met is a jump of the patches' force in the approach (the
+  // strips' region spreading at once over a plateau, two patches joining): the side whose force
+  // is nearer the load is taken.
   constexpr double kJumpWidth = 1e-13;  // m, far below any approach the tolerance resolves
-  const double target = std::cbrt(load * load);
   const double inf = std::numeric_limits<double>::infinity();
   double lo = touch, hi = inf, f_lo = 0.0, f_hi = inf;
   bool lo_solved = false;
-  double x0 = touch, r0 = -target, f = 0.0;
+  double u0 = 0.0, w0 = 0.0, f = 0.0;  // the trial before, once there is one (have0)
+  bool have0 = false;
+  double step1 = inf, step2 = inf;  // the last two steps' sizes
   double dv = touch + 1e-5;
-  if (std::isfinite(o.start_vertical_approach) && o.start_vertical_approach > touch)
-    dv = o.start_vertical_approach;
-  double width_before = inf;  // the bracket two steps ago
-  int since_check = 0;
+  double first_slope = 1.5;
+  if (std::isfinite(o.start_beyond_touch) && o.start_beyond_touch > 0.0) {
+    dv = touch + o.start_beyond_touch;
+    if (std::isfinite(o.start_exponent) && o.start_exponent > 0.0) first_slope = o.start_exponent;
+  }
+  out.touch_approach = touch;
   int it = 0;
   for (; it < o.max_iterations; ++it) {
     if (!force(dv, &f)) return failed(bad, bad_why);
-    if (std::abs(f - load) <= o.load_tolerance * load) break;
-    const double r = std::cbrt(f * f) - target;
-    if (r > 0.0) {
+    ++out.trials;
+    if (std::abs(f - load) <= o.load_tolerance * load) {
+      if (have0 && f > 0.0 && dv > touch) {
+        const double slope = (std::log(f / load) - w0) / (std::log(dv - touch) - u0);
+        if (std::isfinite(slope) && slope > 0.0) out.load_exponent = slope;
+      }
+      break;
+    }
+    if (f > load) {
       hi = dv;
       f_hi = f;
     } else {
@@ -806,6 +817,7 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
       const bool take_hi = f_hi - load < load - f_lo;
       dv = take_hi ? hi : lo;
       if (!force(dv, &f)) return failed(bad, bad_why);
+      ++out.trials;
       std::ostringstream m;
       m.precision(9);
       m << "the patches' vertical force jumps from " << f_lo << " N to " << f_hi
@@ -816,21 +828,24 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
       out.message = m.str();
       break;
     }
-    const double x1 = dv;
-    double next = r != r0 ? x1 - r * (x1 - x0) / (r - r0) : inf;
-    x0 = x1;
-    r0 = r;
+    // The next trial: the secant in (u, w), or the 3/2 power from first touch.
+    double next = inf;
+    const double u1 = std::log(dv - touch);
+    if (f > 0.0) {
+      const double w1 = std::log(f / load);
+      const double slope = have0 ? (w1 - w0) / (u1 - u0) : first_slope;
+      if (slope > 0.0 && std::isfinite(slope)) next = touch + std::exp(u1 - w1 / slope);
+      u0 = u1;
+      w0 = w1;
+      have0 = true;
+    }
     if (hi < inf) {
-      const double width = hi - lo;
-      if (++since_check >= 2) {
-        if (width > 0.5 * width_before) next = inf;  // the secant stalls: bisect
-        width_before = width;
-        since_check = 0;
-      }
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (!(next > lo && next < hi) || std::abs(next - dv) > 0.5 * step2) next = 0.5 * (lo + hi);
     } else if (!(next > lo) || next > touch + 8.0 * (lo - touch)) {
       next = touch + 8.0 * (lo - touch);
     }
+    step2 = step1;
+    step1 = std::abs(next - dv);
     dv = next;
   }
   // The patches hold the last trial's solution, at dv.
