@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -51,17 +52,23 @@ void expectLoadCarried(const WheelContactGeometry& g, const WheelNormal& w, doub
   const double fz = verticalForce(g, w);
   if (std::abs(fz - load) <= 1e-6 * load) return;
   ASSERT_NE(w.message.find("jumps"), std::string::npos) << where << ": " << fz << " N";
-  // The sweeps' jumps are on single candidates (the strips' region on a tread plateau).
-  ASSERT_EQ(g.candidates.size(), 1u) << where;
-  const ContactCandidate& c = g.candidates[0];
-  auto at = [&](double dv) {
-    return solvePatchNormal(c, dv * c.normal.y() - c.gap, kG, kNu).fn * c.normal.y();
-  };
-  const double f_below = at(w.vertical_approach - 1e-12);
-  const double f_above = at(w.vertical_approach + 1e-12);
+  double f_below = 0.0, f_above = 0.0;
+  if (g.candidates.size() == 1) {  // the force on each side, solved again
+    const ContactCandidate& c = g.candidates[0];
+    auto at = [&](double dv) {
+      return solvePatchNormal(c, dv * c.normal.y() - c.gap, kG, kNu).fn * c.normal.y();
+    };
+    f_below = at(w.vertical_approach - 1e-12);
+    f_above = at(w.vertical_approach + 1e-12);
+  } else {  // as the message states them
+    const std::size_t at = w.message.find("jumps from ");
+    ASSERT_EQ(std::sscanf(w.message.c_str() + at, "jumps from %lf N to %lf N", &f_below, &f_above),
+              2)
+        << where << ": " << w.message;
+  }
   EXPECT_LT(f_below, load) << where;
   EXPECT_GT(f_above, load) << where;
-  EXPECT_GT(f_above - f_below, 1e-3 * load) << where << ": not a jump";
+  EXPECT_GT(f_above - f_below, 1e-6 * load) << where << ": not a jump";  // beyond the tolerance
   EXPECT_LE(std::abs(fz - load),
             std::min(std::abs(f_below - load), std::abs(f_above - load)) + 1e-6 * load)
       << where;
@@ -96,6 +103,27 @@ TEST(WheelLoad, TreadPlateauPosesSolve) {
     }
   }
   EXPECT_GT(jumps, 0);  // the rule is exercised, not only the converging cases
+}
+
+TEST(WheelLoad, CutGapFunctionPosesSolve) {
+  // The other poses the sweep found failing: y = -6.6 mm with yaw on the right wheel (6.6 mm on
+  // the left), 5 to 30 kN. The search cuts the gauge corner's gap function where it still falls
+  // towards the flange's candidate, whose own gap function does not meet it (the two contact
+  // planes some 35 degrees apart, no ridge to merge across): the patch stops at that end.
+  int cut = 0;
+  for (WheelSide side : {WheelSide::kRight, WheelSide::kLeft})
+    for (double yaw : {0.01, -0.01}) {
+      const double sign = side == WheelSide::kRight ? 1.0 : -1.0;
+      const WheelContactGeometry g = atFirstTouch(side, sign * -6.6, yaw);
+      ASSERT_EQ(g.candidates.size(), 2u);
+      for (double load : {5e3, 1e4, 1.5e4, 2e4, 3e4}) {
+        const WheelNormal w = solveWheelLoad(g, load, kG, kNu);
+        expectLoadCarried(g, w, load, std::to_string(yaw) + " " + std::to_string(load));
+        for (const NormalPatch& p : w.patches)
+          if (p.message.find("cut where the gap function ends") != std::string::npos) ++cut;
+      }
+    }
+  EXPECT_GT(cut, 0);
 }
 
 TEST(WheelLoad, CoarseSweepCarriesEveryLoad) {

@@ -546,7 +546,8 @@ double lumpInfluence(const Lump& k, double e) {
 }  // namespace
 
 NormalPatch solveMergedPatch(const ContactCandidate& c, const std::vector<double>& ridges,
-                             double approach, double G, double nu, const NormalOptions& o) {
+                             double approach, double G, double nu, const NormalOptions& o,
+                             bool cut_lo, bool cut_hi) {
   NormalPatch out;
   out.approach = approach;
   out.method = NormalMethod::kNonHertzian;
@@ -570,7 +571,8 @@ NormalPatch solveMergedPatch(const ContactCandidate& c, const std::vector<double
     std::string why;
     if (!buildGeometry(parts[k], &geos[k], &why))
       return fail(NormalStatus::kNoGapFunction, why, approach);
-    if (!lumpStrips(geos[k], approach, k > 0, k + 1 < nl, Estar, o.strips, &lumps[k]))
+    if (!lumpStrips(geos[k], approach, k > 0 || cut_lo, k + 1 < nl || cut_hi, Estar, o.strips,
+                    &lumps[k]))
       return fail(NormalStatus::kBeyondGapFunction,
                   "the merged patch reaches the end of the gap function", approach);
   }
@@ -735,6 +737,20 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
         if (k >= 0 && !joined(k, dv)) {
           reached[k] = dv;
           return force(dv, fz);
+        }
+        // A gap function that the search cut at a neighbouring candidate where neither reaches
+        // the other's ridge (a sharp kink between their contact planes): the patch stops at that
+        // end, as a lump stops at a ridge, the neighbour's side left to the neighbour's patch.
+        if (k < 0 && (i > 0 || last + 1 < nc) && patch.message.find("ridge") != std::string::npos) {
+          static const std::vector<double> none;
+          NormalPatch cut =
+              solveMergedPatch(*c, last > i ? merged.at({i, last}).ridges : none,
+                               dv * c->normal.y() - c->gap, G, nu, o, i > 0, last + 1 < nc);
+          if (cut.status == NormalStatus::kOk) {
+            cut.message = "cut where the gap function ends at a neighbouring candidate" +
+                          (cut.message.empty() ? std::string() : "; " + cut.message);
+            patch = cut;
+          }
         }
       }
       if (patch.status != NormalStatus::kOk) {
