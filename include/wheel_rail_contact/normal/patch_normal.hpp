@@ -145,7 +145,16 @@ struct WheelNormal {
 /// the gap between the ridges) by the strips above from its own gap at the shared approach, up to
 /// the ridge, one amplitude per lump such that the displacement at every lump's deepest point,
 /// from all lumps' strips, equals the interpenetration there. Patches not joined across a ridge
-/// are solved as by solvePatchNormal.
+/// are solved as by solvePatchNormal. A patch whose gap function ends at a neighbouring
+/// candidate with no ridge to join across (a kink between their contact planes) stops at that
+/// end (message "cut ...").
+///
+/// Iteration (doc/normal_problem.md): secant steps on ln f against ln(dv - touch_approach) inside
+/// a bracket that bisects when they leave it or stall, to |f - load| <= load_tolerance load.
+/// Where the patches' force jumps in the approach across the load (the strips' region spreading
+/// at once over a tread plateau, a merge), the side whose force is nearer the load is taken once
+/// the bracket is 1e-13 m wide: status kOk, the message "the patches' vertical force jumps from
+/// ... N to ... N ...". NormalOptions::start_beyond_touch, start_exponent: a warm start.
 WheelNormal solveWheelLoad(const WheelContactGeometry& geometry, double vertical_load, double G,
                            double nu, const NormalOptions& options = {});
 
