@@ -4,7 +4,9 @@
 // gauge corner timed), the flange at 6.5 mm (strips). Run:
 //   build/devel/lib/wheel_rail_contact/bench_patch_normal --benchmark_repetitions=5
 //     --benchmark_report_aggregates_only=true
-// The contact search is not timed (its geometry is computed once per state).
+// WheelLoadWarm: the same with NormalOptions::start_beyond_touch from the previous step's
+// solution, its pose 0.01 mm away. The contact search is not timed (its geometry is computed once
+// per state).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -25,10 +27,11 @@ constexpr State kStates[] = {{2.0, 0.0048, -0.0001128},
                              {5.0, 0.012, -0.0003554},
                              {6.5, 0.0156, -0.004376}};
 
-WheelContactGeometry geometry(int k) {
+/// The state's geometry, its y moved by dy_mm, the wheelset lowered to first touch.
+WheelContactGeometry geometry(int k, double dy_mm = 0.0) {
   static const ContactSearch search{WheelsetTrackData{}};
   WheelsetPose p;
-  p.y = -kStates[k].y_mm * 1e-3;
+  p.y = -(kStates[k].y_mm + dy_mm) * 1e-3;
   p.yaw = -kStates[k].yaw;
   p.roll = kStates[k].roll;
   for (int i = 0; i < 3; ++i) {  // down to first touch
@@ -51,12 +54,30 @@ void Patch(benchmark::State& state) {
 
 void WheelLoad(benchmark::State& state) {
   const WheelContactGeometry g = geometry(static_cast<int>(state.range(0)));
-  state.SetLabel(std::to_string(g.candidates.size()) + " candidates");
+  state.SetLabel(std::to_string(g.candidates.size()) + " candidates, " +
+                 std::to_string(solveWheelLoad(g, 1e4, 8.2e10, 0.28).trials) + " trials");
   for (auto _ : state) benchmark::DoNotOptimize(solveWheelLoad(g, 1e4, 8.2e10, 0.28));
+}
+
+/// Warm start as in a simulator's loop: the previous step's pose 0.01 mm further out, its
+/// vertical approach (moved to this step's searched z) the first trial.
+void WheelLoadWarm(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0));
+  const WheelContactGeometry g = geometry(k);
+  const WheelContactGeometry prev = geometry(k, 0.01);
+  const WheelNormal before = solveWheelLoad(prev, 1e4, 8.2e10, 0.28);
+  if (before.status != NormalStatus::kOk) state.SkipWithError(before.message.c_str());
+  NormalOptions o;
+  o.start_beyond_touch = before.vertical_approach - before.touch_approach;
+  o.start_exponent = before.load_exponent;
+  state.SetLabel(std::to_string(g.candidates.size()) + " candidates, " +
+                 std::to_string(solveWheelLoad(g, 1e4, 8.2e10, 0.28, o).trials) + " trials");
+  for (auto _ : state) benchmark::DoNotOptimize(solveWheelLoad(g, 1e4, 8.2e10, 0.28, o));
 }
 
 }  // namespace
 
 BENCHMARK(Patch)->DenseRange(0, 3);
 BENCHMARK(WheelLoad)->DenseRange(0, 3);
+BENCHMARK(WheelLoadWarm)->DenseRange(0, 3);
 BENCHMARK_MAIN();

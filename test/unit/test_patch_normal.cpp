@@ -474,7 +474,18 @@ TEST(PatchNormal, OddMergedGapsNeverGiveNaN) {
             << k;
       fz += p.fn * g.candidates[i].normal.y();
     }
-    if (w.status == NormalStatus::kOk) {
+    const std::size_t jump = w.message.find("jumps from ");
+    if (w.status == NormalStatus::kOk && jump != std::string::npos) {
+      // A load inside a jump of the force in the approach: the side nearer the load.
+      double below = 0.0, above = 0.0;
+      ASSERT_EQ(std::sscanf(w.message.c_str() + jump, "jumps from %lf N to %lf N", &below, &above),
+                2)
+          << w.message;
+      EXPECT_LT(below, load) << k;
+      EXPECT_GT(above, load) << k;
+      const double nearer = above - load < load - below ? above : below;
+      EXPECT_NEAR(fz, nearer, 1e-6 * nearer) << k << " " << w.message;
+    } else if (w.status == NormalStatus::kOk) {
       EXPECT_NEAR(fz, load, 1e-5 * load) << k;
     } else {
       EXPECT_EQ(fz, 0.0) << k << " " << w.message;

@@ -37,6 +37,7 @@
 /// Units SI: m, N, Pa, rad.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,15 @@ struct NormalOptions {
   bool allow_hertz = true;       ///< false: the strip method on every patch (for checks)
   double load_tolerance = 1e-6;  ///< solveWheelLoad: relative error of the vertical load
   int max_iterations = 100;      ///< solveWheelLoad: iterations on the approach
+  /// solveWheelLoad's warm start: its first trial's vertical approach beyond first touch [m],
+  /// e.g. the previous step's WheelNormal::vertical_approach - WheelNormal::touch_approach (under
+  /// a load that changes little between steps the approach beyond first touch changes little,
+  /// wherever the wheel has moved). NaN (default) or <= 0: a cold start, 10 um. Only the cost
+  /// depends on it; the result is the same within load_tolerance.
+  double start_beyond_touch = std::numeric_limits<double>::quiet_NaN();
+  /// With start_beyond_touch: the load's growth with the approach there, d ln f / d ln(dv -
+  /// touch), e.g. the previous step's WheelNormal::load_exponent; NaN or <= 0: 3/2 (Hertz).
+  double start_exponent = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The normal problem of one candidate at a rigid approach [m] along its normal beyond first
@@ -111,6 +121,12 @@ struct WheelNormal {
   /// rail, > 0 to close a gap): candidate i takes the approach
   ///   vertical_approach * n_z,i - gap_i   along its normal (n_z,i its normal's z component).
   double vertical_approach = 0.0;
+  /// The vertical approach at which the first candidate touches, min_i gap_i / n_z,i [m].
+  double touch_approach = 0.0;
+  int trials = 0;  ///< approaches at which the patches were solved
+  /// d ln f / d ln(vertical_approach - touch_approach) near the solution, from the last two
+  /// trials (3/2 if fewer): NormalOptions::start_exponent for the next step.
+  double load_exponent = 1.5;
 };
 
 /// The vertical approach at which sum_i fn_i n_z,i = vertical_load [N] (> 0), each candidate's
@@ -129,7 +145,16 @@ struct WheelNormal {
 /// the gap between the ridges) by the strips above from its own gap at the shared approach, up to
 /// the ridge, one amplitude per lump such that the displacement at every lump's deepest point,
 /// from all lumps' strips, equals the interpenetration there. Patches not joined across a ridge
-/// are solved as by solvePatchNormal.
+/// are solved as by solvePatchNormal. A patch whose gap function ends at a neighbouring
+/// candidate with no ridge to join across (a kink between their contact planes) stops at that
+/// end (message "cut ...").
+///
+/// Iteration (doc/normal_problem.md): secant steps on ln f against ln(dv - touch_approach) inside
+/// a bracket that bisects when they leave it or stall, to |f - load| <= load_tolerance load.
+/// Where the patches' force jumps in the approach across the load (the strips' region spreading
+/// at once over a tread plateau, a merge), the side whose force is nearer the load is taken once
+/// the bracket is 1e-13 m wide: status kOk, the message "the patches' vertical force jumps from
+/// ... N to ... N ...". NormalOptions::start_beyond_touch, start_exponent: a warm start.
 WheelNormal solveWheelLoad(const WheelContactGeometry& geometry, double vertical_load, double G,
                            double nu, const NormalOptions& options = {});
 

@@ -37,8 +37,10 @@ ContactCandidate mergeCandidates(const std::vector<ContactCandidate>& candidates
 /// gap at the shared approach, the patch of a lump stopping at a ridge; one amplitude per lump,
 /// such that the Boussinesq displacement at every lump's deepest point, from all lumps' strips,
 /// equals the interpenetration there (a lump whose amplitude comes out negative is lifted off).
-/// As solvePatchNormal otherwise (patch_normal.cpp).
+/// cut_lo, cut_hi: the gap function's first (last) sample is a ridge as well, where the patch
+/// stops (a neighbouring candidate beyond). As solvePatchNormal otherwise (patch_normal.cpp).
 NormalPatch solveMergedPatch(const ContactCandidate& merged, const std::vector<double>& ridges,
-                             double approach, double G, double nu, const NormalOptions& options);
+                             double approach, double G, double nu, const NormalOptions& options,
+                             bool cut_lo = false, bool cut_hi = false);
 
 }  // namespace wheel_rail_contact

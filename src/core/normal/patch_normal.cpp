@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -545,7 +546,8 @@ double lumpInfluence(const Lump& k, double e) {
 }  // namespace
 
 NormalPatch solveMergedPatch(const ContactCandidate& c, const std::vector<double>& ridges,
-                             double approach, double G, double nu, const NormalOptions& o) {
+                             double approach, double G, double nu, const NormalOptions& o,
+                             bool cut_lo, bool cut_hi) {
   NormalPatch out;
   out.approach = approach;
   out.method = NormalMethod::kNonHertzian;
@@ -569,7 +571,8 @@ NormalPatch solveMergedPatch(const ContactCandidate& c, const std::vector<double
     std::string why;
     if (!buildGeometry(parts[k], &geos[k], &why))
       return fail(NormalStatus::kNoGapFunction, why, approach);
-    if (!lumpStrips(geos[k], approach, k > 0, k + 1 < nl, Estar, o.strips, &lumps[k]))
+    if (!lumpStrips(geos[k], approach, k > 0 || cut_lo, k + 1 < nl || cut_hi, Estar, o.strips,
+                    &lumps[k]))
       return fail(NormalStatus::kBeyondGapFunction,
                   "the merged patch reaches the end of the gap function", approach);
   }
@@ -688,11 +691,30 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
   // Vertical force at a vertical approach; false on a patch's failure (its status in *bad).
   NormalStatus bad = NormalStatus::kOk;
   std::string bad_why;
-  auto force = [&](double dv, double* fz) {
+  // Ridges that a patch reached before the rigid overlap crossed them (the strips' region
+  // reaches beyond the interpenetration where the penetration factor exceeds 1): joined at every
+  // approach from the one that reached them (the region grows with the approach).
+  std::vector<double> reached(nc > 1 ? nc - 1 : 0, std::numeric_limits<double>::infinity());
+  auto joined = [&](int k, double dv) { return dv > ridge[k] || dv >= reached[k]; };
+  // On a patch of [i, last] outgrowing its gap function: the ridge at its lower end beyond which
+  // a neighbour lies, -1 if none (then the gap function's sampled height is the limit).
+  auto ridgeReached = [&](int i, int last) {
+    const bool left = i > 0 && std::isfinite(ridge[i - 1]);
+    const bool right = last + 1 < nc && std::isfinite(ridge[last]);
+    if (left && right) {
+      const ContactCandidate& a = geo.candidates[i];
+      const ContactCandidate& b = geo.candidates[last];
+      return a.gap_function.front().gap / a.normal.y() < b.gap_function.back().gap / b.normal.y()
+                 ? i - 1
+                 : last;
+    }
+    return left ? i - 1 : right ? last : -1;
+  };
+  std::function<bool(double, double*)> force = [&](double dv, double* fz) {
     *fz = 0.0;
     for (int i = 0; i < nc;) {
       int last = i;  // the candidates [i, last] joined across ridges below the approach
-      while (last + 1 < nc && dv > ridge[last]) ++last;
+      while (last + 1 < nc && joined(last, dv)) ++last;
       int p = i;  // the one with the smallest vertical gap carries the merged patch
       for (int k = i + 1; k <= last; ++k)
         if (geo.candidates[k].vertical_gap < geo.candidates[p].vertical_gap) p = k;
@@ -709,6 +731,27 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
         patch = solveMergedPatch(*c, it->second.ridges, dv * c->normal.y() - c->gap, G, nu, o);
       } else {
         patch = solvePatchNormal(*c, dv * c->normal.y() - c->gap, G, nu, o);
+      }
+      if (patch.status == NormalStatus::kBeyondGapFunction) {
+        const int k = ridgeReached(i, last);
+        if (k >= 0 && !joined(k, dv)) {
+          reached[k] = dv;
+          return force(dv, fz);
+        }
+        // A gap function that the search cut at a neighbouring candidate where neither reaches
+        // the other's ridge (a sharp kink between their contact planes): the patch stops at that
+        // end, as a lump stops at a ridge, the neighbour's side left to the neighbour's patch.
+        if (k < 0 && (i > 0 || last + 1 < nc) && patch.message.find("ridge") != std::string::npos) {
+          static const std::vector<double> none;
+          NormalPatch cut =
+              solveMergedPatch(*c, last > i ? merged.at({i, last}).ridges : none,
+                               dv * c->normal.y() - c->gap, G, nu, o, i > 0, last + 1 < nc);
+          if (cut.status == NormalStatus::kOk) {
+            cut.message = "cut where the gap function ends at a neighbouring candidate" +
+                          (cut.message.empty() ? std::string() : "; " + cut.message);
+            patch = cut;
+          }
+        }
       }
       if (patch.status != NormalStatus::kOk) {
         bad = patch.status;
@@ -734,35 +777,93 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
     }
     return true;
   };
-  // Secant steps on r = f^(2/3) - load^(2/3), nearly linear in the approach (Hertz: f ~
-  // d^(3/2)), from first touch (r = -load^(2/3)) and a probe 10 um beyond; a step that leaves
-  // the bracket found so far bisects it, one beyond every trial so far (no bracket yet) goes at
-  // most eight times as deep.
-  const double target = std::cbrt(load * load);
+  // Secant steps on w = ln(f / load) against u = ln(dv - first touch), a straight line for a
+  // force growing as a power of the approach (Hertz: f ~ d^(3/2)): the first trial 10 um beyond
+  // first touch (or at the caller's start), the second as if f ~ (dv - touch)^(3/2), then the
+  // secant through the last two trials. A step that leaves the bracket [lo, hi] found so far,
+  // or is more than half the step before last (the secant stalls), bisects it; a step beyond
+  // every trial so far (no bracket yet) goes at most eight times as deep. The bracket closing
+  // to kJumpWidth without the load met is a jump of the patches' force in the approach (the
+  // strips' region spreading at once over a plateau, two patches joining): the side whose force
+  // is nearer the load is taken.
+  constexpr double kJumpWidth = 1e-13;  // m, far below any approach the tolerance resolves
   const double inf = std::numeric_limits<double>::infinity();
-  double lo = touch, hi = inf;
-  double x0 = touch, r0 = -target, x1 = touch + 1e-5, f = 0.0;
-  double dv = x1;
+  double lo = touch, hi = inf, f_lo = 0.0, f_hi = inf;
+  bool lo_solved = false;
+  double u0 = 0.0, w0 = 0.0, f = 0.0;  // the trial before, once there is one (have0)
+  bool have0 = false;
+  double step1 = inf, step2 = inf;  // the last two steps' sizes
+  double dv = touch + 1e-5;
+  double first_slope = 1.5;
+  if (std::isfinite(o.start_beyond_touch) && o.start_beyond_touch > 0.0) {
+    dv = touch + o.start_beyond_touch;
+    if (std::isfinite(o.start_exponent) && o.start_exponent > 0.0) first_slope = o.start_exponent;
+  }
+  out.touch_approach = touch;
   int it = 0;
   for (; it < o.max_iterations; ++it) {
     if (!force(dv, &f)) return failed(bad, bad_why);
-    if (std::abs(f - load) <= o.load_tolerance * load) break;
-    const double r = std::cbrt(f * f) - target;
-    (r > 0.0 ? hi : lo) = dv;
-    x1 = dv;
-    double next = r != r0 ? x1 - r * (x1 - x0) / (r - r0) : inf;
-    x0 = x1;
-    r0 = r;
+    ++out.trials;
+    if (std::abs(f - load) <= o.load_tolerance * load) {
+      if (have0 && f > 0.0 && dv > touch) {
+        const double slope = (std::log(f / load) - w0) / (std::log(dv - touch) - u0);
+        if (std::isfinite(slope) && slope > 0.0) out.load_exponent = slope;
+      }
+      break;
+    }
+    if (f > load) {
+      hi = dv;
+      f_hi = f;
+    } else {
+      lo = dv;
+      f_lo = f;
+      lo_solved = true;
+    }
+    if (hi < inf && hi - lo <= kJumpWidth) {
+      if (!lo_solved) {  // first touch itself, its force taken as 0 so far
+        if (!force(lo, &f_lo)) return failed(bad, bad_why);
+        if (f_lo > load) {
+          std::ostringstream m;
+          m << "the patches carry " << f_lo
+            << " N already at first touch (gap functions below their candidates' gaps), more "
+               "than the load";
+          return failed(NormalStatus::kNotConverged, m.str());
+        }
+      }
+      const bool take_hi = f_hi - load < load - f_lo;
+      dv = take_hi ? hi : lo;
+      if (!force(dv, &f)) return failed(bad, bad_why);
+      ++out.trials;
+      std::ostringstream m;
+      m.precision(9);
+      m << "the patches' vertical force jumps from " << f_lo << " N to " << f_hi
+        << " N at vertical approach " << lo
+        << " m (the strips' region spreading at once, or patches joining): the side nearer the "
+           "load is taken, "
+        << f << " N";
+      out.message = m.str();
+      break;
+    }
+    // The next trial: the secant in (u, w), or the 3/2 power from first touch.
+    double next = inf;
+    const double u1 = std::log(dv - touch);
+    if (f > 0.0) {
+      const double w1 = std::log(f / load);
+      const double slope = have0 ? (w1 - w0) / (u1 - u0) : first_slope;
+      if (slope > 0.0 && std::isfinite(slope)) next = touch + std::exp(u1 - w1 / slope);
+      u0 = u1;
+      w0 = w1;
+      have0 = true;
+    }
     if (hi < inf) {
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (!(next > lo && next < hi) || std::abs(next - dv) > 0.5 * step2) next = 0.5 * (lo + hi);
     } else if (!(next > lo) || next > touch + 8.0 * (lo - touch)) {
       next = touch + 8.0 * (lo - touch);
     }
+    step2 = step1;
+    step1 = std::abs(next - dv);
     dv = next;
   }
-  if (it >= o.max_iterations)
-    return failed(NormalStatus::kNotConverged, hi < inf ? "the approach iteration did not converge"
-                                                        : "no approach carries the load");
   // The patches hold the last trial's solution, at dv.
   out.vertical_approach = dv;
   return out;
