@@ -60,3 +60,58 @@ TEST(HalfspaceNormal, PatchFollowsTheLoadOnAFixedGrid) {
     EXPECT_NEAR(area, M_PI * h.a * h.b, 0.08 * M_PI * h.a * h.b) << f;
   }
 }
+
+namespace {
+
+Eigen::VectorXd hertzGap(const HalfspaceGrid& g, double A, double B) {
+  Eigen::VectorXd h(g.size());
+  for (int ix = 0; ix < g.mx; ++ix)
+    for (int iy = 0; iy < g.my; ++iy)
+      h[g.index(ix, iy)] = A * g.xc(ix) * g.xc(ix) + B * g.yc(iy) * g.yc(iy);
+  return h;
+}
+
+}  // namespace
+
+TEST(HalfspaceNormal, GeneralGapSolverReproducesTheHertzSolverOnAHertzGap) {
+  // The contact problem has one solution: from a different start set the general solver must
+  // find the same loaded elements, pressures and approach (to rounding of the direct solves).
+  const double a = 6e-3, b = 4e-3, fz = 8e4, G = 8.2e10, nu = 0.28;
+  double A, B;
+  hertzCurvatures(a, b, fz, G, nu, &A, &B);
+  const HalfspaceGrid g = HalfspaceGrid::covering(a, b, 24, 24);
+  const NormalSolution ref = solveNormalProblem(g, G, nu, A, B, fz, a, b);
+  const NormalSolution gen = solveNormalGapLoad(g, G, nu, hertzGap(g, A, B), fz);
+  ASSERT_TRUE(ref.converged);
+  ASSERT_TRUE(gen.converged);
+  EXPECT_NEAR(gen.approach, ref.approach, 1e-9 * ref.approach);
+  EXPECT_NEAR(gen.fz, fz, 1e-9 * fz);
+  EXPECT_NEAR((gen.p - ref.p).cwiseAbs().maxCoeff(), 0.0, 1e-9 * ref.p.maxCoeff());
+}
+
+TEST(HalfspaceNormal, PrescribedApproachNeedsTheLoadThatGivesThatApproach) {
+  // Load -> approach -> load: the approach a load solve returns, prescribed, carries that load
+  // on the same elements; a smaller approach carries less, and no approach carries nothing.
+  const double G = 8.2e10, nu = 0.28;
+  const HalfspaceGrid g = HalfspaceGrid::covering(5e-3, 7e-3, 24, 24);
+  Eigen::VectorXd h(g.size());  // not Hertz: a flat-bottomed lateral profile and x^2 / (2 R)
+  for (int ix = 0; ix < g.mx; ++ix)
+    for (int iy = 0; iy < g.my; ++iy) {
+      const double y = g.yc(iy), x = g.xc(ix);
+      h[g.index(ix, iy)] =
+          x * x / (2 * 0.46) + 2e3 * std::pow(std::max(std::abs(y) - 2e-3, 0.0), 3);
+    }
+  const double fz = 6e4;
+  const NormalSolution byLoad = solveNormalGapLoad(g, G, nu, h, fz);
+  ASSERT_TRUE(byLoad.converged);
+  const NormalSolution byApproach = solveNormalGapApproach(g, G, nu, h, byLoad.approach);
+  ASSERT_TRUE(byApproach.converged);
+  EXPECT_NEAR(byApproach.fz, fz, 1e-8 * fz);
+  EXPECT_NEAR((byApproach.p - byLoad.p).cwiseAbs().maxCoeff(), 0.0, 1e-8 * byLoad.p.maxCoeff());
+  const NormalSolution half = solveNormalGapApproach(g, G, nu, h, 0.5 * byLoad.approach);
+  EXPECT_GT(half.fz, 0.0);
+  EXPECT_LT(half.fz, fz);
+  const NormalSolution none = solveNormalGapApproach(g, G, nu, h, h.minCoeff() - 1e-9);
+  EXPECT_TRUE(none.converged);
+  EXPECT_EQ(none.fz, 0.0);
+}

@@ -44,6 +44,11 @@ struct WheelsetPose {
 struct GapSample {
   double eta = 0.0;  ///< lateral coordinate in the contact plane from the contact point [m]
   double gap = 0.0;  ///< distance along the contact normal, rail to wheel [m]; < 0: overlap
+  /// The wheel at this eta: its circle's radius [m] and the angle of its normal from the track's
+  /// z axis [rad] (sign as ContactCandidate::contact_angle). The wheel's curvature along the
+  /// rolling direction there is cos(contact_angle) / rolling_radius (Meusnier).
+  double rolling_radius = 0.0;
+  double contact_angle = 0.0;
 };
 
 /// One local minimum of the gap between a wheel and its rail.
@@ -73,8 +78,9 @@ struct ContactCandidate {
   double s_rail = 0.0, s_wheel = 0.0;  ///< the profiles' spline parameters [m]
   /// Undeformed gap across the candidate, eta along the contact plane's lateral direction,
   /// positive toward the track centre, from the point of the smallest vertical gap (eta = 0 gives
-  /// `gap`). Sampled where the gap stays below gap + 2 max(|gap|, gap_window), and not beyond the
-  /// ridge separating the candidate from its neighbours.
+  /// `gap`). Sampled where the gap stays below gap + max(2 max(|gap|, gap_window), gap_reach)
+  /// (ContactSearchOptions), and not beyond the ridge separating the candidate from its
+  /// neighbours nor beyond max_gap_extent either side.
   std::vector<GapSample> gap_function;
 };
 
@@ -104,7 +110,12 @@ struct ContactSearchOptions {
   /// Candidates whose vertical gap exceeds the smallest by more than this are left out [m].
   double candidate_window = 1.0e-3;
   double gap_window = 1.0e-5;  ///< see ContactCandidate::gap_function [m]
-  int gap_samples = 41;        ///< points of each gap function (odd: one at eta = 0)
+  /// How far above its minimum the gap function reaches at least [m]: the normal problem's
+  /// approach (normal/patch_normal.hpp) needs the gap up to that approach; 10 kN on a wheel takes
+  /// some 0.05 to 0.1 mm, twice the load some 0.15 mm, so 0.4 mm leaves room for a heavy load.
+  double gap_reach = 4.0e-4;
+  double max_gap_extent = 0.03;  ///< farthest the gap function reaches either side of eta = 0 [m]
+  int gap_samples = 81;          ///< points of each gap function (odd: one at eta = 0)
   /// Contact-angle limits of the zones [rad]: tread below tread_max_angle, flange from
   /// flange_min_angle, gauge corner between. A tread's cone has a few degrees, the throat where
   /// it turns into the flange meets the rail's gauge corner at some 15 to 25 degrees, a flange's

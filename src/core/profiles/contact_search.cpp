@@ -89,6 +89,8 @@ ContactSearch::ContactSearch(const WheelsetTrackData& data, const ContactSearchO
   positive("min_ridge", options_.min_ridge);
   positive("candidate_window", options_.candidate_window);
   positive("gap_window", options_.gap_window);
+  positive("gap_reach", options_.gap_reach);
+  positive("max_gap_extent", options_.max_gap_extent);
   positive("max_abs_y", options_.max_abs_y);
   positive("max_abs_z", options_.max_abs_z);
   positive("max_abs_yaw", options_.max_abs_yaw);
@@ -360,7 +362,7 @@ WheelContactGeometry ContactSearch::search(WheelSide wheel_side, const WheelsetP
       return false;
     };
     double sw0 = sw, sr0 = sr;
-    auto gapAt = [&](double eta, double* gap_out) {
+    auto gapAt = [&](double eta, double* gap_out, GapSample* sample = nullptr) {
       double lw = 0.0, lr = 0.0;
       double a = sw0, b = sr0;
       if (!follow(wheelYZ, eta, s_lo, s_hi, &a, &lw)) return false;
@@ -368,6 +370,11 @@ WheelContactGeometry ContactSearch::search(WheelSide wheel_side, const WheelsetP
       sw0 = a;
       sr0 = b;
       *gap_out = lw - lr;
+      if (sample) {
+        const LocusPoint l = locus(a);  // ok: follow() evaluated it
+        sample->rolling_radius = l.radius;
+        sample->contact_angle = std::atan2(-sigma * l.n.x(), -l.n.y());
+      }
       return true;
     };
     double g0 = 0.0;
@@ -377,15 +384,17 @@ WheelContactGeometry ContactSearch::search(WheelSide wheel_side, const WheelsetP
       continue;
     }
     c.gap = g0;
-    const double level = g0 + 2.0 * std::max(std::abs(g0), options_.gap_window);
+    const double level =
+        g0 + std::max(2.0 * std::max(std::abs(g0), options_.gap_window), options_.gap_reach);
     double edge[2] = {0.0, 0.0};
     for (int dir = 0; dir < 2; ++dir) {  // march out to the level, then bisect
-      const double step = (dir == 0 ? -1.0 : 1.0) * 1e-4;
+      const int steps = std::max(1, static_cast<int>(std::ceil(options_.max_gap_extent / 1e-4)));
+      const double step = (dir == 0 ? -1.0 : 1.0) * options_.max_gap_extent / steps;
       sw0 = sw;
       sr0 = sr;
       double inside = 0.0, outside = 0.0;
       bool reached = false;
-      for (int m = 1; m <= 300; ++m) {
+      for (int m = 1; m <= steps; ++m) {
         double gv = 0.0;
         const double eta = m * step;
         if (!gapAt(eta, &gv)) {
@@ -423,13 +432,13 @@ WheelContactGeometry ContactSearch::search(WheelSide wheel_side, const WheelsetP
     bool ok = true;
     for (int j = first_right; j < m && ok; ++j) {
       samples[j].eta = edge[0] + j * de;
-      ok = gapAt(samples[j].eta, &samples[j].gap);
+      ok = gapAt(samples[j].eta, &samples[j].gap, &samples[j]);
     }
     sw0 = sw;
     sr0 = sr;
     for (int j = first_right - 1; j >= 0 && ok; --j) {
       samples[j].eta = edge[0] + j * de;
-      ok = gapAt(samples[j].eta, &samples[j].gap);
+      ok = gapAt(samples[j].eta, &samples[j].gap, &samples[j]);
     }
     if (ok) c.gap_function = std::move(samples);
     out.candidates.push_back(std::move(c));
