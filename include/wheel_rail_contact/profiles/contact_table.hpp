@@ -1,0 +1,100 @@
+/// Contact table: the contact search tabulated once for a profile pair and wheelset data, then
+/// interpolated per lookup, as multibody codes do. `ContactTable::search` gives what
+/// `ContactSearch::search` gives (the same candidates, zones, gaps, gap functions, points, lead,
+/// normals, file coordinates), to within the table's interpolation error, so a caller swaps one
+/// for the other.
+///
+/// Axes of the table, per wheel. A wheel's contact depends on its position and orientation
+/// relative to its rail only. Of the wheel's pose, the table removes exactly what is a
+/// translation and tabulates the rest:
+///  - Y: the lateral displacement of the wheel's bottom point B, the point nominal_radius below
+///    the axle, gauge / 2 from the wheelset's centre (its y in the track minus its y at the zero
+///    pose). With R = Rz(yaw) Rx(roll) and a0 = -+gauge / 2 (right -, left +),
+///    Y = y + a0 (cos(yaw) cos(roll) - 1) + nominal_radius sin(roll) cos(yaw).
+///    Roll about the wheelset's centre moves B sideways by nominal_radius sin(roll) (4.6 mm at
+///    10 mrad): that part of roll is a translation and lies in Y;
+///  - |yaw|: the contact's y-z geometry is even in yaw (a mirror in the track's y-z plane turns
+///    yaw into -yaw) and `lead` odd; the even quantities are interpolated in yaw^2 (exact for
+///    their leading quadratic term), lead and the point's x in |yaw|;
+///  - roll, which also tilts the wheel relative to its rail about B: that tilt moves the contact
+///    along the profiles (on the tread about as far as a millimetre of Y does for 3 mrad), so it
+///    is an axis of its own;
+///  - the vertical position Z of B (Z = z + a0 sin(roll) + nominal_radius (1 - cos(roll))) is not
+///    an axis: it shifts the vertical gap as a whole (exactly) and changes the gap and the gap
+///    function at each lateral coordinate of the contact plane, which the table holds at two
+///    heights per node (touching, and overlapping by max_overlap) and interpolates linearly.
+///
+/// Rule where the candidates differ between the nodes around a pose. The candidate set is that of
+/// the nearest node. Each of its candidates is interpolated among the surrounding nodes that have
+/// a candidate within match_distance of it on both profiles (s_wheel and s_rail), with the
+/// weights of those nodes renormalised; the zone follows from the interpolated contact angle and
+/// the closest candidate from the interpolated vertical gaps, as the search does. At a jump
+/// (tread to gauge corner to flange) the table therefore takes the candidate set of the node
+/// nearer the pose, which is the direct search's on that node's side.
+///
+/// Poses beyond the table: see ContactTableOptions::beyond.
+#pragma once
+
+#include <memory>
+
+#include "wheel_rail_contact/profiles/contact_search.hpp"
+
+namespace wheel_rail_contact {
+
+struct ContactTableOptions {
+  /// The wheel's lateral displacement Y (see above) is tabulated over [-max_abs_lateral,
+  /// max_abs_lateral] every lateral_step [m].
+  double max_abs_lateral = 0.02;
+  double lateral_step = 2.0e-4;
+  double max_abs_yaw = 0.03;  ///< |yaw| over [0, max_abs_yaw] every yaw_step [rad]
+  double yaw_step = 0.01;
+  double max_abs_roll = 0.015;  ///< roll over [-max_abs_roll, max_abs_roll] every roll_step [rad]
+  double roll_step = 2.5e-3;
+  /// The gap and gap function are tabulated at the node's touching height and max_overlap lower
+  /// [m]; between and near the two they are interpolated linearly in the height. The gap
+  /// function reaches out to where the gap is 2 max_overlap above its value at touching, which
+  /// covers the search's sampling for an overlap up to max_overlap.
+  double max_overlap = 1.0e-4;
+  int gap_samples = 101;  ///< samples of each tabulated gap function
+  /// Two candidates of neighbouring nodes are the same one when both their s_wheel and their
+  /// s_rail differ by less than this [m].
+  double match_distance = 3.0e-3;
+  /// A pose beyond the table's ranges, or in a cell next to a node where the search found no
+  /// contact (a wheel beyond its rail): kSearch answers it with the direct search (exact, at the
+  /// search's cost); kRefuse returns status kOutOfRange with a message naming the table's range.
+  enum class Beyond { kSearch, kRefuse };
+  Beyond beyond = Beyond::kSearch;
+};
+
+class ContactTable {
+ public:
+  /// Tabulates `search` (copied) over the options' ranges: one to three direct searches per node
+  /// and wheel (the left wheel shares the right one's table when its profiles are the right ones
+  /// mirrored). Throws std::invalid_argument naming the option if one is out of range.
+  explicit ContactTable(const ContactSearch& search, const ContactTableOptions& options = {});
+
+  /// What ContactSearch::search gives for this wheel and pose, interpolated. Never throws; a pose
+  /// the search refuses gives the search's status and message.
+  WheelContactGeometry search(WheelSide side, const WheelsetPose& pose) const;
+
+  const ContactSearch& contactSearch() const;
+  const ContactTableOptions& options() const { return options_; }
+  /// Nodes per wheel table, tables held (1 when the left wheel mirrors the right), and the bytes
+  /// they take.
+  std::size_t nodes() const;
+  int tables() const;
+  std::size_t bytes() const;
+
+  ContactTable(const ContactTable&);
+  ContactTable& operator=(const ContactTable&);
+  ContactTable(ContactTable&&) noexcept;
+  ContactTable& operator=(ContactTable&&) noexcept;
+  ~ContactTable();
+
+ private:
+  struct Impl;
+  ContactTableOptions options_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,498 @@
+#include "wheel_rail_contact/profiles/contact_table.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace wheel_rail_contact {
+
+namespace {
+
+constexpr double kSmallYaw = 1e-6;
+
+/// One candidate of one node, in the right-hand wheel's frame of its table.
+struct TableCandidate {
+  double vertical_gap0 = 0.0;  ///< vertical gap at Z = 0 (it is vertical_gap0 + Z at any Z)
+  double gap_a = 0.0;          ///< gap at the node's touching height Z_a
+  double gap_dz = 0.0;         ///< d gap / dZ
+  double angle = 0.0, radius = 0.0, point_y = 0.0, point_z = 0.0;
+  double lead_per_yaw = 0.0;  ///< lead / yaw
+  double axial = 0.0;  ///< the contact circle's position along the axle (point.x = lead - axial
+                       ///< sin(yaw) cos(roll))
+  Eigen::Vector2d rail_file = Eigen::Vector2d::Zero(), wheel_file = Eigen::Vector2d::Zero();
+  double s_rail = 0.0, s_wheel = 0.0;
+  /// Gap function on eta = eta0 + j deta: g_a at Z_a and its slope in Z (empty: the search gave
+  /// none).
+  double eta0 = 0.0, deta = 0.0;
+  std::vector<float> g_a, g_dz;
+
+  double gapFunction(double eta, double dZ) const {
+    double u = (eta - eta0) / deta;
+    const int last = static_cast<int>(g_a.size()) - 1;
+    int j = static_cast<int>(std::floor(u));
+    j = std::min(std::max(j, 0), last - 1);
+    u -= j;
+    const double a = g_a[j] + u * (g_a[j + 1] - g_a[j]);
+    const double b = g_dz[j] + u * (g_dz[j + 1] - g_dz[j]);
+    return a + b * dZ;
+  }
+  double etaEnd() const { return eta0 + deta * (static_cast<int>(g_a.size()) - 1); }
+};
+
+struct Node {
+  ContactSearchStatus status = ContactSearchStatus::kOk;
+  std::string message;
+  double z_a = 0.0;  ///< the height Z at which the closest candidate touches
+  std::vector<TableCandidate> candidates;
+};
+
+/// Node coordinates of one axis: value(k) = first + k step, k = 0 .. n - 1.
+struct Axis {
+  double first = 0.0, step = 1.0;
+  int n = 1;
+  double value(int k) const { return first + k * step; }
+  /// The cell [k, k + 1] holding v and its fraction; false beyond the axis (with a tolerance of
+  /// rounding).
+  bool locate(double v, int* k, double* t) const {
+    const double u = (v - first) / step;
+    if (!(u >= -1e-9) || !(u <= (n - 1) + 1e-9)) return false;
+    *k = std::min(std::max(static_cast<int>(std::floor(u)), 0), n - 2);
+    *t = std::min(std::max(u - *k, 0.0), 1.0);
+    return true;
+  }
+};
+
+Axis symmetricAxis(double max_abs, double step) {
+  Axis a;
+  a.n = static_cast<int>(std::lround(2.0 * max_abs / step)) + 1;
+  a.n = std::max(a.n, 2);
+  a.first = -max_abs;
+  a.step = 2.0 * max_abs / (a.n - 1);
+  return a;
+}
+
+Axis positiveAxis(double max_abs, double step) {
+  Axis a;
+  a.n = std::max(static_cast<int>(std::lround(max_abs / step)) + 1, 2);
+  a.first = 0.0;
+  a.step = max_abs / (a.n - 1);
+  return a;
+}
+
+/// The wheel's place relative to its rail: see contact_table.hpp.
+struct WheelPlace {
+  double Y = 0.0, Z = 0.0;
+};
+
+WheelPlace placeOf(const WheelsetPose& p, double a0, double r0) {
+  const double cy = std::cos(p.yaw), cr = std::cos(p.roll), sr = std::sin(p.roll);
+  return {p.y + a0 * (cy * cr - 1.0) + r0 * sr * cy, p.z + a0 * sr + r0 * (1.0 - cr)};
+}
+
+WheelsetPose poseOf(double Y, double Z, double yaw, double roll, double a0, double r0) {
+  const double cy = std::cos(yaw), cr = std::cos(roll), sr = std::sin(roll);
+  WheelsetPose p;
+  p.y = Y - a0 * (cy * cr - 1.0) - r0 * sr * cy;
+  p.z = Z - a0 * sr - r0 * (1.0 - cr);
+  p.yaw = yaw;
+  p.roll = roll;
+  return p;
+}
+
+double lerp(const std::vector<GapSample>& f, double eta) {
+  // f is sampled uniformly from f.front().eta to f.back().eta.
+  const double e0 = f.front().eta, e1 = f.back().eta;
+  const int last = static_cast<int>(f.size()) - 1;
+  if (e1 <= e0) return f.front().gap;
+  double u = (eta - e0) / (e1 - e0) * last;
+  int j = std::min(std::max(static_cast<int>(std::floor(u)), 0), last - 1);
+  u -= j;
+  return f[j].gap + u * (f[j + 1].gap - f[j].gap);
+}
+
+}  // namespace
+
+struct ContactTable::Impl {
+  ContactSearch search;  ///< the caller's, for the meaning of the options and poses beyond
+  Axis lateral, yaw, roll;
+  double r0 = 0.0;
+  bool left_mirrors_right = false;
+  struct Grid {
+    double sigma = 1.0, a0 = 0.0;
+    std::vector<Node> nodes;  // index (roll * yaw.n + yaw) * lateral.n + lateral
+  };
+  std::array<Grid, 2> grids;  // [0] right, [1] left (empty when it mirrors the right)
+
+  explicit Impl(const ContactSearch& s) : search(s) {}
+  std::size_t index(int i, int j, int k) const {
+    return (static_cast<std::size_t>(k) * yaw.n + j) * lateral.n + i;
+  }
+};
+
+namespace {
+
+/// The candidate of `others` that is `c` (within match_distance on both profiles), or null.
+const TableCandidate* match(const TableCandidate& c, const std::vector<TableCandidate>& others,
+                            double distance) {
+  const TableCandidate* best = nullptr;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (const TableCandidate& o : others) {
+    const double dw = std::abs(o.s_wheel - c.s_wheel), dr = std::abs(o.s_rail - c.s_rail);
+    if (dw < distance && dr < distance && dw + dr < best_d) {
+      best_d = dw + dr;
+      best = &o;
+    }
+  }
+  return best;
+}
+
+const ContactCandidate* matchSearched(const ContactCandidate& c,
+                                      const std::vector<ContactCandidate>& others,
+                                      double distance) {
+  const ContactCandidate* best = nullptr;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (const ContactCandidate& o : others) {
+    const double dw = std::abs(o.s_wheel - c.s_wheel), dr = std::abs(o.s_rail - c.s_rail);
+    if (dw < distance && dr < distance && dw + dr < best_d) {
+      best_d = dw + dr;
+      best = &o;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+ContactTable::ContactTable(const ContactSearch& search, const ContactTableOptions& options)
+    : options_(options), impl_(std::make_unique<Impl>(search)) {
+  auto positive = [](const char* name, double v, double upper) {
+    if (!std::isfinite(v) || !(v > 0.0) || v > upper) {
+      std::ostringstream m;
+      m << "ContactTableOptions: " << name << " must be finite, > 0 and <= " << upper;
+      throw std::invalid_argument(m.str());
+    }
+  };
+  const ContactSearchOptions& so = search.options();
+  positive("max_abs_lateral", options_.max_abs_lateral, so.max_abs_y);
+  positive("lateral_step", options_.lateral_step, options_.max_abs_lateral);
+  positive("max_abs_yaw", options_.max_abs_yaw, so.max_abs_yaw);
+  positive("yaw_step", options_.yaw_step, options_.max_abs_yaw);
+  positive("max_abs_roll", options_.max_abs_roll, so.max_abs_roll);
+  positive("roll_step", options_.roll_step, options_.max_abs_roll);
+  positive("max_overlap", options_.max_overlap, 5e-3);
+  positive("match_distance", options_.match_distance, 0.1);
+  if (options_.gap_samples < 3 || options_.gap_samples > 10000)
+    throw std::invalid_argument("ContactTableOptions: gap_samples must be in [3, 10000]");
+
+  Impl& im = *impl_;
+  im.lateral = symmetricAxis(options_.max_abs_lateral, options_.lateral_step);
+  im.yaw = positiveAxis(options_.max_abs_yaw, options_.yaw_step);
+  im.roll = symmetricAxis(options_.max_abs_roll, options_.roll_step);
+  const WheelsetTrackData& d = search.data();
+  im.r0 = d.nominal_radius;
+  im.left_mirrors_right = (!d.wheel_left || d.wheel_left == d.wheel_right) &&
+                          (!d.rail_left || d.rail_left == d.rail_right);
+
+  // The table's own search: the caller's, with gap functions wide and fine enough to be cut to
+  // what the caller's options give at any height up to max_overlap of overlap.
+  ContactSearchOptions wide = so;
+  wide.gap_window = options_.max_overlap;
+  wide.gap_samples = options_.gap_samples | 1;
+  const ContactSearch table_search(d, wide);
+
+  for (int g = 0; g < (im.left_mirrors_right ? 1 : 2); ++g) {
+    Impl::Grid& grid = im.grids[g];
+    const WheelSide side = g == 0 ? WheelSide::kRight : WheelSide::kLeft;
+    grid.sigma = g == 0 ? 1.0 : -1.0;
+    grid.a0 = -grid.sigma * 0.5 * d.gauge;
+    grid.nodes.resize(static_cast<std::size_t>(im.lateral.n) * im.yaw.n * im.roll.n);
+    for (int k = 0; k < im.roll.n; ++k) {
+      for (int j = 0; j < im.yaw.n; ++j) {
+        double z_guess = 0.0;  // the previous node's touching height: the next one's is near
+        for (int i = 0; i < im.lateral.n; ++i) {
+          Node& node = grid.nodes[im.index(i, j, k)];
+          const double Y = im.lateral.value(i), yaw = im.yaw.value(j), roll = im.roll.value(k);
+          // The node at yaw 0 is searched at a yaw small enough that the even quantities do not
+          // see it (yaw^2 ~ 1e-12), to give lead's slope.
+          const double yaw_run = std::max(yaw, kSmallYaw);
+          auto run = [&](double Z) {
+            return table_search.search(side, poseOf(Y, Z, yaw_run, roll, grid.a0, im.r0));
+          };
+          WheelContactGeometry a = run(z_guess);
+          if (a.status != ContactSearchStatus::kOk) {
+            node.status = a.status;
+            node.message = a.message;
+            continue;
+          }
+          double z_a = z_guess - a.candidates[a.closest].vertical_gap;
+          if (std::abs(z_a - z_guess) > 0.2 * options_.max_overlap) {
+            a = run(z_a);
+          } else {
+            z_a = z_guess;
+          }
+          const double z_b = z_a - options_.max_overlap;
+          const WheelContactGeometry b = run(z_b);
+          if (a.status != ContactSearchStatus::kOk || b.status != ContactSearchStatus::kOk) {
+            node.status = a.status != ContactSearchStatus::kOk ? a.status : b.status;
+            node.message = a.status != ContactSearchStatus::kOk ? a.message : b.message;
+            continue;
+          }
+          z_guess = z_a;
+          node.z_a = z_a;
+          for (const ContactCandidate& ca : a.candidates) {
+            TableCandidate t;
+            t.vertical_gap0 = ca.vertical_gap - z_a;
+            t.gap_a = ca.gap;
+            t.angle = ca.contact_angle;
+            t.radius = ca.rolling_radius;
+            t.point_y = ca.point.y();
+            t.point_z = ca.point.z();
+            // lead is odd in yaw: its slope lead / yaw is even and interpolated as the rest.
+            const double sy = std::sin(yaw_run) * std::cos(roll);
+            t.lead_per_yaw = ca.lead / yaw_run;
+            // point.x = lead - axial sin(yaw) cos(roll): the contact circle's place on the axle.
+            t.axial = -(ca.point.x() - ca.lead) / sy;
+            t.rail_file = ca.rail_file;
+            t.wheel_file = ca.wheel_file;
+            t.s_rail = ca.s_rail;
+            t.s_wheel = ca.s_wheel;
+            const ContactCandidate* cb = matchSearched(ca, b.candidates, options_.match_distance);
+            t.gap_dz = cb ? (cb->gap - ca.gap) / (z_b - z_a) : std::cos(ca.contact_angle);
+            if (cb && ca.gap_function.size() >= 2 && cb->gap_function.size() >= 2) {
+              const double lo = std::max(ca.gap_function.front().eta, cb->gap_function.front().eta);
+              const double hi = std::min(ca.gap_function.back().eta, cb->gap_function.back().eta);
+              if (hi > lo) {
+                const int m = wide.gap_samples;
+                t.eta0 = lo;
+                t.deta = (hi - lo) / (m - 1);
+                t.g_a.resize(m);
+                t.g_dz.resize(m);
+                for (int s = 0; s < m; ++s) {
+                  const double eta = lo + s * t.deta;
+                  const double ga = lerp(ca.gap_function, eta), gb = lerp(cb->gap_function, eta);
+                  t.g_a[s] = static_cast<float>(ga);
+                  t.g_dz[s] = static_cast<float>((gb - ga) / (z_b - z_a));
+                }
+              }
+            }
+            node.candidates.push_back(std::move(t));
+          }
+        }
+      }
+    }
+  }
+}
+
+ContactTable::ContactTable(const ContactTable& o)
+    : options_(o.options_), impl_(std::make_unique<Impl>(*o.impl_)) {}
+ContactTable& ContactTable::operator=(const ContactTable& o) {
+  if (this != &o) {
+    options_ = o.options_;
+    impl_ = std::make_unique<Impl>(*o.impl_);
+  }
+  return *this;
+}
+ContactTable::ContactTable(ContactTable&&) noexcept = default;
+ContactTable& ContactTable::operator=(ContactTable&&) noexcept = default;
+ContactTable::~ContactTable() = default;
+
+const ContactSearch& ContactTable::contactSearch() const {
+  return impl_->search;
+}
+std::size_t ContactTable::nodes() const {
+  return static_cast<std::size_t>(impl_->lateral.n) * impl_->yaw.n * impl_->roll.n;
+}
+int ContactTable::tables() const {
+  return impl_->left_mirrors_right ? 1 : 2;
+}
+std::size_t ContactTable::bytes() const {
+  std::size_t b = sizeof(Impl);
+  for (const Impl::Grid& g : impl_->grids)
+    for (const Node& n : g.nodes) {
+      b += sizeof(Node) + n.message.capacity() + n.candidates.capacity() * sizeof(TableCandidate);
+      for (const TableCandidate& c : n.candidates)
+        b += (c.g_a.capacity() + c.g_dz.capacity()) * sizeof(float);
+    }
+  return b;
+}
+
+WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& pose) const {
+  const Impl& im = *impl_;
+  const ContactSearchOptions& so = im.search.options();
+  // The search's own checks first: a pose it refuses is refused with its message.
+  if (!std::isfinite(pose.y) || !std::isfinite(pose.z) || !std::isfinite(pose.yaw) ||
+      !std::isfinite(pose.roll) || std::abs(pose.y) > so.max_abs_y ||
+      std::abs(pose.z) > so.max_abs_z || std::abs(pose.yaw) > so.max_abs_yaw ||
+      std::abs(pose.roll) > so.max_abs_roll)
+    return im.search.search(side, pose);
+
+  // The left wheel of a mirrored pair is the right one in the mirrored pose.
+  const bool mirror = side == WheelSide::kLeft && im.left_mirrors_right;
+  WheelsetPose p = pose;
+  if (mirror) {
+    p.y = -p.y;
+    p.yaw = -p.yaw;
+    p.roll = -p.roll;
+  }
+  const Impl::Grid& grid = im.grids[side == WheelSide::kRight || mirror ? 0 : 1];
+  const WheelPlace place = placeOf(p, grid.a0, im.r0);
+  const double abs_yaw = std::abs(p.yaw);
+
+  auto beyond = [&](const std::string& why) {
+    if (options_.beyond == ContactTableOptions::Beyond::kSearch)
+      return im.search.search(side, pose);
+    WheelContactGeometry out;
+    out.status = ContactSearchStatus::kOutOfRange;
+    out.message = why;
+    return out;
+  };
+  int ci = 0, cj = 0, ck = 0;
+  double ti = 0.0, tj = 0.0, tk = 0.0;
+  if (!im.lateral.locate(place.Y, &ci, &ti) || !im.yaw.locate(abs_yaw, &cj, &tj) ||
+      !im.roll.locate(p.roll, &ck, &tk)) {
+    std::ostringstream m;
+    m << "pose beyond the contact table: the wheel's lateral displacement " << place.Y
+      << " m (table +-" << options_.max_abs_lateral << "), |yaw| " << abs_yaw << " rad (table "
+      << options_.max_abs_yaw << "), roll " << p.roll << " rad (table +-" << options_.max_abs_roll
+      << ")";
+    return beyond(m.str());
+  }
+  // In yaw^2: the geometry is even in yaw, so its leading term is quadratic.
+  const double y0 = im.yaw.value(cj), y1 = im.yaw.value(cj + 1);
+  tj = (abs_yaw * abs_yaw - y0 * y0) / (y1 * y1 - y0 * y0);
+
+  struct Corner {
+    const Node* node;
+    double w;
+  };
+  std::array<Corner, 8> corners;
+  int master = 0;
+  for (int c = 0; c < 8; ++c) {
+    const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
+    const double wi = di ? ti : 1.0 - ti, wk = dk ? tk : 1.0 - tk;
+    const double wj = dj ? tj : 1.0 - tj;
+    corners[c] = {&grid.nodes[im.index(ci + di, cj + dj, ck + dk)], wi * wj * wk};
+    if (corners[c].node->status != ContactSearchStatus::kOk)
+      return beyond("pose next to a contact-table node without contact: " +
+                    corners[c].node->message);
+    if (corners[c].w > corners[master].w) master = c;
+  }
+
+  WheelContactGeometry out;
+  const double sigma = mirror ? -1.0 : (side == WheelSide::kRight ? 1.0 : -1.0);
+  const double sy = std::sin(p.yaw) * std::cos(p.roll);
+  for (const TableCandidate& mc : corners[master].node->candidates) {
+    std::array<const TableCandidate*, 8> m{};
+    double sw = 0.0, sw_gf = 0.0;
+    for (int c = 0; c < 8; ++c) {
+      m[c] = c == master ? &mc : match(mc, corners[c].node->candidates, options_.match_distance);
+      if (!m[c]) continue;
+      sw += corners[c].w;
+      if (!m[c]->g_a.empty()) sw_gf += corners[c].w;
+    }
+    ContactCandidate c;
+    double vg0 = 0.0, gap = 0.0, angle = 0.0, lead = 0.0, axial = 0.0;
+    for (int q = 0; q < 8; ++q) {
+      if (!m[q]) continue;
+      const TableCandidate& t = *m[q];
+      const double w = sw > 0.0 ? corners[q].w / sw : (q == master ? 1.0 : 0.0);
+      vg0 += w * t.vertical_gap0;
+      gap += w * (t.gap_a + t.gap_dz * (place.Z - corners[q].node->z_a));
+      angle += w * t.angle;
+      c.rolling_radius += w * t.radius;
+      c.point.y() += w * t.point_y;
+      c.point.z() += w * t.point_z;
+      axial += w * t.axial;
+      c.rail_file += w * t.rail_file;
+      c.wheel_file += w * t.wheel_file;
+      c.s_rail += w * t.s_rail;
+      c.s_wheel += w * t.s_wheel;
+      lead += w * t.lead_per_yaw;
+    }
+    c.vertical_gap = vg0 + place.Z;
+    c.contact_angle = angle;
+    c.zone = angle < so.tread_max_angle     ? ContactZone::kTread
+             : angle >= so.flange_min_angle ? ContactZone::kFlange
+                                            : ContactZone::kGaugeCorner;
+    c.lead = lead * p.yaw;
+    c.point.x() = c.lead - axial * sy;
+    c.normal = Eigen::Vector2d(sigma * std::sin(angle), std::cos(angle));
+    c.gap = gap;
+
+    if (sw_gf > 0.0) {
+      // The gap function: the nodes' functions at this height, weighted, on the stretch all of
+      // them cover; cut where the search would cut it and sampled as the search samples it.
+      double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+      for (int q = 0; q < 8; ++q)
+        if (m[q] && !m[q]->g_a.empty()) {
+          lo = std::max(lo, m[q]->eta0);
+          hi = std::min(hi, m[q]->etaEnd());
+        }
+      auto G = [&](double eta) {
+        double v = 0.0;
+        for (int q = 0; q < 8; ++q)
+          if (m[q] && !m[q]->g_a.empty())
+            v += corners[q].w / sw_gf * m[q]->gapFunction(eta, place.Z - corners[q].node->z_a);
+        return v;
+      };
+      if (lo <= 0.0 && hi >= 0.0 && hi > lo) {
+        c.gap = G(0.0);
+        const double level = c.gap + 2.0 * std::max(std::abs(c.gap), so.gap_window);
+        // The edges where the gap reaches the level (or the stretch ends), found on a coarse
+        // sampling of G and placed by its linear interpolation.
+        const int coarse = 64;
+        double edge[2] = {lo, hi};
+        for (int dir = 0; dir < 2; ++dir) {
+          const double end = dir == 0 ? lo : hi;
+          double e_in = 0.0, g_in = c.gap;
+          for (int s = 1; s <= coarse; ++s) {
+            const double eta = end * s / coarse, g = G(eta);
+            if (g >= level) {
+              edge[dir] = e_in + (eta - e_in) * (level - g_in) / (g - g_in);
+              break;
+            }
+            e_in = eta;
+            g_in = g;
+          }
+        }
+        const int ns = so.gap_samples;
+        c.gap_function.resize(ns);
+        const double de = (edge[1] - edge[0]) / (ns - 1);
+        for (int s = 0; s < ns; ++s) {
+          c.gap_function[s].eta = edge[0] + s * de;
+          c.gap_function[s].gap = G(c.gap_function[s].eta);
+        }
+      }
+    }
+    if (mirror) {
+      c.point.y() = -c.point.y();
+      c.normal.x() = -c.normal.x();
+    }
+    out.candidates.push_back(std::move(c));
+  }
+  // As the search: drop candidates more than candidate_window above the closest.
+  double best = std::numeric_limits<double>::infinity();
+  for (const ContactCandidate& c : out.candidates) best = std::min(best, c.vertical_gap);
+  out.candidates.erase(std::remove_if(out.candidates.begin(), out.candidates.end(),
+                                      [&](const ContactCandidate& c) {
+                                        return c.vertical_gap > best + so.candidate_window;
+                                      }),
+                       out.candidates.end());
+  for (std::size_t k = 0; k < out.candidates.size(); ++k)
+    if (out.closest < 0 ||
+        out.candidates[k].vertical_gap < out.candidates[out.closest].vertical_gap)
+      out.closest = static_cast<int>(k);
+  if (out.candidates.empty()) {
+    out.status = ContactSearchStatus::kOutOfRange;
+    out.message = std::string("no contact candidate on the ") +
+                  (side == WheelSide::kLeft ? "left" : "right") + " wheel";
+  }
+  return out;
+}
+
+}  // namespace wheel_rail_contact
