@@ -2,7 +2,10 @@
 // and the command itself on the Manchester benchmark's case.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -10,6 +13,8 @@
 
 #include "../../src/cli/cli.hpp"
 #include "../../src/cli/config_yaml.hpp"
+#include "csv_rows.hpp"
+#include "wheel_rail_contact/wheelset/wheelset_scenario.hpp"
 
 using namespace wheel_rail_contact;
 
@@ -30,6 +35,47 @@ std::string configErrorOf(const std::string& yaml) {
     return e.what();
   }
   return "(no error)";
+}
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+Result cli(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  const int code = runCli(args, out, err);
+  return {code, out.str(), err.str()};
+}
+
+const std::string kWheel = std::string(WRC_SOURCE_DIR) + "/config/profiles/MBench_S1002_v3.prw";
+const std::string kRail = std::string(WRC_SOURCE_DIR) + "/config/profiles/MBench_UIC60_v3.prr";
+const char* const kHeader =
+    "t,wheel,patch,y_rail,z_rail,y_wheel,contact_angle,rolling_radius,xi,eta,phi,fn,fx,fs,mz,a,b,"
+    "pmax,status";
+
+/// The benchmark's right-wheel states as a wheelset scenario, one per second, made from
+/// test/data/profiles/a22_cases.csv with doc/profiles.md's mapping to our REP 103 axes:
+/// y = -y_bench, yaw = -yaw_bench, roll = roll_bench, omega = -vpitch. Returns the file's path.
+std::string a22Scenario(std::vector<double>* y_mm) {
+  std::ifstream in(std::string(WRC_SOURCE_DIR) + "/test/data/profiles/a22_cases.csv");
+  std::ostringstream s;
+  s << "t,y,yaw,roll,V,omega,fz\n";
+  std::string line;
+  int t = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("right,", 0) != 0) continue;
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) f.push_back(c);
+    // wheel,case,y_mm,yaw_rad,roll_rad,fz_N,vs_mm_s,vpitch_rad_s
+    y_mm->push_back(std::stod(f[2]));
+    s.precision(17);
+    s << t++ << "," << -std::stod(f[2]) * 1e-3 << "," << -std::stod(f[3]) << "," << std::stod(f[4])
+      << "," << std::stod(f[6]) * 1e-3 << "," << -std::stod(f[7]) << "," << std::stod(f[5]) << "\n";
+  }
+  EXPECT_EQ(y_mm->size(), 21u);
+  return writeTemp("a22_wheelset.csv", s.str());
 }
 
 }  // namespace
@@ -85,4 +131,142 @@ TEST(WheelsetConfig, ErrorsNameTheKeyAndTheFile) {
   EXPECT_EQ(configErrorOf("guage: 1.435\n").rfind("guage: unknown parameter", 0), 0u);
   EXPECT_NE(configErrorOf("gauge: wide\n").find("(in '"), std::string::npos);
   EXPECT_EQ(configErrorOf(""), "(no error)");
+}
+
+TEST(ContactCliWheelset, ManchesterA22ThroughTheCommand) {
+  std::vector<double> y_mm;
+  const std::string scenario = a22Scenario(&y_mm);
+  const Result r = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail,
+                        "--scenario", scenario, "--model", "steady"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos);
+  std::istringstream in(r.out);
+  const auto rows = csvRows(in);
+  ASSERT_GT(rows.size(), 42u);
+  std::string header;
+  for (const std::string& c : rows[0]) header += (header.empty() ? "" : ",") + c;
+  EXPECT_EQ(header, kHeader);
+  // Per case and wheel: the vertical load carried, and the right wheel's most loaded patch.
+  std::map<std::string, std::vector<double>> load;
+  std::vector<double> railY(21, 0.0), angle(21, 0.0), fnMax(21, 0.0);
+  std::vector<std::string> zone(21);
+  for (size_t k = 1; k < rows.size(); ++k) {
+    const auto& row = rows[k];
+    ASSERT_EQ(row.size(), 19u) << k;
+    if (row[2] == "none") {  // every case of the benchmark has contact on both wheels
+      ADD_FAILURE() << "t = " << row[0] << ", " << row[1] << " wheel: " << row[18];
+      continue;
+    }
+    // ok, or refused by the elliptic-patch model for an a/b beyond Kalker's table [0.1, 10]
+    // (the conformal flange patch's, long and narrow).
+    const double a = std::stod(row[15]), b = std::stod(row[16]);
+    EXPECT_EQ(row[18], a >= 0.1 * b && a <= 10.0 * b ? "ok" : "tangential_rejected") << k;
+    const int c = static_cast<int>(std::lround(std::stod(row[0])));
+    ASSERT_TRUE(c >= 0 && c < 21);
+    auto& l = load[row[1]];
+    l.resize(21, 0.0);
+    const double fn = std::stod(row[11]), delta = std::stod(row[6]);
+    l[c] += fn * std::cos(delta);
+    EXPECT_GT(std::stod(row[17]), 0.0);  // pmax
+    if (row[1] == "right" && fn > fnMax[c]) {
+      fnMax[c] = fn;
+      railY[c] = std::stod(row[3]);
+      angle[c] = delta;
+      zone[c] = row[2];
+    }
+  }
+  ASSERT_EQ(load.size(), 2u);
+  for (const auto& w : load)
+    for (int c = 0; c < 21; ++c) EXPECT_NEAR(w.second[c], 1e4, 10.0) << w.first << " case " << c;
+  // The contact point on the rail jumps to the flange between 6 and 7 mm: before it the gauge
+  // corner, after it the flange, and the jump is more than twice any step on the tread (0.5 to
+  // 4.5 mm: at 0 mm the load is shared by two tread patches, and at 5 mm the contact jumps to the
+  // gauge corner).
+  int at6 = -1, at7 = -1;
+  for (int c = 0; c < 21; ++c) {
+    if (y_mm[c] == 6.0) at6 = c;
+    if (y_mm[c] == 7.0) at7 = c;
+  }
+  ASSERT_EQ(at7, at6 + 2);
+  EXPECT_NE(zone[at6].rfind("flange", 0), 0u) << zone[at6];
+  EXPECT_EQ(zone[at7].rfind("flange", 0), 0u) << zone[at7];
+  EXPECT_GT(angle[at7], 0.6);
+  EXPECT_LT(angle[at6], 0.6);
+  double tread = 0.0;
+  for (int c = 2; c < 21 && y_mm[c] <= 4.5; ++c) {
+    EXPECT_EQ(zone[c].rfind("tread", 0), 0u) << zone[c];
+    tread = std::max(tread, std::abs(railY[c] - railY[c - 1]));
+  }
+  EXPECT_GT(std::abs(railY[at7] - railY[at6]), 2.0 * tread);
+}
+
+TEST(ContactCliWheelset, AWheelWithoutContactGetsOneRowWithItsStatus) {
+  const std::string f = writeTemp("w_noload.csv",
+                                  "t,y,yaw,roll,V,omega,fz_left,fz_right\n"
+                                  "0,-0.0005,-0.0012,-2.304e-05,2,4.34741,0,1e4\n");
+  const Result r = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail,
+                        "--scenario", f, "--model", "steady"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream in(r.out);
+  const auto rows = csvRows(in);
+  ASSERT_GE(rows.size(), 3u);
+  EXPECT_EQ(rows[1][1], "left");
+  EXPECT_EQ(rows[1][2], "none");
+  EXPECT_EQ(rows[1][18], "no_load");
+  for (int col : {11, 12, 13, 14}) EXPECT_EQ(rows[1][col], "0") << col;  // fn, fx, fs, mz
+  EXPECT_EQ(rows[2][1], "right");
+  EXPECT_EQ(rows[2][18], "ok");
+}
+
+TEST(ContactCliWheelset, BadFilesAndOptionsAreRefusedNamingThem) {
+  const std::string good = writeTemp("w_good.csv", "t,y,yaw,roll,V,omega,fz\n0,0,0,0,2,4.3,1e4\n");
+  const std::string bad =
+      writeTemp("w_bad.csv", "t,y,yaw,roll,V,omega,fz\n0,0,0,0,2,4.3,1e4\n1,0,0,zz,2,4.3,1e4\n");
+  Result r =
+      cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail, "--scenario", bad});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("w_bad.csv:3: field 'roll': not a number ('zz')"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.out, "");  // nothing half-written
+
+  const std::string profile = writeTemp("w_rail.csv", "# unit: mm\n0,0\n1,x\n");
+  r = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", profile, "--scenario", good});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("w_rail.csv:3:"), std::string::npos) << r.err;
+
+  // A rail file read as a wheel: the profile's kind is refused.
+  r = cli({"wheelset", "--wheel-profile", kRail, "--rail-profile", kRail, "--scenario", good});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_FALSE(r.err.empty());
+
+  r = cli({"wheelset", "--rail-profile", kRail, "--scenario", good});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("wheelset: --wheel-profile FILE is required"), std::string::npos) << r.err;
+
+  const std::string config = writeTemp("w_c.yaml", "gauge: 3\n");
+  r = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail, "--scenario", good,
+           "--config", config});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("gauge"), std::string::npos) << r.err;
+
+  r = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail, "--scenario", good,
+           "--mu", "-1"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("mu"), std::string::npos) << r.err;
+}
+
+TEST(ContactCliWheelset, TheShippedA22SceneIsTheBenchmarksStates) {
+  // scenes/manchester_a22.csv, the docs' example, holds the same states as the test's own mapping.
+  std::vector<double> y_mm;
+  std::ifstream made(a22Scenario(&y_mm));
+  std::ifstream shipped(std::string(WRC_SOURCE_DIR) + "/scenes/manchester_a22.csv");
+  const auto a = readWheelsetScenario(made, "made"), b = readWheelsetScenario(shipped, "shipped");
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].t, b[k].t);
+    for (auto m : {&WheelsetScenarioRow::y, &WheelsetScenarioRow::yaw, &WheelsetScenarioRow::roll,
+                   &WheelsetScenarioRow::V, &WheelsetScenarioRow::omega,
+                   &WheelsetScenarioRow::fz_left, &WheelsetScenarioRow::fz_right})
+      EXPECT_NEAR(a[k].*m, b[k].*m, 1e-12 * std::max(1.0, std::abs(b[k].*m))) << k;
+  }
 }

@@ -10,12 +10,27 @@ namespace wheel_rail_contact {
 
 namespace {
 
-enum Column { kT, kY, kYaw, kRoll, kV, kOmega, kFz, kFzLeft, kFzRight, kVy, kYawRate, kCurvature };
-const std::array<const char*, 12> kNames = {"t",        "y",     "yaw",      "roll",
-                                            "V",        "omega", "fz",       "fz_left",
-                                            "fz_right", "vy",    "yaw_rate", "curvature"};
+enum Column {
+  kT,
+  kY,
+  kYaw,
+  kRoll,
+  kV,
+  kOmega,
+  kFz,
+  kFzLeft,
+  kFzRight,
+  kVy,
+  kYawRate,
+  kCurvature,
+  kVz,
+  kRollRate
+};
+const std::array<const char*, 14> kNames = {"t",        "y",         "yaw",     "roll",     "V",
+                                            "omega",    "fz",        "fz_left", "fz_right", "vy",
+                                            "yaw_rate", "curvature", "vz",      "roll_rate"};
 const char* const kKnown =
-    "t,y,yaw,roll,V,omega and fz or fz_left,fz_right; optional vy,yaw_rate,curvature";
+    "t,y,yaw,roll,V,omega and fz or fz_left,fz_right; optional vy,yaw_rate,curvature,vz,roll_rate";
 
 std::string trim(const std::string& s) {
   const auto first = s.find_first_not_of(" \t\r");
@@ -96,6 +111,8 @@ std::vector<WheelsetScenarioRow> readWheelsetScenario(std::istream& in, const st
     r.vy = v[kVy];
     r.yaw_rate = v[kYawRate];
     r.curvature = v[kCurvature];
+    r.vz = v[kVz];
+    r.roll_rate = v[kRollRate];
     rows.push_back(r);
   }
   if (!haveHeader) fail(source, lineNo, "no header line (expected t,y,yaw,roll,V,omega,fz)");

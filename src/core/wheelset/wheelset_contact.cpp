@@ -1,0 +1,218 @@
+#include "wheel_rail_contact/wheelset/wheelset_contact.hpp"
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+
+namespace wheel_rail_contact {
+
+const char* toString(WheelStatus s) {
+  switch (s) {
+    case WheelStatus::kOk:
+      return "ok";
+    case WheelStatus::kNoLoad:
+      return "no_load";
+    case WheelStatus::kNoContact:
+      return "no_contact";
+    case WheelStatus::kInvalidInput:
+      return "invalid_input";
+    case WheelStatus::kNormalFailed:
+      return "normal_failed";
+  }
+  return "unknown";
+}
+
+namespace {
+
+const char* zoneName(ContactZone z) {
+  switch (z) {
+    case ContactZone::kTread:
+      return "tread";
+    case ContactZone::kGaugeCorner:
+      return "gauge_corner";
+    case ContactZone::kFlange:
+      return "flange";
+  }
+  return "unknown";
+}
+
+bool finite(const WheelsetPose& p) {
+  return std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.yaw) && std::isfinite(p.roll);
+}
+
+bool finite(const WheelsetMotion& m) {
+  return std::isfinite(m.V) && std::isfinite(m.omega) && std::isfinite(m.vy) &&
+         std::isfinite(m.yaw_rate) && std::isfinite(m.curvature) && std::isfinite(m.vz) &&
+         std::isfinite(m.roll_rate);
+}
+
+// A slot's model (null while its patch is absent) and whether its patch was present this step.
+struct Slot {
+  std::unique_ptr<ContactModel> model;
+  bool present = false;
+};
+
+}  // namespace
+
+struct WheelsetContact::Impl {
+  WheelsetTrackData track;
+  ContactParameters parameters;
+  WheelsetContactOptions options;
+  ContactSearch search;
+  std::unique_ptr<ContactTable> table;
+  std::array<std::map<std::string, Slot>, 2> slots;  // [0] left, [1] right, by slot name
+
+  Impl(const WheelsetTrackData& t, const ContactParameters& p, const WheelsetContactOptions& o)
+      : track(t), parameters(p), options(o), search(t, o.search) {
+    validate(parameters);
+    makeContactModel(parameters);  // throws now for a model this build does not provide
+    if (options.use_contact_table) table = std::make_unique<ContactTable>(search, options.table);
+  }
+
+  WheelContactGeometry geometry(WheelSide side, const WheelsetPose& pose) const {
+    return table ? table->search(side, pose) : search.search(side, pose);
+  }
+
+  // Drops the models of one wheel's slots whose patch was not present this step: the patch
+  // starts from rest when it comes back.
+  void resetAbsent(std::map<std::string, Slot>& wheel) {
+    for (auto& kv : wheel) {
+      if (!kv.second.present) kv.second.model.reset();
+      kv.second.present = false;
+    }
+  }
+
+  // A model for a patch that appears. The reference patch a0, b0, fz0 has no other use here (each
+  // step gives a, b): it is set to the patch's, so that a fixed mesh (fz_max 0: 1.5 fn) fits the
+  // patch instead of a reference patch of another scale. Null, with the reason, if the patch is
+  // outside the model's ranges (a/b beyond Kalker's table).
+  std::unique_ptr<ContactModel> modelFor(const NormalPatch& np, std::string* why) const {
+    ContactParameters q = parameters;
+    q.a0 = np.a;
+    q.b0 = np.b;
+    q.fz0 = np.fn;
+    q.fz_max = 0.0;
+    try {
+      return makeContactModel(q);
+    } catch (const std::exception& e) {
+      *why = e.what();
+      return nullptr;
+    }
+  }
+
+  WheelResult stepWheel(WheelSide side, const WheelsetState& s, double dt) {
+    std::map<std::string, Slot>& wheel = slots[side == WheelSide::kLeft ? 0 : 1];
+    WheelResult r;
+    r.side = side;
+    const double load = side == WheelSide::kLeft ? s.fz_left : s.fz_right;
+    const auto finish = [&](WheelStatus status, std::string message, bool clear) {
+      r.status = status;
+      r.message = std::move(message);
+      r.patches.clear();
+      if (clear) resetAbsent(wheel);  // no patch present: every slot of the wheel
+      return r;
+    };
+    // Rejected input leaves the history as it was, as a model's kRejected step does.
+    if (!finite(s.pose) || !finite(s.motion) || !std::isfinite(load) || !std::isfinite(dt))
+      return finish(WheelStatus::kInvalidInput, "a state value or dt is not finite", false);
+    if (dt < 0.0) return finish(WheelStatus::kInvalidInput, "dt < 0", false);
+    if (!(load > 0.0)) return finish(WheelStatus::kNoLoad, "vertical load <= 0", true);
+
+    WheelsetPose pose = s.pose;
+    pose.z = 0.0;  // the load sets the approach; z would only shift the undeformed gaps
+    const WheelContactGeometry g = geometry(side, pose);
+    if (g.status == ContactSearchStatus::kInvalidInput)
+      return finish(WheelStatus::kInvalidInput, g.message, false);
+    if (g.status != ContactSearchStatus::kOk || g.candidates.empty())
+      return finish(WheelStatus::kNoContact, g.message.empty() ? "no candidate" : g.message, true);
+
+    const WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, options.normal);
+    if (n.status == NormalStatus::kNoContact)
+      return finish(WheelStatus::kNoContact, n.message, true);
+    if (n.status != NormalStatus::kOk || n.patches.size() != g.candidates.size())
+      return finish(WheelStatus::kNormalFailed,
+                    n.message.empty() ? "the normal problem found no solution" : n.message, true);
+
+    std::map<ContactZone, int> rank;
+    for (size_t i = 0; i < g.candidates.size(); ++i) {
+      const NormalPatch& np = n.patches[i];
+      if (!(np.fn >= kMinLoad)) continue;  // out of contact
+      PatchResult p;
+      p.geometry = g.candidates[i];
+      p.zone = p.geometry.zone;
+      const int k = ++rank[p.zone];
+      p.slot = std::string(zoneName(p.zone)) + (k > 1 ? "_" + std::to_string(k) : "");
+      p.normal = np;
+      p.creepages = patchCreepages(side, pose, s.motion, p.geometry, track);
+
+      Slot& slot = wheel[p.slot];
+      slot.present = true;
+      if (p.creepages.status == CreepageStatus::kInvalidInput) {
+        // No creepages, no tangential forces; the slot is kept as a refused step keeps a model.
+        p.tangential_status = StepStatus::kRejected;
+        p.message = "creepages: " + p.creepages.message;
+        r.patches.push_back(std::move(p));
+        continue;
+      }
+      if (!slot.model) slot.model = modelFor(np, &p.message);  // appears: from rest
+      if (!slot.model) {
+        p.tangential_status = StepStatus::kRejected;
+        p.message = "tangential model: " + p.message;
+        r.patches.push_back(std::move(p));
+        continue;
+      }
+      StepInput in;
+      in.dt = dt;
+      in.V = s.motion.V;  // patchCreepages divides by it; at V = 0 the model stands still
+      in.xi = p.creepages.xi;
+      in.eta = p.creepages.eta;
+      in.phi = p.creepages.phi;
+      in.fz = np.fn;
+      in.a = np.a;
+      in.b = np.b;
+      const StepOutput out = slot.model->step(in);
+      p.fx = out.fx;
+      p.fs = out.fy;
+      p.mz = out.mz;
+      p.tangential_status = out.status;
+      p.message = out.message;
+      r.patches.push_back(std::move(p));
+    }
+    resetAbsent(wheel);
+    if (r.patches.empty()) return finish(WheelStatus::kNoContact, "no patch carries load", false);
+    r.status = WheelStatus::kOk;
+    return r;
+  }
+};
+
+WheelsetContact::WheelsetContact(const WheelsetTrackData& track,
+                                 const ContactParameters& parameters,
+                                 const WheelsetContactOptions& options)
+    : impl_(std::make_unique<Impl>(track, parameters, options)) {}
+
+WheelsetContact::~WheelsetContact() = default;
+WheelsetContact::WheelsetContact(WheelsetContact&&) noexcept = default;
+WheelsetContact& WheelsetContact::operator=(WheelsetContact&&) noexcept = default;
+
+WheelsetResult WheelsetContact::step(const WheelsetState& state, double dt) {
+  WheelsetResult r;
+  r.left = impl_->stepWheel(WheelSide::kLeft, state, dt);
+  r.right = impl_->stepWheel(WheelSide::kRight, state, dt);
+  return r;
+}
+
+void WheelsetContact::reset() {
+  for (auto& wheel : impl_->slots) wheel.clear();
+}
+
+const ContactSearch& WheelsetContact::search() const {
+  return impl_->search;
+}
+const ContactParameters& WheelsetContact::parameters() const {
+  return impl_->parameters;
+}
+
+}  // namespace wheel_rail_contact
