@@ -14,6 +14,7 @@
 #include "../../src/cli/cli.hpp"
 #include "../../src/cli/config_yaml.hpp"
 #include "csv_rows.hpp"
+#include "wheel_rail_contact/profiles/profile.hpp"
 #include "wheel_rail_contact/wheelset/wheelset_scenario.hpp"
 
 using namespace wheel_rail_contact;
@@ -268,5 +269,42 @@ TEST(ContactCliWheelset, TheShippedA22SceneIsTheBenchmarksStates) {
                    &WheelsetScenarioRow::V, &WheelsetScenarioRow::omega,
                    &WheelsetScenarioRow::fz_left, &WheelsetScenarioRow::fz_right})
       EXPECT_NEAR(a[k].*m, b[k].*m, 1e-12 * std::max(1.0, std::abs(b[k].*m))) << k;
+  }
+}
+
+TEST(ContactCliWheelset, TextProfilesTakeTheirUnitFromTheFileOrTheConfig) {
+  // The benchmark's profiles written as plain text in mm, in the files' own axes, without a unit:
+  // refused until --config gives profile_length_unit, then the same answer as the Simpack files.
+  const auto text = [](const Profile& p) {
+    std::ostringstream s;
+    s.precision(17);
+    for (const Eigen::Vector2d& q : p.points()) {
+      const Eigen::Vector2d f = p.toFile(q) * 1e3;
+      s << f.x() << "," << f.y() << "\n";
+    }
+    return s.str();
+  };
+  const std::string wheel = writeTemp("w_wheel.csv", text(*Profile::standardWheel()));
+  const std::string rail = writeTemp("w_rail_mm.csv", text(*Profile::standardRail()));
+  const std::string scenario = writeTemp(
+      "w_one.csv", "t,y,yaw,roll,V,omega,fz\n0,-0.0005,-0.0012,-2.304e-05,2,4.34741,1e4\n");
+  Result r = cli({"wheelset", "--wheel-profile", wheel, "--rail-profile", rail, "--scenario",
+                  scenario, "--model", "steady"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("no length unit"), std::string::npos) << r.err;
+  const std::string config = writeTemp("w_mm.yaml", "profile_length_unit: mm\n");
+  r = cli({"wheelset", "--wheel-profile", wheel, "--rail-profile", rail, "--scenario", scenario,
+           "--model", "steady", "--config", config});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Result simpack = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail,
+                              "--scenario", scenario, "--model", "steady"});
+  ASSERT_EQ(simpack.code, 0) << simpack.err;
+  std::istringstream a(r.out), b(simpack.out);
+  const auto ra = csvRows(a), rb = csvRows(b);
+  ASSERT_EQ(ra.size(), rb.size());
+  for (size_t k = 1; k < ra.size(); ++k) {
+    EXPECT_EQ(ra[k][2], rb[k][2]);
+    EXPECT_NEAR(std::stod(ra[k][3]), std::stod(rb[k][3]), 1e-6);          // y_rail
+    EXPECT_NEAR(std::stod(ra[k][11]), std::stod(rb[k][11]), 1e-3 * 1e4);  // fn
   }
 }

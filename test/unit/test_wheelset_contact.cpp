@@ -290,3 +290,30 @@ TEST(WheelsetContact, ConstructionRefusesBadDataNamingTheParameter) {
     EXPECT_NE(std::string(e.what()).find("gauge"), std::string::npos) << e.what();
   }
 }
+
+TEST(WheelsetContact, AContactTableGivesTheDirectSearchsPatches) {
+  // The table swaps in for the search (contact_table.hpp): the same slots, and the normal
+  // solution and place within what interpolating the geometry moves them. A small table covering
+  // the states (its own cost: one to three searches per node).
+  WheelsetContactOptions o;
+  o.use_contact_table = true;
+  o.table.max_abs_lateral = 0.004;  // the wheel's own lateral displacement, about |y| + 0.5 mm
+  o.table.max_abs_yaw = 0.02;
+  o.table.max_abs_roll = 0.005;
+  WheelsetContact table(WheelsetTrackData{}, parameters("steady"), o);
+  WheelsetContact direct(WheelsetTrackData{}, parameters("steady"));
+  for (const WheelsetState& s : {tread(), corner2()}) {
+    const WheelsetResult t = table.step(s, 0.0), d = direct.step(s, 0.0);
+    for (const auto& [wt, wd] : {std::pair{&t.left, &d.left}, std::pair{&t.right, &d.right}}) {
+      ASSERT_EQ(wt->status, WheelStatus::kOk) << wt->message;
+      ASSERT_EQ(wt->patches.size(), wd->patches.size());
+      for (size_t i = 0; i < wd->patches.size(); ++i) {
+        const PatchResult &pt = wt->patches[i], &pd = wd->patches[i];
+        EXPECT_EQ(pt.slot, pd.slot);
+        EXPECT_NEAR(pt.geometry.rail_file.x(), pd.geometry.rail_file.x(), 1e-4);
+        EXPECT_NEAR(pt.normal.fn, pd.normal.fn, 0.02 * pd.normal.fn);
+        EXPECT_NEAR(pt.normal.pmax, pd.normal.pmax, 0.05 * pd.normal.pmax);
+      }
+    }
+  }
+}

@@ -51,14 +51,16 @@ TEST(WheelsetScenario, ColumnsByNameInAnyOrder) {
 
 TEST(WheelsetScenario, SeparateLoadsAndTheOptionalMotionColumns) {
   const auto rows = read(
-      "t,y,yaw,roll,V,omega,fz_left,fz_right,vy,yaw_rate,curvature\n"
-      "0,0,0,0,20,43.5,9e3,1.1e4,0.1,0.02,0.002\n");
+      "t,y,yaw,roll,V,omega,fz_left,fz_right,vy,yaw_rate,curvature,vz,roll_rate\n"
+      "0,0,0,0,20,43.5,9e3,1.1e4,0.1,0.02,0.002,-0.003,0.004\n");
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].fz_left, 9e3);
   EXPECT_EQ(rows[0].fz_right, 1.1e4);
   EXPECT_EQ(rows[0].vy, 0.1);
   EXPECT_EQ(rows[0].yaw_rate, 0.02);
   EXPECT_EQ(rows[0].curvature, 0.002);
+  EXPECT_EQ(rows[0].vz, -0.003);
+  EXPECT_EQ(rows[0].roll_rate, 0.004);
 }
 
 TEST(WheelsetScenario, BadFilesAreRefusedWithTheLineAndTheReason) {
