@@ -6,7 +6,6 @@
 #include <stdexcept>
 #include <utility>
 
-
 namespace wheel_rail_contact {
 
 const char* toString(WheelStatus s) {
