@@ -317,3 +317,24 @@ TEST(WheelsetContact, AContactTableGivesTheDirectSearchsPatches) {
     }
   }
 }
+
+TEST(WheelsetContact, AnExactModelsPatchThatOutgrowsItsGridRestartsSayingSo) {
+  // The exact model's grid is fixed (1.5 times the first patch's load); the tread patch at 1 mm is
+  // longer than at 0.5 mm by more than that covers, so the slot restarts on a new grid.
+  ContactParameters p = parameters("exact");
+  p.nx = p.ny = 8;
+  WheelsetContact c(WheelsetTrackData{}, p);
+  const double dt = 1e-3;  // 2 mm: a few of the grid's elements
+  c.step(tread(), 0.0);
+  const WheelsetResult before = c.step(tread(), dt);
+  const PatchResult* t0 = find(before.right, ContactZone::kTread);
+  ASSERT_NE(t0, nullptr);
+  EXPECT_EQ(t0->tangential_status, StepStatus::kOk) << t0->message;
+  EXPECT_NE(t0->fx, 0.0);
+  const WheelsetResult after = c.step(a22(1.0, 0.0024, -5.049e-05, -4.34658), dt);
+  const PatchResult* t1 = find(after.right, ContactZone::kTread);
+  ASSERT_NE(t1, nullptr);
+  ASSERT_GT(t1->normal.a, std::cbrt(1.5) * t0->normal.a);  // the premise: it outgrew the grid
+  EXPECT_EQ(t1->tangential_status, StepStatus::kOk) << t1->message;
+  EXPECT_NE(t1->message.find("outgrew the exact model's grid"), std::string::npos) << t1->message;
+}

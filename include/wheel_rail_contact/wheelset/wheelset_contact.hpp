@@ -21,14 +21,16 @@
 /// History: one model instance per patch slot, a slot being (wheel, zone, rank among that wheel's
 /// patches of the same zone counted from the field side). A slot whose patch is present is stepped
 /// with the step's dt; a slot whose patch is absent is reset (its model dropped), so a patch that
-/// appears starts from rest (zero traction history) and rolls dt from there. nss thereby carries
-/// its transient across steps while a patch stays in its zone.
+/// appears starts from rest (zero traction history) on a new model, stepped with the step's dt as
+/// a model's first step is (the FastSim models roll dt from rest; exact's first step rolls
+/// nothing). nss thereby carries its transient across steps while a patch stays in its zone.
 ///
 /// The model's reference patch (ContactParameters a0, b0, fz0, fz_max) is not used: a and b come
 /// from the normal problem every step, and a slot's model is made when its patch appears with the
 /// reference patch set to that patch's a, b, fn and fz_max 0, so that a fixed mesh covers the patch
-/// up to 1.5 times its first load (a FastSim model grows its mesh beyond that with a note; exact
-/// refuses such a patch: doc/varying_geometry.md).
+/// up to 1.5 times its first load. A FastSim model grows its mesh beyond that with a note
+/// (doc/varying_geometry.md); the exact model, whose grid is fixed, is restarted from rest on a
+/// grid for the patch when the patch's a or b outgrows it, with a note (PatchResult::message).
 #pragma once
 
 #include <memory>

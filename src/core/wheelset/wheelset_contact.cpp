@@ -51,8 +51,12 @@ bool finite(const WheelsetMotion& m) {
 // A slot's model (null while its patch is absent) and whether its patch was present this step.
 struct Slot {
   std::unique_ptr<ContactModel> model;
+  double a_cover = 0.0, b_cover = 0.0;  // the patch the model's fixed mesh or grid covers [m]
   bool present = false;
 };
+
+// The share of the reference patch a fixed mesh covers: fz_max = 1.5 fz0 (fz_max 0), a ~ fz^(1/3).
+const double kCover = std::cbrt(1.5);
 
 }  // namespace
 
@@ -156,7 +160,15 @@ struct WheelsetContact::Impl {
         r.patches.push_back(std::move(p));
         continue;
       }
-      if (!slot.model) slot.model = modelFor(np, &p.message);  // appears: from rest
+      // The exact model refuses a patch beyond its grid (the FastSim models grow their mesh): a
+      // patch that outgrows it restarts from rest on a grid for the patch, saying so.
+      const bool outgrown =
+          slot.model && parameters.model == "exact" && (np.a > slot.a_cover || np.b > slot.b_cover);
+      if (!slot.model || outgrown) {  // appears: from rest
+        slot.model = modelFor(np, &p.message);
+        slot.a_cover = kCover * np.a;
+        slot.b_cover = kCover * np.b;
+      }
       if (!slot.model) {
         p.tangential_status = StepStatus::kRejected;
         p.message = "tangential model: " + p.message;
@@ -178,6 +190,9 @@ struct WheelsetContact::Impl {
       p.mz = out.mz;
       p.tangential_status = out.status;
       p.message = out.message;
+      if (outgrown && out.status == StepStatus::kOk)
+        p.message =
+            "the patch outgrew the exact model's grid: restarted from rest on a grid for it";
       r.patches.push_back(std::move(p));
     }
     resetAbsent(wheel);
