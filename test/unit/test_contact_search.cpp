@@ -265,6 +265,7 @@ TEST(ContactSearch, GapFunctionCurvesAsTheProfilesDo) {
   // splines on their own: the gap function and the profiles' curvatures agree.
   ContactSearchOptions local;
   local.gap_window = 1e-8;  // with an overlap of 0.1 um: samples where the gap is below 0.1 um
+  local.gap_reach = 1e-8;   // (not the default reach the normal problem needs)
   const ContactSearch cs(WheelsetTrackData(), local);
   for (const double y : {0.0, -2e-3, -5.5e-3}) {
     WheelsetPose p;

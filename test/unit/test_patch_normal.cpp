@@ -2,15 +2,18 @@
 // half-space solver on the same gap, on the Manchester benchmark's case.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/exact/halfspace_normal.hpp"
 #include "core/normal/hertz_approach.hpp"
+#include "validation/patch_exact.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
 #include "wheel_rail_contact/normal/patch_normal.hpp"
 
@@ -36,63 +39,8 @@ ContactCandidate hertzCandidate(double B, double r, double half_width, int sampl
   return c;
 }
 
-/// The exact solution on the patch's own gap: a grid over the region where the bodies
-/// interpenetrate undeformed (the contact lies inside it), the gap interpolated linearly between
-/// the gap function's samples as the method does, h = g(eta) - g(0) + cos(delta) x^2 / (2 r).
-struct ExactPatch {
-  NormalSolution s;
-  HalfspaceGrid grid;
-  double eta_offset = 0.0;
-  double fn = 0.0, pmax = 0.0, eta_min = 0.0, eta_max = 0.0;
-};
-
-double interp(const ContactCandidate& c, double e, int what) {
-  const auto& f = c.gap_function;
-  std::size_t i = 0;
-  while (i + 2 < f.size() && f[i + 1].eta < e) ++i;
-  const double t = std::clamp((e - f[i].eta) / (f[i + 1].eta - f[i].eta), 0.0, 1.0);
-  auto v = [&](const GapSample& s) {
-    return what == 0 ? s.gap - c.gap : std::cos(s.contact_angle) / (2.0 * s.rolling_radius);
-  };
-  return v(f[i]) + t * (v(f[i + 1]) - v(f[i]));
-}
-
 ExactPatch exactPatch(const ContactCandidate& c, double approach, int mx, int my) {
-  double lo = 1e9, hi = -1e9, xmax = 0.0;
-  for (const GapSample& s : c.gap_function) {
-    const double pen = approach - (s.gap - c.gap);
-    if (pen <= 0.0) continue;
-    lo = std::min(lo, s.eta);
-    hi = std::max(hi, s.eta);
-    xmax = std::max(xmax, std::sqrt(pen / interp(c, s.eta, 1)));
-  }
-  const double de = c.gap_function[1].eta - c.gap_function[0].eta;
-  lo -= de;
-  hi += de;
-  ExactPatch e;
-  e.grid.mx = mx;
-  e.grid.my = my;
-  e.grid.dx = 2.0 * 1.02 * xmax / mx;
-  e.grid.dy = (hi - lo) / my;
-  e.eta_offset = 0.5 * (lo + hi);
-  Eigen::VectorXd h(e.grid.size());
-  for (int ix = 0; ix < mx; ++ix)
-    for (int iy = 0; iy < my; ++iy) {
-      const double x = e.grid.xc(ix), eta = e.eta_offset + e.grid.yc(iy);
-      h[e.grid.index(ix, iy)] = interp(c, eta, 0) + interp(c, eta, 1) * x * x;
-    }
-  e.s = solveNormalGapApproach(e.grid, kG, kNu, h, approach);
-  e.fn = e.s.fz;
-  e.pmax = e.s.p.maxCoeff();
-  e.eta_min = 1e9;
-  e.eta_max = -1e9;
-  for (int ix = 0; ix < mx; ++ix)
-    for (int iy = 0; iy < my; ++iy)
-      if (e.s.p[e.grid.index(ix, iy)] > 0.0) {
-        e.eta_min = std::min(e.eta_min, e.eta_offset + e.grid.yc(iy) - 0.5 * e.grid.dy);
-        e.eta_max = std::max(e.eta_max, e.eta_offset + e.grid.yc(iy) + 0.5 * e.grid.dy);
-      }
-  return e;
+  return exactPatchNormal(c, approach, kG, kNu, mx, my);
 }
 
 const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/test/data/profiles/";
@@ -194,34 +142,6 @@ TEST(PatchNormal, StripMethodOnAHertzGapApproachesHertz) {
   }
 }
 
-TEST(PatchNormal, ExploreBenchmark) {
-  for (double y : {0.0, 0.5, 2.0, 4.0, 5.0, 5.5, 6.0, 6.5, 7.0, 8.0, 10.0}) {
-    const WheelContactGeometry geo = atFirstTouch(WheelSide::kRight, a22Right(y));
-    const WheelNormal w = solveWheelLoad(geo, kLoad, kG, kNu);
-    std::printf("y %.1f status %d %s dv %.3g um\n", y, int(w.status), w.message.c_str(),
-                w.vertical_approach * 1e6);
-    for (std::size_t i = 0; i < w.patches.size(); ++i) {
-      const NormalPatch& p = w.patches[i];
-      const ContactCandidate& c = geo.candidates[i];
-      std::printf(
-          "  cand %zu angle %.3f gap %.3g um samples %zu [%.2f %.2f] mm: method %d fn %.0f "
-          "pmax %.3g a %.2f b %.2f ext [%.2f %.2f] appr %.2f um\n",
-          i, c.contact_angle, c.gap * 1e6, c.gap_function.size(),
-          c.gap_function.empty() ? 0.0 : c.gap_function.front().eta * 1e3,
-          c.gap_function.empty() ? 0.0 : c.gap_function.back().eta * 1e3, int(p.method), p.fn,
-          p.pmax, p.a * 1e3, p.b * 1e3, p.eta_min * 1e3, p.eta_max * 1e3, p.approach * 1e6);
-      if (p.fn > 0.0 && (y == 0.5 || y == 5.0 || y == 6.5 || y == 2.0 || y == 8.0)) {
-        for (int m : {40}) {
-          const ExactPatch e = exactPatch(c, p.approach, m, m);
-          std::printf("    exact %d: conv %d fn %.0f (%.2f%%) pmax %.3g (%.2f%%) ext [%.2f %.2f]\n",
-                      m, int(e.s.converged), e.fn, 100 * (p.fn / e.fn - 1), e.pmax,
-                      100 * (p.pmax / e.pmax - 1), e.eta_min * 1e3, e.eta_max * 1e3);
-        }
-      }
-    }
-  }
-}
-
 TEST(PatchNormal, HertzApproachAgreesWithTheExactSolver) {
   // The approach-load relation against the exact solver on the same Hertz gap at the same
   // approach: 2 % (piecewise-constant pressure on a 40 x 40 grid over the ellipse).
@@ -236,5 +156,157 @@ TEST(PatchNormal, HertzApproachAgreesWithTheExactSolver) {
     const NormalSolution s = solveNormalGapApproach(g, kG, kNu, gap, d);
     ASSERT_TRUE(s.converged);
     EXPECT_NEAR(s.fz, h.fn, 0.02 * h.fn) << ratio;
+  }
+}
+
+namespace {
+
+/// The method's wheel solution at the benchmark's state y [mm] under kLoad.
+struct BenchmarkState {
+  WheelContactGeometry geo;
+  WheelNormal wheel;
+};
+
+BenchmarkState benchmarkState(double y_mm) {
+  BenchmarkState s;
+  s.geo = atFirstTouch(WheelSide::kRight, a22Right(y_mm));
+  s.wheel = solveWheelLoad(s.geo, kLoad, kG, kNu);
+  return s;
+}
+
+}  // namespace
+
+// The exact solver's own discretisation: on the patches below a 40 x 40 grid over the undeformed
+// interpenetration and a 60 x 60 one differ by under 1 % in fn and 3 % in pmax
+// (PatchNormal.ExactReferenceIsGridConverged), below the tolerances asserted here.
+
+TEST(PatchNormal, ExactReferenceIsGridConverged) {
+  for (double y : {5.0, 6.5}) {
+    const BenchmarkState s = benchmarkState(y);
+    ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
+    for (std::size_t i = 0; i < s.wheel.patches.size(); ++i) {
+      const NormalPatch& p = s.wheel.patches[i];
+      if (p.fn <= 0.0) continue;
+      const ExactPatch e40 = exactPatch(s.geo.candidates[i], p.approach, 40, 40);
+      const ExactPatch e60 = exactPatch(s.geo.candidates[i], p.approach, 60, 60);
+      ASSERT_TRUE(e40.solution.converged && e60.solution.converged);
+      EXPECT_NEAR(e40.fn, e60.fn, 0.01 * e60.fn) << y << " " << i;
+      EXPECT_NEAR(e40.pmax, e60.pmax, 0.03 * e60.pmax) << y << " " << i;
+    }
+  }
+}
+
+TEST(PatchNormal, A22AgainstTheExactSolverAtTheSameApproach) {
+  // Right wheel of case under 10 kN, each patch at the approach the method found, the exact
+  // solver on the same gap: gauge corner (5 mm, two patches with the tread), flange (6.5 mm) and
+  // the tread at 2 mm where the gap is elliptic. Tolerances: fn 3 % (the method's Boussinesq
+  // integral is exact for its pressure; what differs is the pressure's shape), pmax 10 % (the
+  // strips' semi-elliptic profile from the equivalent ellipse misses a sharper bottom of the gap
+  // by some 5 to 8 %), the lateral edges within 0.15 mm (one exact element is some 0.05 to 0.1
+  // mm wide).
+  for (double y : {2.0, 5.0, 6.5}) {
+    const BenchmarkState s = benchmarkState(y);
+    ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
+    int loaded = 0;
+    for (std::size_t i = 0; i < s.wheel.patches.size(); ++i) {
+      const NormalPatch& p = s.wheel.patches[i];
+      if (p.fn <= 0.0) continue;
+      ++loaded;
+      const ExactPatch e = exactPatch(s.geo.candidates[i], p.approach, 40, 40);
+      ASSERT_TRUE(e.solution.converged);
+      EXPECT_NEAR(p.fn, e.fn, 0.03 * e.fn) << "y " << y << " patch " << i;
+      EXPECT_NEAR(p.pmax, e.pmax, 0.10 * e.pmax) << "y " << y << " patch " << i;
+      EXPECT_NEAR(p.eta_min, e.eta_min, 1.5e-4) << "y " << y << " patch " << i;
+      EXPECT_NEAR(p.eta_max, e.eta_max, 1.5e-4) << "y " << y << " patch " << i;
+    }
+    EXPECT_EQ(loaded, y == 5.0 ? 2 : 1) << y;
+  }
+}
+
+TEST(PatchNormal, A22LoadSplitOfTwoPatchesAgreesWithExact) {
+  // At 5 mm the wheel touches its rail on the tread and on the gauge corner; the exact solver's
+  // split of the same 10 kN (its own vertical approach) against the method's: the tread's share
+  // within 2 percentage points.
+  const BenchmarkState s = benchmarkState(5.0);
+  ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
+  ASSERT_EQ(s.wheel.patches.size(), 2u);
+  const std::vector<double> fe =
+      exactWheelLoad(s.geo, kLoad, kG, kNu, 40, s.wheel.vertical_approach);
+  const double share = s.wheel.patches[0].fn / (s.wheel.patches[0].fn + s.wheel.patches[1].fn);
+  const double exact_share = fe[0] / (fe[0] + fe[1]);
+  EXPECT_GT(exact_share, 0.05);  // both patches carry load
+  EXPECT_NEAR(share, exact_share, 0.02);
+  double fz = 0.0;
+  for (std::size_t i = 0; i < 2; ++i) fz += s.wheel.patches[i].fn * s.geo.candidates[i].normal.y();
+  EXPECT_NEAR(fz, kLoad, 1e-6 * kLoad);
+}
+
+TEST(PatchNormal, A22TreadPlateauIsTheMethodsWeakness) {
+  // At 0.5 mm the tread's gap has a plateau some 10 um high over 8 mm beside its minimum: under
+  // 10 kN the exact contact spreads over it, the method's strips (penetration factor some 0.4
+  // at the centre of the equivalent ellipse) stop short of it. Asserted as measured, so that a
+  // change in either direction shows: fn at the same approach 20 to 40 % low, the patch narrower.
+  const BenchmarkState s = benchmarkState(0.5);
+  ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
+  const NormalPatch& p = s.wheel.patches.at(s.geo.closest);
+  EXPECT_EQ(p.method, NormalMethod::kNonHertzian);
+  const ExactPatch e = exactPatch(s.geo.candidates[s.geo.closest], p.approach, 40, 40);
+  ASSERT_TRUE(e.solution.converged);
+  EXPECT_GT(p.fn, 0.6 * e.fn);
+  EXPECT_LT(p.fn, 0.8 * e.fn);
+  EXPECT_LT(p.eta_max - p.eta_min, e.eta_max - e.eta_min);
+  EXPECT_NEAR(p.pmax, e.pmax, 0.10 * e.pmax);
+}
+
+TEST(PatchNormal, BadInputGivesAStatusAndZeroForces) {
+  const WheelContactGeometry geo = atFirstTouch(WheelSide::kRight, a22Right(2.0));
+  for (double load : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    const WheelNormal w = solveWheelLoad(geo, load, kG, kNu);
+    EXPECT_EQ(w.status, NormalStatus::kInvalidInput) << load;
+    EXPECT_FALSE(w.message.empty());
+    for (const NormalPatch& p : w.patches) EXPECT_EQ(p.fn, 0.0);
+  }
+  const WheelNormal none = solveWheelLoad(WheelContactGeometry{}, kLoad, kG, kNu);
+  EXPECT_EQ(none.status, NormalStatus::kNoContact);
+  // A load the sampled gap cannot carry: the patch outgrows its gap function.
+  const WheelNormal deep = solveWheelLoad(geo, 1e8, kG, kNu);
+  EXPECT_EQ(deep.status, NormalStatus::kBeyondGapFunction) << deep.message;
+  for (const NormalPatch& p : deep.patches) {
+    EXPECT_EQ(p.fn, 0.0);
+    EXPECT_FALSE(std::isnan(p.pmax));
+  }
+  ContactCandidate bare = geo.candidates.at(0);
+  bare.gap_function.clear();
+  EXPECT_EQ(solvePatchNormal(bare, 1e-5, kG, kNu).status, NormalStatus::kNoGapFunction);
+  EXPECT_EQ(solvePatchNormal(geo.candidates[0], std::nan(""), kG, kNu).status,
+            NormalStatus::kInvalidInput);
+  EXPECT_EQ(solvePatchNormal(geo.candidates[0], 1e-5, -1.0, kNu).status,
+            NormalStatus::kInvalidInput);
+  const NormalPatch apart = solvePatchNormal(geo.candidates[0], -1e-5, kG, kNu);
+  EXPECT_EQ(apart.status, NormalStatus::kOk);
+  EXPECT_EQ(apart.fn, 0.0);
+}
+
+TEST(PatchNormal, GapSamplesCarryTheWheelsRadiusAndAngle) {
+  // Interpolated to eta = 0 the samples give the candidate's own point: its radius (to 1 um) and
+  // contact angle (to 2 mrad: the flange's angle turns by some 0.1 rad per mm, the samples lie
+  // some 0.06 mm apart, linear interpolation errs by a fraction of that).
+  for (double y : {2.0, 6.5}) {
+    const WheelContactGeometry geo = atFirstTouch(WheelSide::kRight, a22Right(y));
+    for (const ContactCandidate& c : geo.candidates) {
+      const auto& f = c.gap_function;
+      ASSERT_GT(f.size(), 2u);
+      std::size_t i = 0;
+      while (i + 2 < f.size() && f[i + 1].eta < 0.0) ++i;
+      const double t = -f[i].eta / (f[i + 1].eta - f[i].eta);
+      ASSERT_GE(t, 0.0);
+      ASSERT_LE(t, 1.0);
+      EXPECT_NEAR(f[i].rolling_radius + t * (f[i + 1].rolling_radius - f[i].rolling_radius),
+                  c.rolling_radius, 1e-6)
+          << y;
+      EXPECT_NEAR(f[i].contact_angle + t * (f[i + 1].contact_angle - f[i].contact_angle),
+                  c.contact_angle, 2e-3)
+          << y;
+    }
   }
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "wheel_rail_contact/geometry/hertz.hpp"
 
@@ -26,6 +27,57 @@ double logRatio(double t) {
   return std::log((E * std::exp(t) - K) / (K - E));
 }
 
+/// t = -ln(1 - e^2) whose curvature ratio is exp(target), by Illinois false position on [0, 30].
+double solveT(double target) {
+  double t0 = 0.0, t1 = 30.0, f0 = -target, f1 = logRatio(t1) - target;
+  int side = 0;
+  double t = t1;
+  for (int it = 0; it < 200; ++it) {
+    t = t1 - f1 * (t1 - t0) / (f1 - f0);
+    const double f = logRatio(t) - target;
+    if (std::abs(f) < 1e-14 || t1 - t0 < 1e-15) break;
+    if (f > 0.0) {
+      t1 = t;
+      f1 = f;
+      if (side == 1) f0 *= 0.5;
+      side = 1;
+    } else {
+      t0 = t;
+      f0 = f;
+      if (side == -1) f1 *= 0.5;
+      side = -1;
+    }
+  }
+  return t;
+}
+
+/// t over u = ln(hi/lo) in [0, kUmax], tabulated once (Catmull-Rom): a start within some 1e-7
+/// of the root, which two Newton steps make exact to rounding.
+class TTable {
+ public:
+  static constexpr double kUmax = 25.0, kDu = 0.025;
+  TTable() {
+    const int n = static_cast<int>(std::lround(kUmax / kDu)) + 3;
+    v_.resize(n);
+    for (int i = 0; i < n; ++i) v_[i] = i == 1 ? 0.0 : solveT(std::abs((i - 1) * kDu));
+    v_[0] = -v_[2];  // t is odd in u about 0 to first order
+  }
+  /// t(u) and dt/du.
+  double operator()(double u, double* slope) const {
+    const double s = u / kDu;
+    const int i = static_cast<int>(s);
+    const double x = s - i;
+    const double p0 = v_[i], p1 = v_[i + 1], p2 = v_[i + 2], p3 = v_[i + 3];
+    const double c1 = 0.5 * (p2 - p0), c2 = p0 - 2.5 * p1 + 2.0 * p2 - 0.5 * p3,
+                 c3 = 0.5 * (p3 - p0) + 1.5 * (p1 - p2);
+    *slope = (c1 + x * (2.0 * c2 + 3.0 * x * c3)) / kDu;
+    return p1 + x * (c1 + x * (c2 + x * c3));
+  }
+
+ private:
+  std::vector<double> v_;  // node i at u = (i - 1) kDu
+};
+
 }  // namespace
 
 HertzApproach hertzFromApproach(double A, double B, double d, double Estar) {
@@ -33,25 +85,13 @@ HertzApproach hertzFromApproach(double A, double B, double d, double Estar) {
   const double target = std::log(hi / lo);
   double m = 0.0;
   if (target > 1e-12) {
-    // Illinois false position in t = -ln(1 - m) on [0, 30] (the ratio grows without bound).
-    double t0 = 0.0, t1 = 30.0, f0 = -target, f1 = logRatio(t1) - target;
-    int side = 0;
-    double t = t1;
-    for (int it = 0; it < 100; ++it) {
-      t = t1 - f1 * (t1 - t0) / (f1 - f0);
-      const double f = logRatio(t) - target;
-      if (std::abs(f) < 1e-13 || t1 - t0 < 1e-14) break;
-      if (f > 0.0) {
-        t1 = t;
-        f1 = f;
-        if (side == 1) f0 *= 0.5;
-        side = 1;
-      } else {
-        t0 = t;
-        f0 = f;
-        if (side == -1) f1 *= 0.5;
-        side = -1;
-      }
+    double t, slope;
+    if (target < TTable::kUmax) {
+      static const TTable table;
+      t = table(target, &slope);
+      for (int it = 0; it < 2 && slope > 0.0; ++it) t -= (logRatio(t) - target) * slope;
+    } else {
+      t = solveT(target);
     }
     m = -std::expm1(-t);
   }

@@ -17,21 +17,36 @@ constexpr double kPi = 3.14159265358979323846;
 /// The candidate's gap function as the patch needs it: h(0, eta) beyond its minimum and the
 /// curvature A(eta) = cos(delta) / (2 r) of h along x.
 struct PatchGeometry {
-  std::vector<double> eta, h, A;
+  std::vector<double> eta, h;
+  const ContactCandidate* c = nullptr;
   int imin = 0;
   double eta0 = 0.0, h0 = 0.0;  ///< the minimum, refined by a parabola through three samples
 
-  /// Linear interpolation between samples (clamped).
-  double at(const std::vector<double>& v, double e) const {
+  /// The sample interval [i, i+1] holding e (clamped) and the fraction t within it.
+  int interval(double e, double* t) const {
     const int n = static_cast<int>(eta.size());
-    if (e <= eta[0]) return v[0];
-    if (e >= eta[n - 1]) return v[n - 1];
     const double de = eta[1] - eta[0];
-    int i = std::min(n - 2, static_cast<int>((e - eta[0]) / de));
+    int i = std::clamp(static_cast<int>((e - eta[0]) / de), 0, n - 2);
     while (i > 0 && eta[i] > e) --i;
     while (i < n - 2 && eta[i + 1] < e) ++i;
-    const double t = (e - eta[i]) / (eta[i + 1] - eta[i]);
-    return v[i] + t * (v[i + 1] - v[i]);
+    *t = std::clamp((e - eta[i]) / (eta[i + 1] - eta[i]), 0.0, 1.0);
+    return i;
+  }
+  /// h(0, e) by linear interpolation between samples.
+  double gap(double e) const {
+    double t;
+    const int i = interval(e, &t);
+    return h[i] + t * (h[i + 1] - h[i]);
+  }
+  /// Curvature along x at sample i: cos(delta) / (2 r).
+  double curvatureAt(int i) const {
+    const GapSample& s = c->gap_function[i];
+    return std::max(std::cos(s.contact_angle), 0.0) / (2.0 * s.rolling_radius);
+  }
+  double curvature(double e) const {
+    double t;
+    const int i = interval(e, &t);
+    return curvatureAt(i) + t * (curvatureAt(i + 1) - curvatureAt(i));
   }
 };
 
@@ -42,9 +57,9 @@ bool buildGeometry(const ContactCandidate& c, PatchGeometry* g, std::string* why
     *why = "the candidate has no gap function (fewer than 5 samples)";
     return false;
   }
+  g->c = &c;
   g->eta.resize(n);
   g->h.resize(n);
-  g->A.resize(n);
   for (int i = 0; i < n; ++i) {
     const GapSample& s = f[i];
     if (!std::isfinite(s.eta) || !std::isfinite(s.gap) || !(s.rolling_radius > 0.0) ||
@@ -57,7 +72,6 @@ bool buildGeometry(const ContactCandidate& c, PatchGeometry* g, std::string* why
     }
     g->eta[i] = s.eta;
     g->h[i] = s.gap - c.gap;
-    g->A[i] = std::max(std::cos(s.contact_angle), 0.0) / (2.0 * s.rolling_radius);
   }
   g->imin = static_cast<int>(std::min_element(g->h.begin(), g->h.end()) - g->h.begin());
   g->eta0 = g->eta[g->imin];
@@ -123,13 +137,9 @@ constexpr double kGx[6] = {0.033765242898423986, 0.16939530676686776, 0.38069040
 constexpr double kGw[6] = {0.085662246189585178, 0.18038078652406930, 0.23395696728634552,
                            0.23395696728634552,  0.18038078652406930, 0.085662246189585178};
 
-/// int_0^c d eta int_{-L}^{L} sqrt(L^2 - x^2) / sqrt(x^2 + eta^2) dx, c >= 0: with x = L sin t it
-/// is 2 L^2 int_0^{pi/2} cos^2 t [ln(c/L + sqrt(c^2/L^2 + sin^2 t)) - ln sin t] dt, and
-/// int_0^{pi/2} cos^2 t ln sin t dt = -(pi/8)(1 + 2 ln 2). The remaining integrand varies on the
-/// scale c/L near t = 0: geometric panels from there.
-double centralStrip(double L, double c) {
-  if (!(L > 0.0) || !(c > 0.0)) return 0.0;
-  const double q = c / L;
+/// Q(q) = int_0^{pi/2} cos^2 t ln(q + sqrt(q^2 + sin^2 t)) dt by Gauss-Legendre on geometric
+/// panels from t = 0 (the integrand varies on the scale q there).
+double quadratureQ(double q) {
   auto f = [&](double t) {
     const double s = std::sin(t), co = std::cos(t);
     return co * co * std::log(q + std::sqrt(q * q + s * s));
@@ -141,7 +151,46 @@ double centralStrip(double L, double c) {
     t0 = t1;
     t1 = std::min(4.0 * t1, 0.5 * kPi);
   }
-  return 2.0 * L * L * (sum + 0.125 * kPi * (1.0 + 2.0 * std::log(2.0)));
+  return sum;
+}
+
+/// Q tabulated once on u = ln q in [kUlo, kUhi] (Catmull-Rom between nodes, relative error below
+/// 1e-6 of J); beyond, its limits: Q(0) and Q ~ (pi/4) ln(2q) + pi / (64 q^2).
+class QTable {
+ public:
+  static constexpr double kUlo = -16.0, kUhi = 8.0, kDu = 0.05;
+  QTable() {
+    const int n = static_cast<int>(std::lround((kUhi - kUlo) / kDu)) + 3;
+    v_.resize(n);
+    for (int i = 0; i < n; ++i) v_[i] = quadratureQ(std::exp(kUlo + (i - 1) * kDu));
+  }
+  double operator()(double q) const {
+    const double u = std::log(q);
+    if (u >= kUhi) return 0.25 * kPi * std::log(2.0 * q) + kPi / (64.0 * q * q);
+    const double s = (u - kUlo) / kDu;
+    const int i = static_cast<int>(s);
+    const double t = s - i;
+    const double p0 = v_[i], p1 = v_[i + 1], p2 = v_[i + 2], p3 = v_[i + 3];
+    return p1 + 0.5 * t *
+                    (p2 - p0 +
+                     t * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + t * (3.0 * (p1 - p2) + p3 - p0)));
+  }
+
+ private:
+  std::vector<double> v_;  // node i at u = kUlo + (i - 1) kDu
+};
+
+/// int_0^c d eta int_{-L}^{L} sqrt(L^2 - x^2) / sqrt(x^2 + eta^2) dx, c >= 0: with x = L sin t it
+/// is 2 L^2 int_0^{pi/2} cos^2 t [ln(c/L + sqrt(c^2/L^2 + sin^2 t)) - ln sin t] dt
+/// = 2 L^2 (Q(c/L) + (pi/8)(1 + 2 ln 2)), as int_0^{pi/2} cos^2 t ln sin t dt = -(pi/8)(1 + 2 ln
+/// 2).
+double centralStrip(double L, double c) {
+  if (!(L > 0.0) || !(c > 0.0)) return 0.0;
+  static const QTable table;
+  const double q = c / L;
+  const double Q =
+      q < std::exp(QTable::kUlo) ? -0.125 * kPi * (1.0 + 2.0 * std::log(2.0)) : table(q);
+  return std::max(0.0, 2.0 * L * L * (Q + 0.125 * kPi * (1.0 + 2.0 * std::log(2.0))));
 }
 
 /// int_{-L}^{L} sqrt(L^2 - x^2) / sqrt(x^2 + y^2) dx = 2 sqrt(L^2 + y^2) (K(m) - E(m)),
@@ -198,7 +247,7 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
     return out;
   }
   const double Estar = contactModulus(G, nu);
-  const double A0 = g.at(g.A, g.eta0);
+  const double A0 = g.curvature(g.eta0);
   if (!(A0 > 0.0))
     return fail(NormalStatus::kInvalidInput, "the wheel is not convex along x", approach);
 
@@ -225,7 +274,7 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
       if (g.eta[i] < ys || g.eta[i] > ye) continue;
       const double e = g.eta[i] - g.eta0;
       dev = std::max(dev, std::abs(g.h[i] - g.h0 - B_fit * e * e));
-      adev = std::max(adev, std::abs(g.A[i] - A0));
+      adev = std::max(adev, std::abs(g.curvatureAt(static_cast<int>(i)) - A0));
     }
     elliptic = dev <= o.hertz_tolerance * 0.5 * d0 && adev <= o.hertz_tolerance * A0;
   }
@@ -274,7 +323,7 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   const double ex = A0 * hz.a * hz.a, ey = B * bb * bb;  // eps d0 at the centre and at bb
   auto penetration = [&](double e) {                     // eps(eta) d0 - (h(0, eta) - h0)
     const double u = (e - ymid) / bb;
-    return std::max(0.0, ex - (ex - ey) * u * u) - (g.at(g.h, e) - g.h0);
+    return std::max(0.0, ex - (ex - ey) * u * u) - (g.gap(e) - g.h0);
   };
   // Lateral extent: where the penetration is positive, connected to the minimum, by bisection
   // between samples.
@@ -283,12 +332,18 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
     for (int i = dir > 0 ? g.imin + 1 : g.imin - 1;; i += dir) {
       if (i < 0 || i >= static_cast<int>(g.eta.size())) return false;
       if (penetration(g.eta[i]) <= 0.0) {
-        double outer = g.eta[i];
-        for (int it = 0; it < 40; ++it) {
-          const double mid = 0.5 * (inner + outer);
-          (penetration(mid) > 0.0 ? inner : outer) = mid;
+        double outer = g.eta[i], p_in = penetration(inner), p_out = penetration(outer);
+        for (int it = 0; it < 16; ++it) {
+          const double mid = 0.5 * (inner + outer), p = penetration(mid);
+          if (p > 0.0) {
+            inner = mid;
+            p_in = p;
+          } else {
+            outer = mid;
+            p_out = p;
+          }
         }
-        *at = inner;
+        *at = inner + (outer - inner) * p_in / (p_in - p_out);  // the last interval: linear
         return true;
       }
       inner = g.eta[i];
@@ -300,7 +355,7 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   const double w = (hi - lo) / n;
   std::vector<double> L(n);
   auto halfLength = [&](double e) {
-    const double pen = penetration(e), Ae = g.at(g.A, e);
+    const double pen = penetration(e), Ae = g.curvature(e);
     return pen > 0.0 && Ae > 0.0 ? std::sqrt(pen / Ae) : 0.0;
   };
   for (int j = 0; j < n; ++j) L[j] = halfLength(lo + (j + 0.5) * w);
@@ -367,6 +422,9 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
   }
   if (!(G > 0.0) || !std::isfinite(G) || !(nu >= 0.0 && nu < 0.5))
     return failed(NormalStatus::kInvalidInput, "G must be finite and > 0, nu in [0, 0.5)");
+  if (!(o.load_tolerance > 0.0 && o.load_tolerance < 0.1) || o.max_iterations < 1)
+    return failed(NormalStatus::kInvalidInput,
+                  "NormalOptions::load_tolerance must be in (0, 0.1), max_iterations >= 1");
   if (geo.status != ContactSearchStatus::kOk || geo.candidates.empty())
     return failed(NormalStatus::kNoContact,
                   "no contact candidate" + (geo.message.empty() ? "" : ": " + geo.message));
@@ -393,42 +451,36 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
     }
     return true;
   };
-  // Bracket: first touch carries nothing; widen until the load is passed.
-  double lo = touch, hi = touch + 1e-5, f_lo = 0.0, f_hi = 0.0;
-  int it = 0;
-  for (; it < 40; ++it) {
-    if (!force(hi, &f_hi)) return failed(bad, bad_why);
-    if (f_hi >= load) break;
-    lo = hi;
-    f_lo = f_hi;
-    hi = touch + 2.0 * (hi - touch);
-  }
-  if (f_hi < load) return failed(NormalStatus::kNotConverged, "no approach carries the load");
-  // Illinois false position on f^(2/3), nearly linear in the approach (Hertz: f ~ d^(3/2)).
+  // Secant steps on r = f^(2/3) - load^(2/3), nearly linear in the approach (Hertz: f ~
+  // d^(3/2)), from first touch (r = -load^(2/3)) and a probe 10 um beyond; a step that leaves
+  // the bracket found so far bisects it, one beyond every trial so far (no bracket yet) goes at
+  // most eight times as deep.
   const double target = std::cbrt(load * load);
-  double r_lo = std::cbrt(f_lo * f_lo) - target, r_hi = std::cbrt(f_hi * f_hi) - target;
-  int side = 0;
-  double dv = hi, f = f_hi;
-  for (it = 0; it < o.max_iterations; ++it) {
-    dv = hi - r_hi * (hi - lo) / (r_hi - r_lo);
-    if (!(dv > lo && dv < hi)) dv = 0.5 * (lo + hi);
+  const double inf = std::numeric_limits<double>::infinity();
+  double lo = touch, hi = inf;
+  double x0 = touch, r0 = -target, x1 = touch + 1e-5, f = 0.0;
+  double dv = x1;
+  int it = 0;
+  for (; it < o.max_iterations; ++it) {
     if (!force(dv, &f)) return failed(bad, bad_why);
     if (std::abs(f - load) <= o.load_tolerance * load) break;
     const double r = std::cbrt(f * f) - target;
-    if (r > 0.0) {
-      hi = dv;
-      r_hi = r;
-      if (side == 1) r_lo *= 0.5;
-      side = 1;
-    } else {
-      lo = dv;
-      r_lo = r;
-      if (side == -1) r_hi *= 0.5;
-      side = -1;
+    (r > 0.0 ? hi : lo) = dv;
+    x1 = dv;
+    double next = r != r0 ? x1 - r * (x1 - x0) / (r - r0) : inf;
+    x0 = x1;
+    r0 = r;
+    if (hi < inf) {
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    } else if (!(next > lo) || next > touch + 8.0 * (lo - touch)) {
+      next = touch + 8.0 * (lo - touch);
     }
+    dv = next;
   }
   if (it >= o.max_iterations)
-    return failed(NormalStatus::kNotConverged, "the approach iteration did not converge");
+    return failed(NormalStatus::kNotConverged, hi < inf ? "the approach iteration did not converge"
+                                                        : "no approach carries the load");
+  // The patches hold the last trial's solution, at dv.
   out.vertical_approach = dv;
   return out;
 }

@@ -1,0 +1,60 @@
+// Cost of the normal problem per patch (solvePatchNormal) and per wheel under a prescribed load
+// (solveWheelLoad), on the Manchester benchmark's case, right wheel, 10 kN: the tread at
+// 2 mm (Hertz), the tread at 0.5 mm (strips), the gauge corner at 5 mm (two patches: strips on
+// the tread, Hertz on the gauge corner), the flange at 6.5 mm (strips). Run:
+//   build/devel/lib/wheel_rail_contact/bench_patch_normal --benchmark_repetitions=5
+//     --benchmark_report_aggregates_only=true
+// The contact search is not timed (its geometry is computed once per state).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "wheel_rail_contact/normal/patch_normal.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+// A-2.2's right-wheel states (test/data/profiles/a22_cases.csv) in our axes: y and yaw of the
+// other sign, roll as given (doc/profiles.md).
+struct State {
+  double y_mm, yaw, roll;
+};
+constexpr State kStates[] = {{2.0, 0.0048, -0.0001128},
+                             {0.5, 0.0012, -2.304e-05},
+                             {5.0, 0.012, -0.0003554},
+                             {6.5, 0.0156, -0.004376}};
+
+WheelContactGeometry geometry(int k) {
+  static const ContactSearch search{WheelsetTrackData{}};
+  WheelsetPose p;
+  p.y = -kStates[k].y_mm * 1e-3;
+  p.yaw = -kStates[k].yaw;
+  p.roll = kStates[k].roll;
+  for (int i = 0; i < 3; ++i)
+    p.z -= search.search(WheelSide::kRight, p).candidates.at(0).vertical_gap;
+  return search.search(WheelSide::kRight, p);
+}
+
+void Patch(benchmark::State& state) {
+  const WheelContactGeometry g = geometry(static_cast<int>(state.range(0)));
+  const WheelNormal w = solveWheelLoad(g, 1e4, 8.2e10, 0.28);
+  if (w.status != NormalStatus::kOk) state.SkipWithError(w.message.c_str());
+  std::size_t i = static_cast<std::size_t>(g.closest);
+  state.SetLabel(w.patches[i].method == NormalMethod::kHertz ? "hertz" : "strips");
+  const double approach = w.patches[i].approach;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(solvePatchNormal(g.candidates[i], approach, 8.2e10, 0.28));
+}
+
+void WheelLoad(benchmark::State& state) {
+  const WheelContactGeometry g = geometry(static_cast<int>(state.range(0)));
+  state.SetLabel(std::to_string(g.candidates.size()) + " candidates");
+  for (auto _ : state) benchmark::DoNotOptimize(solveWheelLoad(g, 1e4, 8.2e10, 0.28));
+}
+
+}  // namespace
+
+BENCHMARK(Patch)->DenseRange(0, 3);
+BENCHMARK(WheelLoad)->DenseRange(0, 3);
+BENCHMARK_MAIN();

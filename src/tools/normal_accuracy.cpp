@@ -1,0 +1,116 @@
+// The normal problem per patch (normal/patch_normal.hpp) against the exact half-space solver on
+// the Manchester benchmark's case, right wheel, each state at the given wheel load: per
+// loaded patch the method's normal force, peak pressure and lateral extent against the exact
+// solution at the same approach, and where two patches share the load, each patch's share
+// against the exact split of the same load. Prints a markdown table (doc/normal_problem.md).
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tool_options.hpp"
+#include "validation/patch_exact.hpp"
+#include "wheel_rail_contact/normal/patch_normal.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+struct Options {
+  std::string cases = "test/data/profiles/a22_cases.csv";
+  double load = 1e4;  ///< vertical wheel load [N]
+  double G = 8.2e10, nu = 0.28;
+  int grid = 40;                                        ///< exact grid nx = ny
+  double min_ridge = ContactSearchOptions{}.min_ridge;  ///< the contact search's [m]
+};
+
+void addOptions(CLI::App& app, Options* o) {
+  app.description("The normal problem per patch against the exact solver on case A-2.2.");
+  tools::option(app, "--cases", &o->cases, "A-2.2 states (CSV as test/data/profiles/)");
+  tools::option(app, "--load", &o->load, "vertical wheel load [N]");
+  tools::option(app, "--G", &o->G, "shear modulus [Pa]");
+  tools::option(app, "--nu", &o->nu, "Poisson ratio");
+  tools::option(app, "--grid", &o->grid, "exact grid nx = ny");
+  tools::option(app, "--min-ridge", &o->min_ridge, "ContactSearchOptions::min_ridge [m]");
+}
+
+double percent(double a, double b) {
+  return 100.0 * (a / b - 1.0);
+}
+
+int run(const Options& o) {
+  std::ifstream in(o.cases);
+  if (!in) throw std::runtime_error("cannot read " + o.cases);
+  ContactSearchOptions so;
+  so.min_ridge = o.min_ridge;
+  const ContactSearch search{WheelsetTrackData{}, so};
+  std::printf(
+      "| y mm | patch | angle | method | fn N | fn err %% | pmax GPa | pmax err %% | "
+      "extent mm (exact) | share (exact) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  std::string line;
+  bool header = false;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      header = true;
+      continue;
+    }
+    std::istringstream ls(line);
+    std::string wheel, field;
+    std::vector<double> v;
+    std::getline(ls, wheel, ',');
+    while (std::getline(ls, field, ',')) v.push_back(std::stod(field));
+    if (wheel != "right" || v.size() < 4) continue;
+    // CONTACT's axes to ours: y and yaw change sign, roll does not (doc/profiles.md).
+    WheelsetPose pose;
+    pose.y = -v[1] * 1e-3;
+    pose.yaw = -v[2];
+    pose.roll = v[3];
+    WheelContactGeometry geo;
+    for (int k = 0; k < 4; ++k) {  // down to first touch
+      geo = search.search(WheelSide::kRight, pose);
+      if (geo.closest < 0) break;
+      pose.z -= geo.candidates[geo.closest].vertical_gap;
+    }
+    const WheelNormal w = solveWheelLoad(geo, o.load, o.G, o.nu);
+    if (w.status != NormalStatus::kOk) {
+      std::printf("| %.1f | - | - | %s | | | | | | |\n", v[1], w.message.c_str());
+      continue;
+    }
+    int loaded = 0;
+    for (const NormalPatch& p : w.patches) loaded += p.fn > 0.0;
+    std::vector<double> split;
+    if (loaded > 1) split = exactWheelLoad(geo, o.load, o.G, o.nu, o.grid, w.vertical_approach);
+    double total = 0.0, exact_total = 0.0;
+    for (std::size_t i = 0; i < w.patches.size(); ++i) {
+      total += w.patches[i].fn;
+      if (!split.empty()) exact_total += split[i];
+    }
+    for (std::size_t i = 0; i < w.patches.size(); ++i) {
+      const NormalPatch& p = w.patches[i];
+      if (p.fn <= 0.0) continue;
+      const ExactPatch e =
+          exactPatchNormal(geo.candidates[i], p.approach, o.G, o.nu, o.grid, o.grid);
+      char share[64] = "";
+      if (!split.empty())
+        std::snprintf(share, sizeof share, "%.3f (%.3f)", p.fn / total, split[i] / exact_total);
+      std::printf(
+          "| %.1f | %zu | %.3f | %s | %.0f | %+.1f | %.2f | %+.1f | %.2f..%.2f (%.2f..%.2f) "
+          "| %s |\n",
+          v[1], i, geo.candidates[i].contact_angle,
+          p.method == NormalMethod::kHertz ? "Hertz" : "strips", p.fn, percent(p.fn, e.fn),
+          p.pmax * 1e-9, percent(p.pmax, e.pmax), p.eta_min * 1e3, p.eta_max * 1e3, e.eta_min * 1e3,
+          e.eta_max * 1e3, share);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return tools::runMain<Options>("normal_accuracy", argc, argv, addOptions, run);
+}

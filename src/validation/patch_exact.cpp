@@ -1,0 +1,92 @@
+#include "validation/patch_exact.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace wheel_rail_contact {
+
+namespace {
+
+/// Linear interpolation of the gap beyond g(0) (what = 0) or of cos(delta) / (2 r) (what = 1).
+double interp(const ContactCandidate& c, double e, int what) {
+  const auto& f = c.gap_function;
+  std::size_t i = 0;
+  while (i + 2 < f.size() && f[i + 1].eta < e) ++i;
+  const double t = std::clamp((e - f[i].eta) / (f[i + 1].eta - f[i].eta), 0.0, 1.0);
+  auto v = [&](const GapSample& s) {
+    return what == 0 ? s.gap - c.gap : std::cos(s.contact_angle) / (2.0 * s.rolling_radius);
+  };
+  return v(f[i]) + t * (v(f[i + 1]) - v(f[i]));
+}
+
+}  // namespace
+
+ExactPatch exactPatchNormal(const ContactCandidate& c, double approach, double G, double nu, int mx,
+                            int my) {
+  ExactPatch e;
+  if (c.gap_function.size() < 2) return e;
+  double lo = 1e9, hi = -1e9, xmax = 0.0;
+  for (const GapSample& s : c.gap_function) {
+    const double pen = approach - (s.gap - c.gap);
+    if (pen <= 0.0) continue;
+    lo = std::min(lo, s.eta);
+    hi = std::max(hi, s.eta);
+    xmax = std::max(xmax, std::sqrt(pen / interp(c, s.eta, 1)));
+  }
+  if (!(hi >= lo)) return e;
+  const double de = c.gap_function[1].eta - c.gap_function[0].eta;
+  lo -= de;  // the interpenetration reaches at most one sample beyond the last inside
+  hi += de;
+  e.grid.mx = mx;
+  e.grid.my = my;
+  e.grid.dx = 2.0 * 1.02 * xmax / mx;
+  e.grid.dy = (hi - lo) / my;
+  e.eta_offset = 0.5 * (lo + hi);
+  Eigen::VectorXd h(e.grid.size());
+  for (int ix = 0; ix < mx; ++ix)
+    for (int iy = 0; iy < my; ++iy) {
+      const double x = e.grid.xc(ix), eta = e.eta_offset + e.grid.yc(iy);
+      h[e.grid.index(ix, iy)] = interp(c, eta, 0) + interp(c, eta, 1) * x * x;
+    }
+  e.solution = solveNormalGapApproach(e.grid, G, nu, h, approach);
+  e.fn = e.solution.fz;
+  e.pmax = e.solution.p.maxCoeff();
+  e.eta_min = 1e9;
+  e.eta_max = -1e9;
+  for (int ix = 0; ix < mx; ++ix)
+    for (int iy = 0; iy < my; ++iy)
+      if (e.solution.p[e.grid.index(ix, iy)] > 0.0) {
+        e.eta_min = std::min(e.eta_min, e.eta_offset + e.grid.yc(iy) - 0.5 * e.grid.dy);
+        e.eta_max = std::max(e.eta_max, e.eta_offset + e.grid.yc(iy) + 0.5 * e.grid.dy);
+      }
+  return e;
+}
+
+std::vector<double> exactWheelLoad(const WheelContactGeometry& geo, double load, double G,
+                                   double nu, int m, double guess) {
+  std::vector<double> fn;
+  auto residual = [&](double dv) {
+    double fz = 0.0;
+    fn.assign(geo.candidates.size(), 0.0);
+    for (std::size_t i = 0; i < geo.candidates.size(); ++i) {
+      const ContactCandidate& c = geo.candidates[i];
+      const double d = dv * c.normal.y() - c.gap;
+      if (d <= 0.0) continue;
+      fn[i] = exactPatchNormal(c, d, G, nu, m, m).fn;
+      fz += fn[i] * c.normal.y();
+    }
+    return std::cbrt(fz * fz) - std::cbrt(load * load);  // nearly linear in dv
+  };
+  double d0 = guess, d1 = 1.02 * guess;
+  double r0 = residual(d0), r1 = residual(d1);
+  for (int it = 0; it < 20 && std::abs(r1) > 1e-6 * std::cbrt(load * load) && r1 != r0; ++it) {
+    const double d2 = d1 - r1 * (d1 - d0) / (r1 - r0);
+    d0 = d1;
+    r0 = r1;
+    d1 = d2;
+    r1 = residual(d1);
+  }
+  return fn;
+}
+
+}  // namespace wheel_rail_contact
