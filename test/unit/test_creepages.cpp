@@ -154,6 +154,11 @@ TEST(Creepages, PureRollingAtTheRollingRadiusGivesNoLongitudinalCreepage) {
         // Braking by one per cent: xi = +0.01 (the wheel's surface slides forward).
         m.omega *= 0.99;
         EXPECT_NEAR(ok(patchCreepages(side, pose, m, c, data)).xi, 0.01, 1e-12);
+        // The rolling radius, not the point's distance from the axle, sets the wheel's speed (a
+        // table's interpolated candidate need not have them agree exactly).
+        ContactCandidate larger = c;
+        larger.rolling_radius *= 1.002;
+        EXPECT_NEAR(ok(patchCreepages(side, pose, m, larger, data)).xi, 1.0 - 0.99 * 1.002, 1e-12);
       }
     }
   }
@@ -382,6 +387,40 @@ TEST(Creepages, LeftWheelInTheMirroredStateHasTheMirroredCreepages) {
   }
 }
 
+TEST(Creepages, RollingBackwardsKeepsTheCreepagesDividedBySignedV) {
+  // Every velocity reversed reverses the sliding velocities and V together: the creepages, divided
+  // by the signed V (doc/conventions.md), are unchanged; a wheel braked while rolling backwards
+  // still has xi > 0.
+  const WheelsetTrackData data;
+  const ContactSearch cs(data);
+  WheelsetPose pose;
+  pose.y = -0.003;
+  pose.yaw = 0.004;
+  const ContactCandidate c = closest(cs.search(WheelSide::kRight, pose));
+  WheelsetMotion m;
+  m.V = 2.0;
+  m.omega = 0.99 * m.V / c.rolling_radius;
+  m.vy = 0.01;
+  m.yaw_rate = 0.03;
+  m.roll_rate = -0.002;
+  m.vz = 0.001;
+  m.curvature = 1.0 / 400.0;
+  WheelsetMotion back = m;
+  back.V = -m.V;
+  back.omega = -m.omega;
+  back.vy = -m.vy;
+  back.yaw_rate = -m.yaw_rate;
+  back.roll_rate = -m.roll_rate;
+  back.vz = -m.vz;
+  const PatchCreepages f = ok(patchCreepages(WheelSide::kRight, pose, m, c, data));
+  const PatchCreepages b = ok(patchCreepages(WheelSide::kRight, pose, back, c, data));
+  EXPECT_NEAR(b.xi, f.xi, 1e-15);
+  EXPECT_NEAR(b.eta, f.eta, 1e-15);
+  EXPECT_NEAR(b.phi, f.phi, 1e-13);
+  EXPECT_NEAR(b.slip_x, -f.slip_x, 1e-15);
+  EXPECT_GT(f.xi, 0.005);
+}
+
 TEST(Creepages, FrameIsTheContactFrameOfTheConventions) {
   // z the normal (rail into wheel), x the track's x, y = z x x: right-handed, y to the left and
   // down the flank toward the field on a right flange, up it on a left one.
@@ -474,15 +513,17 @@ TEST(Creepages, BadInputGivesAStatusNeverNaN) {
 TEST(Creepages, A22BenchmarkInputsGiveSmallPlausibleCreepages) {
   // The benchmark's wheelset states with its speed and pitch rate (the sign turned to ours). At
   // y = 0 the longitudinal creepage is (V - omega r) / V; everywhere the creepages are small, the
-  // lateral one that of the yaw (eta about -yaw on the tread, -yaw cos(delta) beyond; the
-  // benchmark's roll rate and vertical velocity are 0, its states are quasi-static), and the
-  // spin that of the contact angle, its sign toward the track centre.
+  // lateral one that of the yaw (eta about -yaw / cos(delta): the benchmark's roll rate and
+  // vertical velocity are 0, its states are quasi-static), and the spin that of the contact
+  // angle and the roll.
   const WheelsetTrackData data;
   const ContactSearch cs(data);
   std::printf("wheel  y_mm  zone  delta    r_mm      xi         eta        phi_1/m\n");
   for (const A22Case& a : readA22()) {
     const WheelSide side = a.wheel == "right" ? WheelSide::kRight : WheelSide::kLeft;
-    const WheelsetPose p = side == WheelSide::kRight ? poseOf(a) : mirrored(poseOf(a));
+    // The benchmark's left rows are the left wheel of the same wheelset state (CONTACT's
+    // mbench_a22_left example: the same Y_WS, its left wheel rolling toward its field side).
+    const WheelsetPose p = poseOf(a);
     WheelsetMotion m;
     m.V = a.vs_mm_s * 1e-3;
     m.omega = -a.vpitch;
@@ -503,9 +544,15 @@ TEST(Creepages, A22BenchmarkInputsGiveSmallPlausibleCreepages) {
       const double theta = c.lead / c.rolling_radius;
       EXPECT_NEAR(k.xi, xi, 0.6 * (p.yaw * p.yaw + theta * theta) + 1e-12) << a.y_mm;
       EXPECT_LT(std::abs(k.xi), 0.03);
-      const double eta = -std::sin(p.yaw) / std::cos(c.contact_angle);
+      // The surface's speed omega r along the yawed wheel, in the contact plane.
+      const double eta = -std::sin(p.yaw) * (1.0 - xi) / std::cos(c.contact_angle);
       EXPECT_NEAR(k.eta, eta, 0.02 * std::abs(eta) + 1e-12) << a.y_mm;
-      const double spin = -sideSign(side) * std::sin(c.contact_angle) * m.omega / m.V;
+      // The pitch rate's component along the normal: the axle is rolled by theta, the normal
+      // tilted by delta toward the track centre (the benchmark's roll, up to 11 mrad, is as large
+      // as the left wheel's contact angle).
+      const double spin = (std::sin(p.roll) * std::cos(c.contact_angle) -
+                           sideSign(side) * std::sin(c.contact_angle)) *
+                          m.omega / m.V;
       EXPECT_NEAR(k.phi, spin, 0.02 * std::abs(spin)) << a.y_mm;
     }
   }

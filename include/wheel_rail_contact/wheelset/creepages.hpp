@@ -16,8 +16,9 @@
 ///
 /// With e_a the axle (the wheelset's y), c the wheelset's centre, omega_w = yaw_rate e_z +
 /// roll_rate e_x' + omega e_a the wheelset's angular velocity relative to the track frame (e_x' the
-/// yawed x), q the wheel's material point on its circle of rolling_radius through the contact
-/// point p (q = c + a e_a + r (p - c - a e_a)/|p - c - a e_a|, a = (p - c).e_a):
+/// yawed x), p the candidate's point on the rail, w = p + vertical_gap e_z the wheel's point above
+/// it, q the wheel's material on its circle of rolling_radius through w (q = c + a e_a +
+/// r (w - c - a e_a)/|w - c - a e_a|, a = (w - c).e_a):
 ///
 ///   dv  = (0, vy, vz) + omega_w x (q - c) + V e_x + Omega x p      (wheel minus rail)
 ///   xi  = dv.x / V,  eta = dv.y / V,  phi = (omega_w + Omega).n / V  [1/m]
