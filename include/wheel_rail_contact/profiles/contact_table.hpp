@@ -13,9 +13,10 @@
 ///    Y = y + a0 (cos(yaw) cos(roll) - 1) + nominal_radius sin(roll) cos(yaw).
 ///    Roll about the wheelset's centre moves B sideways by nominal_radius sin(roll) (4.6 mm at
 ///    10 mrad): that part of roll is a translation and lies in Y;
-///  - |yaw|: the contact's y-z geometry is even in yaw (a mirror in the track's y-z plane turns
-///    yaw into -yaw) and `lead` odd; the even quantities are interpolated in yaw^2 (exact for
-///    their leading quadratic term), lead and the point's x in |yaw|;
+///  - yaw^2: the contact's y-z geometry is even in yaw (a mirror in the track's y-z plane turns
+///    yaw into -yaw) and `lead` odd, so the table holds lead / yaw and everything is interpolated
+///    in yaw^2, on nodes evenly spaced in yaw^2 (0, 17.3, 24.5 and 30 mrad by default): exact
+///    for the leading quadratic term, and densest where the flange's geometry changes fastest;
 ///  - roll, which also tilts the wheel relative to its rail about B: that tilt moves the contact
 ///    along the profiles (on the tread about as far as a millimetre of Y does for 3 mrad), so it
 ///    is an axis of its own;
@@ -46,7 +47,9 @@ struct ContactTableOptions {
   /// max_abs_lateral] every lateral_step [m].
   double max_abs_lateral = 0.02;
   double lateral_step = 2.0e-4;
-  double max_abs_yaw = 0.03;  ///< |yaw| over [0, max_abs_yaw] every yaw_step [rad]
+  /// |yaw| over [0, max_abs_yaw] [rad], on round(max_abs_yaw / yaw_step) + 1 nodes evenly spaced
+  /// in yaw^2.
+  double max_abs_yaw = 0.03;
   double yaw_step = 0.01;
   double max_abs_roll = 0.015;  ///< roll over [-max_abs_roll, max_abs_roll] every roll_step [rad]
   double roll_step = 2.5e-3;

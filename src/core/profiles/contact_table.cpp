@@ -28,11 +28,11 @@ struct TableCandidate {
   double s_rail = 0.0, s_wheel = 0.0;
   /// Gap function on eta = eta0 + j deta: g_a at Z_a and its slope in Z (empty: the search gave
   /// none).
-  double eta0 = 0.0, deta = 0.0;
+  double eta0 = 0.0, deta = 0.0, inv_deta = 0.0;
   std::vector<float> g_a, g_dz;
 
   double gapFunction(double eta, double dZ) const {
-    double u = (eta - eta0) / deta;
+    double u = (eta - eta0) * inv_deta;
     const int last = static_cast<int>(g_a.size()) - 1;
     int j = static_cast<int>(std::floor(u));
     j = std::min(std::max(j, 0), last - 1);
@@ -166,6 +166,13 @@ const ContactCandidate* matchSearched(const ContactCandidate& c,
   return best;
 }
 
+bool sameCandidates(const WheelContactGeometry& a, const WheelContactGeometry& b) {
+  if (a.candidates.size() != b.candidates.size()) return false;
+  for (std::size_t k = 0; k < a.candidates.size(); ++k)
+    if (std::abs(a.candidates[k].s_wheel - b.candidates[k].s_wheel) > 1e-6) return false;
+  return true;
+}
+
 }  // namespace
 
 ContactTable::ContactTable(const ContactSearch& search, const ContactTableOptions& options)
@@ -191,7 +198,9 @@ ContactTable::ContactTable(const ContactSearch& search, const ContactTableOption
 
   Impl& im = *impl_;
   im.lateral = symmetricAxis(options_.max_abs_lateral, options_.lateral_step);
-  im.yaw = positiveAxis(options_.max_abs_yaw, options_.yaw_step);
+  im.yaw = positiveAxis(options_.max_abs_yaw * options_.max_abs_yaw,
+                        options_.max_abs_yaw * options_.max_abs_yaw /
+                            std::max(1.0, std::round(options_.max_abs_yaw / options_.yaw_step)));
   im.roll = symmetricAxis(options_.max_abs_roll, options_.roll_step);
   const WheelsetTrackData& d = search.data();
   im.r0 = d.nominal_radius;
@@ -216,12 +225,13 @@ ContactTable::ContactTable(const ContactSearch& search, const ContactTableOption
         double z_guess = 0.0;  // the previous node's touching height: the next one's is near
         for (int i = 0; i < im.lateral.n; ++i) {
           Node& node = grid.nodes[im.index(i, j, k)];
-          const double Y = im.lateral.value(i), yaw = im.yaw.value(j), roll = im.roll.value(k);
+          const double Y = im.lateral.value(i), yaw = std::sqrt(im.yaw.value(j)),
+                       roll = im.roll.value(k);
           // The node at yaw 0 is searched at a yaw small enough that the even quantities do not
           // see it (yaw^2 ~ 1e-12), to give lead's slope.
           const double yaw_run = std::max(yaw, kSmallYaw);
-          auto run = [&](double Z) {
-            return table_search.search(side, poseOf(Y, Z, yaw_run, roll, grid.a0, im.r0));
+          auto run = [&](double Z, double dY = 0.0) {
+            return table_search.search(side, poseOf(Y + dY, Z, yaw_run, roll, grid.a0, im.r0));
           };
           WheelContactGeometry a = run(z_guess);
           if (a.status != ContactSearchStatus::kOk) {
@@ -236,7 +246,20 @@ ContactTable::ContactTable(const ContactSearch& search, const ContactTableOption
             z_a = z_guess;
           }
           const double z_b = z_a - options_.max_overlap;
-          const WheelContactGeometry b = run(z_b);
+          // The second height a nanometre aside: the two must find the same candidates (the height
+          // moves none of them). Where they do not, the search has missed a minimum at one of
+          // the two poses (it can, at isolated poses): the set with the lower smallest gap is
+          // kept and the other searched again another nanometre aside.
+          WheelContactGeometry b = run(z_b, 1e-9);
+          if (a.status == ContactSearchStatus::kOk && b.status == ContactSearchStatus::kOk &&
+              !sameCandidates(a, b)) {
+            const double ga = a.candidates[a.closest].vertical_gap - z_a;
+            const double gb = b.candidates[b.closest].vertical_gap - z_b;
+            if (ga > gb)
+              a = run(z_a, 2e-9);
+            else
+              b = run(z_b, 3e-9);
+          }
           if (a.status != ContactSearchStatus::kOk || b.status != ContactSearchStatus::kOk) {
             node.status = a.status != ContactSearchStatus::kOk ? a.status : b.status;
             node.message = a.status != ContactSearchStatus::kOk ? a.message : b.message;
@@ -270,6 +293,7 @@ ContactTable::ContactTable(const ContactSearch& search, const ContactTableOption
                 const int m = wide.gap_samples;
                 t.eta0 = lo;
                 t.deta = (hi - lo) / (m - 1);
+                t.inv_deta = 1.0 / t.deta;
                 t.g_a.resize(m);
                 t.g_dz.resize(m);
                 for (int s = 0; s < m; ++s) {
@@ -353,7 +377,7 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
   };
   int ci = 0, cj = 0, ck = 0;
   double ti = 0.0, tj = 0.0, tk = 0.0;
-  if (!im.lateral.locate(place.Y, &ci, &ti) || !im.yaw.locate(abs_yaw, &cj, &tj) ||
+  if (!im.lateral.locate(place.Y, &ci, &ti) || !im.yaw.locate(abs_yaw * abs_yaw, &cj, &tj) ||
       !im.roll.locate(p.roll, &ck, &tk)) {
     std::ostringstream m;
     m << "pose beyond the contact table: the wheel's lateral displacement " << place.Y
@@ -362,9 +386,6 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
       << ")";
     return beyond(m.str());
   }
-  // In yaw^2: the geometry is even in yaw, so its leading term is quadratic.
-  const double y0 = im.yaw.value(cj), y1 = im.yaw.value(cj + 1);
-  tj = (abs_yaw * abs_yaw - y0 * y0) / (y1 * y1 - y0 * y0);
 
   struct Corner {
     const Node* node;
@@ -428,45 +449,55 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
       // The gap function: the nodes' functions at this height, weighted, on the stretch all of
       // them cover; cut where the search would cut it and sampled as the search samples it.
       double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+      struct Term {
+        const TableCandidate* t;
+        double w, dZ;
+      };
+      std::array<Term, 8> terms;
+      int nt = 0;
       for (int q = 0; q < 8; ++q)
-        if (m[q] && !m[q]->g_a.empty()) {
+        if (m[q] && !m[q]->g_a.empty() && corners[q].w > 0.0) {
           lo = std::max(lo, m[q]->eta0);
           hi = std::min(hi, m[q]->etaEnd());
+          terms[nt++] = {m[q], corners[q].w / sw_gf, place.Z - corners[q].node->z_a};
         }
       auto G = [&](double eta) {
         double v = 0.0;
-        for (int q = 0; q < 8; ++q)
-          if (m[q] && !m[q]->g_a.empty())
-            v += corners[q].w / sw_gf * m[q]->gapFunction(eta, place.Z - corners[q].node->z_a);
+        for (int q = 0; q < nt; ++q) v += terms[q].w * terms[q].t->gapFunction(eta, terms[q].dZ);
         return v;
       };
-      if (lo <= 0.0 && hi >= 0.0 && hi > lo) {
+      if (nt > 0 && lo <= 0.0 && hi >= 0.0 && hi > lo) {
         c.gap = G(0.0);
         const double level = c.gap + 2.0 * std::max(std::abs(c.gap), so.gap_window);
-        // The edges where the gap reaches the level (or the stretch ends), found on a coarse
-        // sampling of G and placed by its linear interpolation.
-        const int coarse = 64;
+        // The edges where the gap reaches the level (or the stretch ends): a march in 24 steps
+        // to the end of the stretch, then bisection.
+        const int coarse = 24;
         double edge[2] = {lo, hi};
         for (int dir = 0; dir < 2; ++dir) {
           const double end = dir == 0 ? lo : hi;
-          double e_in = 0.0, g_in = c.gap;
+          double inside = 0.0;
           for (int s = 1; s <= coarse; ++s) {
-            const double eta = end * s / coarse, g = G(eta);
-            if (g >= level) {
-              edge[dir] = e_in + (eta - e_in) * (level - g_in) / (g - g_in);
-              break;
+            double outside = end * s / coarse;
+            if (G(outside) < level) {
+              inside = outside;
+              continue;
             }
-            e_in = eta;
-            g_in = g;
+            for (int it = 0; it < 12; ++it) {
+              const double mid = 0.5 * (inside + outside);
+              (G(mid) < level ? inside : outside) = mid;
+            }
+            edge[dir] = 0.5 * (inside + outside);
+            break;
           }
         }
         const int ns = so.gap_samples;
         c.gap_function.resize(ns);
         const double de = (edge[1] - edge[0]) / (ns - 1);
-        for (int s = 0; s < ns; ++s) {
-          c.gap_function[s].eta = edge[0] + s * de;
-          c.gap_function[s].gap = G(c.gap_function[s].eta);
-        }
+        for (int s = 0; s < ns; ++s) c.gap_function[s] = {edge[0] + s * de, 0.0};
+        for (int q = 0; q < nt; ++q)
+          for (int s = 0; s < ns; ++s)
+            c.gap_function[s].gap +=
+                terms[q].w * terms[q].t->gapFunction(c.gap_function[s].eta, terms[q].dZ);
       }
     }
     if (mirror) {
