@@ -8,7 +8,9 @@
 /// wheel, x forward in the contact plane, y = z x x), acting on the wheel. Units SI.
 ///
 /// Per step, for each wheel:
-///   1. the contact candidates for the pose (ContactSearch::search, or ContactTable::search);
+///   1. the contact candidates for the pose at first touch (ContactSearch::search, or
+///      ContactTable::search; pose.z is not used: the wheel is searched at the height where its
+///      closest candidate touches, one more search when z = 0 is more than 10 um from it);
 ///   2. the wheel's vertical load shared among them (solveWheelLoad: the approach at which the
 ///      patches' normal forces' vertical components add up to the load); a patch is a candidate
 ///      with fn > 0;
@@ -49,7 +51,7 @@ namespace wheel_rail_contact {
 
 /// The wheelset's state at one step.
 struct WheelsetState {
-  WheelsetPose pose;      ///< y, yaw, roll; z is not used (the loads set the approaches)
+  WheelsetPose pose;      ///< y, yaw, roll; z is not used (each wheel's load sets its approach)
   WheelsetMotion motion;  ///< V, omega, vy, yaw_rate, curvature, vz, roll_rate
   double fz_left = 0.0;   ///< vertical load on the left wheel [N], > 0 for contact
   double fz_right = 0.0;  ///< vertical load on the right wheel [N]

@@ -55,6 +55,10 @@ struct Slot {
   bool present = false;
 };
 
+// How far from first touch the search may leave a wheel before it is searched again there [m]: a
+// tenth of a 10 kN wheel's elastic approach.
+constexpr double kTouchTolerance = 1e-5;
+
 // The share of the reference patch a fixed mesh covers: fz_max = 1.5 fz0 (fz_max 0), a ~ fz^(1/3).
 const double kCover = std::cbrt(1.5);
 
@@ -124,9 +128,18 @@ struct WheelsetContact::Impl {
     if (dt < 0.0) return finish(WheelStatus::kInvalidInput, "dt < 0", false);
     if (!(load > 0.0)) return finish(WheelStatus::kNoLoad, "vertical load <= 0", true);
 
+    // The load sets the approach, so the wheel is searched at first touch: from z = 0 lowered or
+    // raised by the closest candidate's vertical gap (a vertical shift moves every vertical gap
+    // alike, so one more search lands on it) when that is more than kTouchTolerance. The normal
+    // problem's approach then starts where its gap functions were sampled.
     WheelsetPose pose = s.pose;
-    pose.z = 0.0;  // the load sets the approach; z would only shift the undeformed gaps
-    const WheelContactGeometry g = geometry(side, pose);
+    pose.z = 0.0;
+    WheelContactGeometry g = geometry(side, pose);
+    if (g.status == ContactSearchStatus::kOk && g.closest >= 0 &&
+        std::abs(g.candidates[g.closest].vertical_gap) > kTouchTolerance) {
+      pose.z -= g.candidates[g.closest].vertical_gap;
+      g = geometry(side, pose);
+    }
     if (g.status == ContactSearchStatus::kInvalidInput)
       return finish(WheelStatus::kInvalidInput, g.message, false);
     if (g.status != ContactSearchStatus::kOk || g.candidates.empty())
