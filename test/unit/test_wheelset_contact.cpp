@@ -266,6 +266,26 @@ TEST(WheelsetContact, BadInputGivesAStatusAndZeroForcesNeverNaN) {
   EXPECT_TRUE(r.left.patches.empty());
   EXPECT_FALSE(r.left.message.empty());
 
+  // Finite but absurd values: a status or finite forces, never a throw or a NaN.
+  for (int k = 0; k < 4; ++k) {
+    s = tread();
+    if (k == 0) s.fz_right = 1e300;
+    if (k == 1) s.motion.V = 1e300;
+    if (k == 2) s.motion.omega = -1e300;
+    if (k == 3) s.motion.curvature = 1e300;
+    r = c.step(s, 1e-3);
+    expectAllFinite(r.right);
+    expectAllFinite(r.left);
+    if (r.right.status != WheelStatus::kOk) {
+      EXPECT_FALSE(r.right.message.empty()) << k;
+    }
+    for (const PatchResult& p : r.right.patches) {
+      if (p.tangential_status != StepStatus::kOk) {
+        EXPECT_FALSE(p.message.empty()) << k;
+      }
+    }
+  }
+
   // After all that, a good step is a good step.
   r = c.step(tread(), 1e-3);
   EXPECT_EQ(r.right.status, WheelStatus::kOk);
