@@ -46,6 +46,7 @@ int run(const Options& o) {
   ContactSearchOptions so;
   so.min_ridge = o.min_ridge;
   const ContactSearch search{WheelsetTrackData{}, so};
+  std::printf("*: the method's message flags a gap that turns concave under the patch\n\n");
   std::printf(
       "| y mm | patch | angle | method | fn N | fn err %% | pmax GPa | pmax err %% | "
       "extent mm (exact) | share (exact) |\n");
@@ -98,9 +99,9 @@ int run(const Options& o) {
       if (!split.empty())
         std::snprintf(share, sizeof share, "%.3f (%.3f)", p.fn / total, split[i] / exact_total);
       std::printf(
-          "| %.1f | %zu | %.3f | %s | %.0f | %+.1f | %.2f | %+.1f | %.2f..%.2f (%.2f..%.2f) "
+          "| %.1f%s | %zu | %.3f | %s | %.0f | %+.1f | %.2f | %+.1f | %.2f..%.2f (%.2f..%.2f) "
           "| %s |\n",
-          v[1], i, geo.candidates[i].contact_angle,
+          v[1], p.message.empty() ? "" : " *", i, geo.candidates[i].contact_angle,
           p.method == NormalMethod::kHertz ? "Hertz" : "strips", p.fn, percent(p.fn, e.fn),
           p.pmax * 1e-9, percent(p.pmax, e.pmax), p.eta_min * 1e3, p.eta_max * 1e3, e.eta_min * 1e3,
           e.eta_max * 1e3, share);

@@ -7,16 +7,30 @@ namespace wheel_rail_contact {
 
 namespace {
 
-/// Linear interpolation of the gap beyond g(0) (what = 0) or of cos(delta) / (2 r) (what = 1).
+/// The gap beyond g(0) (what = 0) by Catmull-Rom between the samples, or cos(delta) / (2 r)
+/// (what = 1) linearly. The gap must be smooth: a linear one has kinks at the samples, lines of
+/// concentrated curvature that the exact solver answers with pressure ripples of some 10 % of the
+/// peak at sample spacings of 0.5 mm.
 double interp(const ContactCandidate& c, double e, int what) {
   const auto& f = c.gap_function;
+  const std::size_t n = f.size();
   std::size_t i = 0;
-  while (i + 2 < f.size() && f[i + 1].eta < e) ++i;
+  while (i + 2 < n && f[i + 1].eta < e) ++i;
   const double t = std::clamp((e - f[i].eta) / (f[i + 1].eta - f[i].eta), 0.0, 1.0);
-  auto v = [&](const GapSample& s) {
-    return what == 0 ? s.gap - c.gap : std::cos(s.contact_angle) / (2.0 * s.rolling_radius);
-  };
-  return v(f[i]) + t * (v(f[i + 1]) - v(f[i]));
+  if (what == 1) {
+    auto v = [&](const GapSample& s) {
+      return std::cos(s.contact_angle) / (2.0 * s.rolling_radius);
+    };
+    return v(f[i]) + t * (v(f[i + 1]) - v(f[i]));
+  }
+  const double p1 = f[i].gap, p2 = f[i + 1].gap;
+  const double p0 = i > 0 ? f[i - 1].gap : 2.0 * p1 - p2;  // equal spacing; linear beyond the ends
+  const double p3 = i + 2 < n ? f[i + 2].gap : 2.0 * p2 - p1;
+  const double v =
+      p1 +
+      0.5 * t *
+          (p2 - p0 + t * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + t * (3.0 * (p1 - p2) + p3 - p0)));
+  return v - c.gap;
 }
 
 }  // namespace

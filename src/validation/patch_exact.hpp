@@ -1,8 +1,9 @@
 /// The exact half-space solution on a contact patch's own gap, the reference the normal problem
 /// per patch (normal/patch_normal.hpp) is checked against: a grid on the candidate's contact
 /// plane over the region where the bodies interpenetrate undeformed at the approach (the contact
-/// lies inside it), the gap h(x, eta) = g(eta) - g(0) + cos(delta(eta)) x^2 / (2 r(eta)) with g,
-/// delta, r interpolated linearly between the gap function's samples, as the method does.
+/// lies inside it), the gap h(x, eta) = g(eta) - g(0) + cos(delta(eta)) x^2 / (2 r(eta)) with g
+/// interpolated by a cubic (Catmull-Rom) between the gap function's samples (smooth, as the
+/// profiles are), delta and r linearly.
 #pragma once
 
 #include "core/exact/halfspace_normal.hpp"

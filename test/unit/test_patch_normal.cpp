@@ -177,8 +177,8 @@ BenchmarkState benchmarkState(double y_mm) {
 }  // namespace
 
 // The exact solver's own discretisation: on the patches below a 40 x 40 grid over the undeformed
-// interpenetration and a 60 x 60 one differ by under 1 % in fn and 3 % in pmax
-// (PatchNormal.ExactReferenceIsGridConverged), below the tolerances asserted here.
+// interpenetration and a 60 x 60 one differ by under 0.3 % in fn and 0.5 % in pmax
+// (PatchNormal.ExactReferenceIsGridConverged), well below the tolerances asserted here.
 
 TEST(PatchNormal, ExactReferenceIsGridConverged) {
   for (double y : {5.0, 6.5}) {
@@ -190,8 +190,8 @@ TEST(PatchNormal, ExactReferenceIsGridConverged) {
       const ExactPatch e40 = exactPatch(s.geo.candidates[i], p.approach, 40, 40);
       const ExactPatch e60 = exactPatch(s.geo.candidates[i], p.approach, 60, 60);
       ASSERT_TRUE(e40.solution.converged && e60.solution.converged);
-      EXPECT_NEAR(e40.fn, e60.fn, 0.01 * e60.fn) << y << " " << i;
-      EXPECT_NEAR(e40.pmax, e60.pmax, 0.03 * e60.pmax) << y << " " << i;
+      EXPECT_NEAR(e40.fn, e60.fn, 0.003 * e60.fn) << y << " " << i;
+      EXPECT_NEAR(e40.pmax, e60.pmax, 0.005 * e60.pmax) << y << " " << i;
     }
   }
 }
@@ -199,11 +199,10 @@ TEST(PatchNormal, ExactReferenceIsGridConverged) {
 TEST(PatchNormal, A22AgainstTheExactSolverAtTheSameApproach) {
   // Right wheel of case under 10 kN, each patch at the approach the method found, the exact
   // solver on the same gap: gauge corner (5 mm, two patches with the tread), flange (6.5 mm) and
-  // the tread at 2 mm where the gap is elliptic. Tolerances: fn 3 % (the method's Boussinesq
-  // integral is exact for its pressure; what differs is the pressure's shape), pmax 10 % (the
-  // strips' semi-elliptic profile from the equivalent ellipse misses a sharper bottom of the gap
-  // by some 5 to 8 %), the lateral edges within 0.15 mm (one exact element is some 0.05 to 0.1
-  // mm wide).
+  // the tread at 2 mm where the gap is elliptic. Tolerances: fn 2 % and pmax 3 % (the assumed
+  // pressure shape, semi-elliptic strips under the equivalent ellipse's penetration factor, is
+  // what differs from exact: up to 1 % and 1.3 % on A-2.2's convex gaps, doc/normal_problem.md),
+  // the lateral edges within 0.15 mm (one exact element is 0.02 to 0.15 mm wide).
   for (double y : {2.0, 5.0, 6.5}) {
     const BenchmarkState s = benchmarkState(y);
     ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
@@ -214,10 +213,11 @@ TEST(PatchNormal, A22AgainstTheExactSolverAtTheSameApproach) {
       ++loaded;
       const ExactPatch e = exactPatch(s.geo.candidates[i], p.approach, 40, 40);
       ASSERT_TRUE(e.solution.converged);
-      EXPECT_NEAR(p.fn, e.fn, 0.03 * e.fn) << "y " << y << " patch " << i;
-      EXPECT_NEAR(p.pmax, e.pmax, 0.10 * e.pmax) << "y " << y << " patch " << i;
+      EXPECT_NEAR(p.fn, e.fn, 0.02 * e.fn) << "y " << y << " patch " << i;
+      EXPECT_NEAR(p.pmax, e.pmax, 0.03 * e.pmax) << "y " << y << " patch " << i;
       EXPECT_NEAR(p.eta_min, e.eta_min, 1.5e-4) << "y " << y << " patch " << i;
       EXPECT_NEAR(p.eta_max, e.eta_max, 1.5e-4) << "y " << y << " patch " << i;
+      EXPECT_TRUE(p.message.empty()) << p.message;  // nothing to flag on these gaps
     }
     EXPECT_EQ(loaded, y == 5.0 ? 2 : 1) << y;
   }
@@ -226,7 +226,7 @@ TEST(PatchNormal, A22AgainstTheExactSolverAtTheSameApproach) {
 TEST(PatchNormal, A22LoadSplitOfTwoPatchesAgreesWithExact) {
   // At 5 mm the wheel touches its rail on the tread and on the gauge corner; the exact solver's
   // split of the same 10 kN (its own vertical approach) against the method's: the tread's share
-  // within 2 percentage points.
+  // within 1 percentage point (measured: 0.2).
   const BenchmarkState s = benchmarkState(5.0);
   ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
   ASSERT_EQ(s.wheel.patches.size(), 2u);
@@ -235,7 +235,7 @@ TEST(PatchNormal, A22LoadSplitOfTwoPatchesAgreesWithExact) {
   const double share = s.wheel.patches[0].fn / (s.wheel.patches[0].fn + s.wheel.patches[1].fn);
   const double exact_share = fe[0] / (fe[0] + fe[1]);
   EXPECT_GT(exact_share, 0.05);  // both patches carry load
-  EXPECT_NEAR(share, exact_share, 0.02);
+  EXPECT_NEAR(share, exact_share, 0.01);
   double fz = 0.0;
   for (std::size_t i = 0; i < 2; ++i) fz += s.wheel.patches[i].fn * s.geo.candidates[i].normal.y();
   EXPECT_NEAR(fz, kLoad, 1e-6 * kLoad);
@@ -250,12 +250,14 @@ TEST(PatchNormal, A22TreadPlateauIsTheMethodsWeakness) {
   ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
   const NormalPatch& p = s.wheel.patches.at(s.geo.closest);
   EXPECT_EQ(p.method, NormalMethod::kNonHertzian);
+  EXPECT_EQ(p.status, NormalStatus::kOk);
+  EXPECT_NE(p.message.find("concave"), std::string::npos) << p.message;  // the method says so
   const ExactPatch e = exactPatch(s.geo.candidates[s.geo.closest], p.approach, 40, 40);
   ASSERT_TRUE(e.solution.converged);
   EXPECT_GT(p.fn, 0.6 * e.fn);
   EXPECT_LT(p.fn, 0.8 * e.fn);
   EXPECT_LT(p.eta_max - p.eta_min, e.eta_max - e.eta_min);
-  EXPECT_NEAR(p.pmax, e.pmax, 0.10 * e.pmax);
+  EXPECT_NEAR(p.pmax, e.pmax, 0.06 * e.pmax);
 }
 
 TEST(PatchNormal, BadInputGivesAStatusAndZeroForces) {

@@ -27,11 +27,12 @@
 ///
 /// Where it is weak: a gap with a plateau or two lumps under one candidate (near-conformal tread
 /// contact): the strips stop where the exact contact spreads over the plateau, fn at a given
-/// approach some 30 % low on the Manchester benchmark at 0.5 mm; peak pressures 1 to 12 % low;
-/// conformal contact (a flange root hugging the gauge corner, worn profiles), where the
-/// half-space and the single contact plane fail as well; very short patches (a << b), where the
-/// one displacement condition carries any error of the assumed shape straight into fn.
-/// test/unit/test_patch_normal.cpp checks it against the exact half-space solver.
+/// approach some 30 % low on the Manchester benchmark at 0.5 mm (the patch's message flags a gap
+/// that turns concave within the interpenetration, status staying kOk); conformal contact (a flange
+/// root hugging the gauge corner, worn profiles), where the half-space and the single contact plane
+/// fail as well; very short patches (a << b), where the one displacement condition carries any
+/// error of the assumed shape straight into fn. test/unit/test_patch_normal.cpp checks it against
+/// the exact half-space solver.
 ///
 /// Units SI: m, N, Pa, rad.
 #pragma once
@@ -67,6 +68,8 @@ struct NormalStrip {
 
 struct NormalPatch {
   NormalStatus status = NormalStatus::kOk;
+  /// Why a status is not kOk; with kOk, empty or a caution (a gap that turns concave under the
+  /// patch, where the strips may miss part of the contact).
   std::string message;
   NormalMethod method = NormalMethod::kHertz;
   double approach = 0.0;  ///< rigid approach along the candidate's normal beyond first touch [m]

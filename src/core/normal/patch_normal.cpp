@@ -208,9 +208,20 @@ void zeroForces(NormalPatch* p) {
   p->strips.clear();
 }
 
-const char* const kBeyond =
-    "the patch reaches the end of the gap function: the approach is deeper than the contact "
-    "search sampled (ContactSearchOptions::gap_reach)";
+/// Concavity of the gap, as spacing^2 h'' over the deepest interpenetration, below which the
+/// strips' patch is flagged.
+constexpr double kConcave = 1e-3;
+
+/// Why a patch outgrew its gap function: at an end whose gap lies within the interpenetration the
+/// function stopped at a ridge to a neighbouring candidate (the two patches merge), otherwise at
+/// the height the search sampled.
+std::string beyondMessage(const PatchGeometry& g, double d0) {
+  if (std::min(g.h.front(), g.h.back()) - g.h0 < d0)
+    return "the patch reaches the ridge to a neighbouring candidate, where its gap function ends: "
+           "the two patches merge (ContactSearchOptions::min_ridge keeps them apart)";
+  return "the patch reaches the end of the gap function: the approach is deeper than the contact "
+         "search sampled (ContactSearchOptions::gap_reach)";
+}
 
 NormalPatch fail(NormalStatus s, const std::string& why, double approach) {
   NormalPatch p;
@@ -256,7 +267,7 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   // that reaches 0.5 d0 at its edges; Hertz's ellipse (aa, bb) for A0, B at approach d0.
   double ys = 0.0, ye = 0.0;
   if (!lateralExtent(g, 0.5 * d0, &ys, &ye))
-    return fail(NormalStatus::kBeyondGapFunction, kBeyond, approach);
+    return fail(NormalStatus::kBeyondGapFunction, beyondMessage(g, d0), approach);
   const double spacing = g.eta[1] - g.eta[0];
   const double ymid = 0.5 * (ys + ye);
   const double half = std::max(0.5 * (ye - ys), 1e-3 * spacing);
@@ -299,7 +310,7 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
     out.eta_min = g.eta0 - hz.b;
     out.eta_max = g.eta0 + hz.b;
     if (out.eta_min < g.eta.front() || out.eta_max > g.eta.back())
-      return fail(NormalStatus::kBeyondGapFunction, kBeyond, approach);
+      return fail(NormalStatus::kBeyondGapFunction, beyondMessage(g, d0), approach);
     const double w = 2.0 * hz.b / n;
     for (int j = 0; j < n; ++j) {
       NormalStrip& s = out.strips[j];
@@ -318,6 +329,21 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   // Strips with the y-dependent penetration factor eps(eta), quadratic from A aa^2 / d0 at ymid
   // to B bb^2 / d0 at ymid +- bb: on a Hertz gap the strips' region is Hertz's ellipse.
   out.method = NormalMethod::kNonHertzian;
+  {
+    // A gap that turns concave within the undeformed interpenetration (a plateau, a second lump)
+    // is where the strips are weak: say so.
+    double worst = 0.0;
+    const int n_s = static_cast<int>(g.eta.size());
+    for (int i = 1; i + 1 < n_s; ++i) {
+      if (g.h[i] - g.h0 >= d0) continue;
+      const double h2 = g.h[i + 1] - 2.0 * g.h[i] + g.h[i - 1];  // spacing^2 h''
+      worst = std::min(worst, h2);
+    }
+    if (worst < -kConcave * d0)
+      out.message =
+          "the gap turns concave within the interpenetration: the strips may miss part "
+          "of the contact (doc/normal_problem.md)";
+  }
   const HertzApproach hz = hertzFromApproach(A0, B, d0, Estar);
   const double bb = std::max(hz.b, 1.1 * std::abs(g.eta0 - ymid));
   const double ex = A0 * hz.a * hz.a, ey = B * bb * bb;  // eps d0 at the centre and at bb
@@ -351,7 +377,7 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   };
   double lo = 0.0, hi = 0.0;
   if (!edge(-1, &lo) || !edge(+1, &hi))
-    return fail(NormalStatus::kBeyondGapFunction, kBeyond, approach);
+    return fail(NormalStatus::kBeyondGapFunction, beyondMessage(g, d0), approach);
   const double w = (hi - lo) / n;
   std::vector<double> L(n);
   auto halfLength = [&](double e) {
