@@ -18,7 +18,7 @@
 ///    in yaw^2, on nodes evenly spaced in yaw^2 (0, 17.3, 24.5 and 30 mrad by default): exact
 ///    for the leading quadratic term, and densest where the flange's geometry changes fastest;
 ///  - roll, which also tilts the wheel relative to its rail about B: that tilt moves the contact
-///    along the profiles (on the tread about as far as a millimetre of Y does for 3 mrad), so it
+///    along the profiles (on the benchmark's tread 2.5 mrad as far as 0.2 to 0.5 mm of Y), so it
 ///    is an axis of its own;
 ///  - the vertical position Z of B (Z = z + a0 sin(roll) + nominal_radius (1 - cos(roll))) is not
 ///    an axis: it shifts the vertical gap as a whole (exactly) and changes the gap and the gap
