@@ -97,6 +97,12 @@ struct WheelsetContact::Impl {
   // patch instead of a reference patch of another scale. Null, with the reason, if the patch is
   // outside the model's ranges (a/b beyond Kalker's table).
   std::unique_ptr<ContactModel> modelFor(const NormalPatch& np, std::string* why) const {
+    // As checkStepInput would refuse the step: said in the patch's own terms, not as a0/b0.
+    if (!(np.a >= 0.1 * np.b && np.a <= 10.0 * np.b)) {
+      *why = "the patch's a/b = " + std::to_string(np.a / np.b) +
+             " is outside Kalker's table [0.1, 10], which the elliptic-patch models take";
+      return nullptr;
+    }
     ContactParameters q = parameters;
     q.a0 = np.a;
     q.b0 = np.b;
