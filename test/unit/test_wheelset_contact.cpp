@@ -358,3 +358,23 @@ TEST(WheelsetContact, AnExactModelsPatchThatOutgrowsItsGridRestartsSayingSo) {
   EXPECT_EQ(t1->tangential_status, StepStatus::kOk) << t1->message;
   EXPECT_NE(t1->message.find("outgrew the exact model's grid"), std::string::npos) << t1->message;
 }
+
+TEST(WheelsetContact, ASharedContactTableMustTabulateTheSameTrack) {
+  // A vehicle's wheelsets share one table (built once); one of other track data is refused.
+  ContactTableOptions small;
+  small.max_abs_lateral = 0.002;
+  small.max_abs_yaw = 0.01;
+  small.max_abs_roll = 0.0025;
+  WheelsetTrackData wide;
+  wide.gauge = 1.440;
+  WheelsetContactOptions o;
+  o.contact_table = std::make_shared<const ContactTable>(ContactSearch(wide), small);
+  try {
+    WheelsetContact c(WheelsetTrackData{}, ContactParameters{}, o);
+    FAIL() << "accepted a table of another gauge";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("contact_table:", 0), 0u) << e.what();
+  }
+  WheelsetContact first(wide, ContactParameters{}, o), second(wide, ContactParameters{}, o);
+  EXPECT_EQ(o.contact_table.use_count(), 3);  // held by both, built once
+}

@@ -63,6 +63,11 @@ struct WheelsetContactOptions {
   bool use_contact_table = false;
   ContactSearchOptions search;
   ContactTableOptions table;  ///< with use_contact_table
+  /// A contact table built once and shared by every wheelset on the same profiles and track data
+  /// (a vehicle's), instead of one built per object: used when set, whatever use_contact_table
+  /// says; its own search options apply. It must tabulate this object's track data (the same
+  /// values and profiles), else the constructor throws std::invalid_argument("contact_table: ...").
+  std::shared_ptr<const ContactTable> contact_table;
   NormalOptions normal;
 };
 

@@ -48,6 +48,23 @@ bool finite(const WheelsetMotion& m) {
          std::isfinite(m.roll_rate);
 }
 
+bool sameProfile(const std::shared_ptr<const Profile>& a, const std::shared_ptr<const Profile>& b) {
+  if (a == b) return true;
+  return a && b && a->kind() == b->kind() && a->smoothingLength() == b->smoothingLength() &&
+         a->points() == b->points();
+}
+
+// The same placement of the same profiles (as ContactSearch holds them: null right profiles
+// resolved to the standard ones).
+bool sameTrack(const WheelsetTrackData& a, const WheelsetTrackData& b) {
+  return a.nominal_radius == b.nominal_radius && a.flange_back_distance == b.flange_back_distance &&
+         a.flange_back_position == b.flange_back_position && a.gauge == b.gauge &&
+         a.gauge_depth == b.gauge_depth && a.rail_inclination == b.rail_inclination &&
+         a.cant == b.cant && sameProfile(a.wheel_right, b.wheel_right) &&
+         sameProfile(a.rail_right, b.rail_right) && sameProfile(a.wheel_left, b.wheel_left) &&
+         sameProfile(a.rail_left, b.rail_left);
+}
+
 // A slot's model (null while its patch is absent) and whether its patch was present this step.
 struct Slot {
   std::unique_ptr<ContactModel> model;
@@ -69,14 +86,22 @@ struct WheelsetContact::Impl {
   ContactParameters parameters;
   WheelsetContactOptions options;
   ContactSearch search;
-  std::unique_ptr<ContactTable> table;
+  std::shared_ptr<const ContactTable> table;
   std::array<std::map<std::string, Slot>, 2> slots;  // [0] left, [1] right, by slot name
 
   Impl(const WheelsetTrackData& t, const ContactParameters& p, const WheelsetContactOptions& o)
       : track(t), parameters(p), options(o), search(t, o.search) {
     validate(parameters);
     makeContactModel(parameters);  // throws now for a model this build does not provide
-    if (options.use_contact_table) table = std::make_unique<ContactTable>(search, options.table);
+    if (options.contact_table) {
+      if (!sameTrack(options.contact_table->contactSearch().data(), search.data()))
+        throw std::invalid_argument(
+            "contact_table: the shared table tabulates other track data or profiles than this "
+            "wheelset's");
+      table = std::move(options.contact_table);  // one reference per object: `table`
+    } else if (options.use_contact_table) {
+      table = std::make_shared<const ContactTable>(search, options.table);
+    }
   }
 
   WheelContactGeometry geometry(WheelSide side, const WheelsetPose& pose) const {
