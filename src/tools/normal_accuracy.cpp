@@ -22,8 +22,9 @@ struct Options {
   std::string cases = "test/data/profiles/a22_cases.csv";
   double load = 1e4;  ///< vertical wheel load [N]
   double G = 8.2e10, nu = 0.28;
-  int grid = 40;                                        ///< exact grid nx = ny
-  double min_ridge = ContactSearchOptions{}.min_ridge;  ///< the contact search's [m]
+  int grid = 40;                                         ///< exact grid nx = ny
+  double min_ridge = ContactSearchOptions{}.min_ridge;   ///< the contact search's [m]
+  int gap_samples = ContactSearchOptions{}.gap_samples;  ///< the contact search's
 };
 
 void addOptions(CLI::App& app, Options* o) {
@@ -34,6 +35,7 @@ void addOptions(CLI::App& app, Options* o) {
   tools::option(app, "--nu", &o->nu, "Poisson ratio");
   tools::option(app, "--grid", &o->grid, "exact grid nx = ny");
   tools::option(app, "--min-ridge", &o->min_ridge, "ContactSearchOptions::min_ridge [m]");
+  tools::option(app, "--gap-samples", &o->gap_samples, "ContactSearchOptions::gap_samples");
 }
 
 double percent(double a, double b) {
@@ -45,6 +47,7 @@ int run(const Options& o) {
   if (!in) throw std::runtime_error("cannot read " + o.cases);
   ContactSearchOptions so;
   so.min_ridge = o.min_ridge;
+  so.gap_samples = o.gap_samples;
   const ContactSearch search{WheelsetTrackData{}, so};
   std::printf("*: the method's message flags a gap that turns concave under the patch\n\n");
   std::printf(

@@ -312,3 +312,25 @@ TEST(PatchNormal, GapSamplesCarryTheWheelsRadiusAndAngle) {
     }
   }
 }
+
+TEST(PatchNormal, LeftWheelMirrorsTheRight) {
+  // The left wheel in the mirror image of the right's state (y, yaw, roll of the other sign)
+  // sees the same geometry, so the same patches (to the search's and the iteration's rounding).
+  for (double y : {2.0, 5.0, 6.5}) {
+    const WheelsetPose right = a22Right(y);
+    WheelsetPose left = right;
+    left.y = -right.y;
+    left.yaw = -right.yaw;
+    left.roll = -right.roll;
+    const WheelNormal r = solveWheelLoad(atFirstTouch(WheelSide::kRight, right), kLoad, kG, kNu);
+    const WheelNormal l = solveWheelLoad(atFirstTouch(WheelSide::kLeft, left), kLoad, kG, kNu);
+    ASSERT_EQ(r.status, NormalStatus::kOk) << r.message;
+    ASSERT_EQ(l.status, NormalStatus::kOk) << l.message;
+    ASSERT_EQ(l.patches.size(), r.patches.size());
+    for (std::size_t i = 0; i < r.patches.size(); ++i) {
+      EXPECT_NEAR(l.patches[i].fn, r.patches[i].fn, 1e-4 * kLoad) << y;
+      EXPECT_NEAR(l.patches[i].pmax, r.patches[i].pmax, 1e-4 * r.patches[i].pmax) << y;
+      EXPECT_NEAR(l.patches[i].b, r.patches[i].b, 1e-4 * r.patches[i].b) << y;
+    }
+  }
+}

@@ -28,7 +28,7 @@
 /// Where it is weak: a gap with a plateau or two lumps under one candidate (near-conformal tread
 /// contact): the strips stop where the exact contact spreads over the plateau, fn at a given
 /// approach some 30 % low on the Manchester benchmark at 0.5 mm (the patch's message flags a gap
-/// that turns concave within the interpenetration, status staying kOk); conformal contact (a flange
+/// that turns concave under the patch, status staying kOk); conformal contact (a flange
 /// root hugging the gauge corner, worn profiles), where the half-space and the single contact plane
 /// fail as well; very short patches (a << b), where the one displacement condition carries any
 /// error of the assumed shape straight into fn. test/unit/test_patch_normal.cpp checks it against

@@ -329,21 +329,6 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   // Strips with the y-dependent penetration factor eps(eta), quadratic from A aa^2 / d0 at ymid
   // to B bb^2 / d0 at ymid +- bb: on a Hertz gap the strips' region is Hertz's ellipse.
   out.method = NormalMethod::kNonHertzian;
-  {
-    // A gap that turns concave within the undeformed interpenetration (a plateau, a second lump)
-    // is where the strips are weak: say so.
-    double worst = 0.0;
-    const int n_s = static_cast<int>(g.eta.size());
-    for (int i = 1; i + 1 < n_s; ++i) {
-      if (g.h[i] - g.h0 >= d0) continue;
-      const double h2 = g.h[i + 1] - 2.0 * g.h[i] + g.h[i - 1];  // spacing^2 h''
-      worst = std::min(worst, h2);
-    }
-    if (worst < -kConcave * d0)
-      out.message =
-          "the gap turns concave within the interpenetration: the strips may miss part "
-          "of the contact (doc/normal_problem.md)";
-  }
   const HertzApproach hz = hertzFromApproach(A0, B, d0, Estar);
   const double bb = std::max(hz.b, 1.1 * std::abs(g.eta0 - ymid));
   const double ex = A0 * hz.a * hz.a, ey = B * bb * bb;  // eps d0 at the centre and at bb
@@ -378,6 +363,18 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   double lo = 0.0, hi = 0.0;
   if (!edge(-1, &lo) || !edge(+1, &hi))
     return fail(NormalStatus::kBeyondGapFunction, beyondMessage(g, d0), approach);
+  {
+    // A gap that turns concave under the patch (a plateau, a second lump beside the minimum) is
+    // where the strips are weak: say so.
+    double worst = 0.0;
+    for (int i = 1; i + 1 < static_cast<int>(g.eta.size()); ++i)
+      if (g.eta[i] > lo && g.eta[i] < hi)
+        worst = std::min(worst, g.h[i + 1] - 2.0 * g.h[i] + g.h[i - 1]);  // spacing^2 h''
+    if (worst < -kConcave * d0)
+      out.message =
+          "the gap turns concave under the patch: the strips may miss part of the "
+          "contact (doc/normal_problem.md)";
+  }
   const double w = (hi - lo) / n;
   std::vector<double> L(n);
   auto halfLength = [&](double e) {

@@ -387,30 +387,26 @@ WheelContactGeometry ContactSearch::search(WheelSide wheel_side, const WheelsetP
     const double level =
         g0 + std::max(2.0 * std::max(std::abs(g0), options_.gap_window), options_.gap_reach);
     double edge[2] = {0.0, 0.0};
-    for (int dir = 0; dir < 2; ++dir) {  // march out to the level, then bisect
-      const int steps = std::max(1, static_cast<int>(std::ceil(options_.max_gap_extent / 1e-4)));
-      const double step = (dir == 0 ? -1.0 : 1.0) * options_.max_gap_extent / steps;
+    // March out to the level in steps growing from 0.1 mm by half each (a few dozen steps reach
+    // max_gap_extent), then bisect to where the gap reaches the level or the curves stop.
+    for (int dir = 0; dir < 2; ++dir) {
+      const double sign = dir == 0 ? -1.0 : 1.0;
       sw0 = sw;
       sr0 = sr;
-      double inside = 0.0, outside = 0.0;
-      bool reached = false;
-      for (int m = 1; m <= steps; ++m) {
+      double inside = 0.0, outside = 0.0, reach = 0.0;
+      bool stopped = false;
+      for (double step = 1e-4; reach < options_.max_gap_extent; step *= 1.5) {
+        reach = std::min(reach + step, options_.max_gap_extent);
         double gv = 0.0;
-        const double eta = m * step;
-        if (!gapAt(eta, &gv)) {
-          outside = eta;
+        outside = sign * reach;
+        if (!gapAt(outside, &gv) || gv >= level) {
+          stopped = true;
           break;
         }
-        if (gv >= level) {
-          outside = eta;
-          reached = true;
-          break;
-        }
-        inside = eta;
-        outside = eta;
+        inside = outside;
       }
-      if (reached) {
-        for (int it = 0; it < 40; ++it) {
+      if (stopped) {
+        for (int it = 0; it < 32; ++it) {
           const double mid = 0.5 * (inside + outside);
           double gv = 0.0;
           if (gapAt(mid, &gv) && gv < level)
