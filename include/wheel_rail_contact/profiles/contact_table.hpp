@@ -15,23 +15,26 @@
 ///    10 mrad): that part of roll is a translation and lies in Y;
 ///  - yaw^2: the contact's y-z geometry is even in yaw (a mirror in the track's y-z plane turns
 ///    yaw into -yaw) and `lead` odd, so the table holds lead / yaw and everything is interpolated
-///    in yaw^2, on nodes evenly spaced in yaw^2 (0, 17.3, 24.5 and 30 mrad by default): exact
-///    for the leading quadratic term, and densest where the flange's geometry changes fastest;
+///    in yaw^2, on nodes evenly spaced in yaw^2 (0, 17.3, 24.5 and 30 mrad by default),
+///    quadratically on the three nodes around the nearest (the flange's geometry curves in
+///    yaw^2), linearly in the other axes;
 ///  - roll, which also tilts the wheel relative to its rail about B: that tilt moves the contact
 ///    along the profiles (on the benchmark's tread 2.5 mrad as far as 0.2 to 0.5 mm of Y), so it
 ///    is an axis of its own;
 ///  - the vertical position Z of B (Z = z + a0 sin(roll) + nominal_radius (1 - cos(roll))) is not
 ///    an axis: it shifts the vertical gap as a whole (exactly) and changes the gap and the gap
-///    function at each lateral coordinate of the contact plane, which the table holds at two
-///    heights per node (touching, and overlapping by max_overlap) and interpolates linearly.
+///    function, which the table holds at two heights per node (touching, and overlapping by
+///    max_overlap) and interpolates linearly, each node at the candidate's vertical gap (so
+///    that the nodes' candidates overlap alike).
 ///
 /// Rule where the candidates differ between the nodes around a pose. The candidate set is that of
-/// the nearest node. Each of its candidates is interpolated among the surrounding nodes that have
-/// a candidate within match_distance of it on both profiles (s_wheel and s_rail), with the
-/// weights of those nodes renormalised; the zone follows from the interpolated contact angle and
-/// the closest candidate from the interpolated vertical gaps, as the search does. At a jump
-/// (tread to gauge corner to flange) the table therefore takes the candidate set of the node
-/// nearer the pose, which is the direct search's on that node's side.
+/// the nearest node. Each of its candidates is the same one at another node if that node has a
+/// candidate within match_distance of it on both profiles (s_wheel and s_rail). Where all twelve
+/// nodes of the quadratic stencil have it, it is interpolated on them; else among the eight
+/// nodes of the pose's cell that have it, their (linear) weights renormalised. The zone follows
+/// from the interpolated contact angle and the closest candidate from the interpolated vertical
+/// gaps, as the search does. At a jump (tread to gauge corner to flange) the table therefore takes
+/// the candidate set of the node nearer the pose, which is the direct search's on that node's side.
 ///
 /// Poses beyond the table: see ContactTableOptions::beyond.
 #pragma once

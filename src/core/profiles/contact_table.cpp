@@ -404,38 +404,96 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
     if (corners[c].w > corners[master].w) master = c;
   }
 
+  // Quadratic in yaw^2 on the three yaw nodes around the nearest one, where the axis has three:
+  // the flange's geometry curves in yaw^2 (the lift of the contact point under yaw grows with
+  // the lead, which grows with the contact angle), which linear interpolation misses by several
+  // micrometres of gap at the default nodes.
+  std::array<Corner, 12> quad;
+  std::array<double, 12> quad_linear{};  // the linear cell's weights of the same nodes
+  bool quad_ok = im.yaw.n >= 3;
+  if (quad_ok) {
+    const double x_abs = cj + tj;
+    const int b = std::min(std::max(static_cast<int>(std::lround(x_abs)) - 1, 0), im.yaw.n - 3);
+    const double x = x_abs - b;
+    const double lagrange[3] = {0.5 * (x - 1.0) * (x - 2.0), -x * (x - 2.0), 0.5 * x * (x - 1.0)};
+    for (int q = 0; q < 12 && quad_ok; ++q) {
+      const int di = q & 1, dk = (q >> 1) & 1, l = q >> 2;
+      const double wi = di ? ti : 1.0 - ti, wk = dk ? tk : 1.0 - tk;
+      quad[q] = {&grid.nodes[im.index(ci + di, b + l, ck + dk)], wi * lagrange[l] * wk};
+      quad_linear[q] = wi * wk * (b + l == cj ? 1.0 - tj : b + l == cj + 1 ? tj : 0.0);
+      quad_ok = quad[q].node->status == ContactSearchStatus::kOk;
+    }
+  }
+
   WheelContactGeometry out;
   const double sigma = mirror ? -1.0 : (side == WheelSide::kRight ? 1.0 : -1.0);
   const double sy = std::sin(p.yaw) * std::cos(p.roll);
   for (const TableCandidate& mc : corners[master].node->candidates) {
-    std::array<const TableCandidate*, 8> m{};
-    double sw = 0.0, sw_gf = 0.0;
-    for (int c = 0; c < 8; ++c) {
-      m[c] = c == master ? &mc : match(mc, corners[c].node->candidates, options_.match_distance);
-      if (!m[c]) continue;
-      sw += corners[c].w;
-      if (!m[c]->g_a.empty()) sw_gf += corners[c].w;
+    // The nodes that interpolate this candidate, its match at each, and their weights: the
+    // quadratic stencil where every one of its nodes has the candidate, else the linear cell's
+    // nodes that have it, their weights renormalised.
+    std::array<const TableCandidate*, 12> m{};
+    std::array<const Node*, 12> at{};
+    std::array<double, 12> w{}, w_linear{};
+    int nm = 0;
+    if (quad_ok) {
+      for (int q = 0; q < 12; ++q) {
+        m[q] = quad[q].node == corners[master].node
+                   ? &mc
+                   : match(mc, quad[q].node->candidates, options_.match_distance);
+        if (!m[q]) break;
+        at[q] = quad[q].node;
+        w[q] = quad[q].w;
+        w_linear[q] = quad_linear[q];
+        nm = q + 1;
+      }
+      if (nm < 12) nm = 0;
     }
+    if (nm == 0) {
+      double sw = 0.0;
+      for (int q = 0; q < 8; ++q) {
+        const TableCandidate* t =
+            q == master ? &mc : match(mc, corners[q].node->candidates, options_.match_distance);
+        if (!t) continue;
+        m[nm] = t;
+        at[nm] = corners[q].node;
+        w[nm] = corners[q].w;
+        sw += corners[q].w;
+        ++nm;
+      }
+      for (int q = 0; q < nm; ++q) {
+        w[q] = sw > 0.0 ? w[q] / sw : (m[q] == &mc ? 1.0 : 0.0);
+        w_linear[q] = w[q];
+      }
+    }
+    // The gap function's shape from the linear cell (it changes slowly with yaw), put at the
+    // gap the stencil gives.
+    double sw_gf = 0.0;
+    for (int q = 0; q < nm; ++q)
+      if (!m[q]->g_a.empty()) sw_gf += w_linear[q];
     ContactCandidate c;
     double vg0 = 0.0, gap = 0.0, angle = 0.0, lead = 0.0, axial = 0.0;
-    for (int q = 0; q < 8; ++q) {
-      if (!m[q]) continue;
+    for (int q = 0; q < nm; ++q) {
       const TableCandidate& t = *m[q];
-      const double w = sw > 0.0 ? corners[q].w / sw : (q == master ? 1.0 : 0.0);
-      vg0 += w * t.vertical_gap0;
-      gap += w * (t.gap_a + t.gap_dz * (place.Z - corners[q].node->z_a));
-      angle += w * t.angle;
-      c.rolling_radius += w * t.radius;
-      c.point.y() += w * t.point_y;
-      c.point.z() += w * t.point_z;
-      axial += w * t.axial;
-      c.rail_file += w * t.rail_file;
-      c.wheel_file += w * t.wheel_file;
-      c.s_rail += w * t.s_rail;
-      c.s_wheel += w * t.s_wheel;
-      lead += w * t.lead_per_yaw;
+      vg0 += w[q] * t.vertical_gap0;
+      angle += w[q] * t.angle;
+      c.rolling_radius += w[q] * t.radius;
+      c.point.y() += w[q] * t.point_y;
+      c.point.z() += w[q] * t.point_z;
+      axial += w[q] * t.axial;
+      c.rail_file += w[q] * t.rail_file;
+      c.wheel_file += w[q] * t.wheel_file;
+      c.s_rail += w[q] * t.s_rail;
+      c.s_wheel += w[q] * t.s_wheel;
+      lead += w[q] * t.lead_per_yaw;
     }
     c.vertical_gap = vg0 + place.Z;
+    // Each node's gap and gap function at the candidate's vertical gap here, not at this height:
+    // the nodes' candidates then overlap alike, where each node's linearisation in the height
+    // holds, while at one height they would differ by the vertical gap's change from node to node
+    // (half a millimetre per lateral step on a flange).
+    auto heightAt = [&](int q) { return c.vertical_gap - m[q]->vertical_gap0 - at[q]->z_a; };
+    for (int q = 0; q < nm; ++q) gap += w[q] * (m[q]->gap_a + m[q]->gap_dz * heightAt(q));
     c.contact_angle = angle;
     c.zone = angle < so.tread_max_angle     ? ContactZone::kTread
              : angle >= so.flange_min_angle ? ContactZone::kFlange
@@ -453,21 +511,22 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
         const TableCandidate* t;
         double w, dZ;
       };
-      std::array<Term, 8> terms;
+      std::array<Term, 12> terms;
       int nt = 0;
-      for (int q = 0; q < 8; ++q)
-        if (m[q] && !m[q]->g_a.empty() && corners[q].w > 0.0) {
+      for (int q = 0; q < nm; ++q)
+        if (!m[q]->g_a.empty() && w_linear[q] > 0.0) {
           lo = std::max(lo, m[q]->eta0);
           hi = std::min(hi, m[q]->etaEnd());
-          terms[nt++] = {m[q], corners[q].w / sw_gf, place.Z - corners[q].node->z_a};
+          terms[nt++] = {m[q], w_linear[q] / sw_gf, heightAt(q)};
         }
+      double offset = 0.0;
       auto G = [&](double eta) {
-        double v = 0.0;
+        double v = offset;
         for (int q = 0; q < nt; ++q) v += terms[q].w * terms[q].t->gapFunction(eta, terms[q].dZ);
         return v;
       };
       if (nt > 0 && lo <= 0.0 && hi >= 0.0 && hi > lo) {
-        c.gap = G(0.0);
+        offset = c.gap - G(0.0);
         const double level = c.gap + 2.0 * std::max(std::abs(c.gap), so.gap_window);
         // The edges where the gap reaches the level (or the stretch ends): a march in 24 steps
         // to the end of the stretch, then bisection.
@@ -493,7 +552,7 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
         const int ns = so.gap_samples;
         c.gap_function.resize(ns);
         const double de = (edge[1] - edge[0]) / (ns - 1);
-        for (int s = 0; s < ns; ++s) c.gap_function[s] = {edge[0] + s * de, 0.0};
+        for (int s = 0; s < ns; ++s) c.gap_function[s] = {edge[0] + s * de, offset};
         for (int q = 0; q < nt; ++q)
           for (int s = 0; s < ns; ++s)
             c.gap_function[s].gap +=
