@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -332,5 +333,32 @@ TEST(PatchNormal, LeftWheelMirrorsTheRight) {
       EXPECT_NEAR(l.patches[i].pmax, r.patches[i].pmax, 1e-4 * r.patches[i].pmax) << y;
       EXPECT_NEAR(l.patches[i].b, r.patches[i].b, 1e-4 * r.patches[i].b) << y;
     }
+  }
+}
+
+TEST(PatchNormal, OddGapsNeverGiveNaN) {
+  // Gaps of every shape (noise, flat, hollow, steps, a flange's samples with another wheel
+  // radius), approaches from none to deep: a status, finite non-negative forces, never a NaN.
+  std::mt19937 rng(45);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const ContactCandidate base = atFirstTouch(WheelSide::kRight, a22Right(6.5)).candidates.at(0);
+  for (int k = 0; k < 300; ++k) {
+    ContactCandidate c = base;
+    const int kind = k % 5;
+    for (GapSample& s : c.gap_function) {
+      if (kind == 0) s.gap += 2e-6 * (u(rng) - 0.5);                // noise
+      if (kind == 1) s.gap = c.gap + 1e-6 * u(rng);                 // flat
+      if (kind == 2) s.gap = c.gap - 1e3 * s.eta * s.eta * u(rng);  // hollow
+      if (kind == 3) s.gap += (s.eta > 0.0 ? 5e-5 : 0.0) * u(rng);  // a step
+      if (kind == 4) s.rolling_radius *= 0.05 + 2.0 * u(rng);       // another wheel
+    }
+    const double approach = std::pow(10.0, -8.0 + 5.0 * u(rng)) * (u(rng) < 0.1 ? -1.0 : 1.0);
+    const NormalPatch p = solvePatchNormal(c, approach, kG, kNu);
+    ASSERT_TRUE(std::isfinite(p.fn) && p.fn >= 0.0) << k << " " << p.message;
+    ASSERT_TRUE(std::isfinite(p.pmax) && p.pmax >= 0.0) << k;
+    ASSERT_TRUE(std::isfinite(p.a) && std::isfinite(p.b) && std::isfinite(p.area)) << k;
+    for (const NormalStrip& s : p.strips)
+      ASSERT_TRUE(std::isfinite(s.force) && std::isfinite(s.x_lead) && std::isfinite(s.pmax)) << k;
+    if (p.status != NormalStatus::kOk) EXPECT_EQ(p.fn, 0.0) << k;
   }
 }

@@ -93,7 +93,7 @@ HertzApproach hertzFromApproach(double A, double B, double d, double Estar) {
     } else {
       t = solveT(target);
     }
-    m = -std::expm1(-t);
+    m = -std::expm1(-std::clamp(t, 0.0, 30.0));  // m in [0, 1) whatever the iteration did
   }
   double KmE_m, K, E;
   ellipticParts(m, &KmE_m, &K, &E);
