@@ -357,3 +357,29 @@ TEST(ContactTable, LeftWheelSharesTheRightTableWhenMirrored) {
     EXPECT_NEAR(a.candidates[k].lead, b.candidates[k].lead, 1e-9);
   }
 }
+
+TEST(ContactTable, AnIsolatedMissOfTheSearchDoesNotReachTheTable) {
+  // At this node of the default table (right wheel) the search has missed the flange's smallest
+  // gap, which poses 5 nm to either side find; the table holds what they find.
+  const ContactTable& table = defaultTable();
+  const ContactSearch& cs = table.contactSearch();
+  const double a0 = -0.5 * cs.data().gauge, r0 = cs.data().nominal_radius;
+  const double Y = -0.02 + 44 * 2e-4, yaw = std::sqrt(2 * (0.03 * 0.03 / 3)),
+               roll = -0.015 + 3 * 2.5e-3;
+  WheelsetPose p;
+  p.yaw = yaw;
+  p.roll = roll;
+  p.y = Y - a0 * (std::cos(yaw) * std::cos(roll) - 1.0) - r0 * std::sin(roll) * std::cos(yaw);
+  const WheelContactGeometry t = table.search(WheelSide::kRight, p);
+  ASSERT_EQ(t.status, ContactSearchStatus::kOk);
+  for (double d : {-5e-9, 5e-9}) {
+    WheelsetPose q = p;
+    q.y += d;
+    const ContactCandidate k = [&] {
+      const WheelContactGeometry g = cs.search(WheelSide::kRight, q);
+      return g.candidates.at(g.closest);
+    }();
+    EXPECT_NEAR(t.candidates[t.closest].vertical_gap, k.vertical_gap, 0.1e-6);
+    EXPECT_NEAR(t.candidates[t.closest].contact_angle, k.contact_angle, 1e-5);
+  }
+}

@@ -15,7 +15,8 @@ namespace {
 
 constexpr double kSmallYaw = 1e-6;
 
-/// One candidate of one node, in the right-hand wheel's frame of its table.
+/// One candidate of one node, as its table's wheel sees it (the right wheel's when the left
+/// mirrors it).
 struct TableCandidate {
   double vertical_gap0 = 0.0;  ///< vertical gap at Z = 0 (it is vertical_gap0 + Z at any Z)
   double gap_a = 0.0;          ///< gap at the node's touching height Z_a
@@ -47,7 +48,7 @@ struct TableCandidate {
 struct Node {
   ContactSearchStatus status = ContactSearchStatus::kOk;
   std::string message;
-  double z_a = 0.0;  ///< the height Z at which the closest candidate touches
+  double z_a = 0.0;  ///< the height Z at which the closest candidate about touches
   std::vector<TableCandidate> candidates;
 };
 
@@ -118,8 +119,8 @@ double lerp(const std::vector<GapSample>& f, double eta) {
 }  // namespace
 
 struct ContactTable::Impl {
-  ContactSearch search;  ///< the caller's, for the meaning of the options and poses beyond
-  Axis lateral, yaw, roll;
+  ContactSearch search;     ///< the caller's, for the meaning of the options and poses beyond
+  Axis lateral, yaw, roll;  // yaw's values are yaw^2
   double r0 = 0.0;
   bool left_mirrors_right = false;
   struct Grid {
