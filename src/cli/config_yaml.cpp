@@ -2,6 +2,10 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <sstream>
 #include <stdexcept>
 
 namespace wheel_rail_contact {
@@ -32,7 +36,12 @@ bool isNodeOnlyParameter(const std::string& name) {
   return false;
 }
 
-void loadConfigYaml(const std::string& file, ContactParameters* p) {
+namespace {
+
+// Every key of the YAML map in `file`, with its scalar value, to `apply` (which throws
+// std::invalid_argument naming the key); the file is named in every message.
+void forEachKey(const std::string& file,
+                const std::function<void(const std::string&, const std::string&)>& apply) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(file);
@@ -50,11 +59,107 @@ void loadConfigYaml(const std::string& file, ContactParameters* p) {
       throw std::invalid_argument(key + ": expected a single value (in '" + file + "')");
     if (isNodeOnlyParameter(key)) continue;
     try {
-      setParameter(p, key, kv.second.Scalar());
+      apply(key, kv.second.Scalar());
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string(e.what()) + " (in '" + file + "')");
     }
   }
+}
+
+double number(const std::string& name, const std::string& value) {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v))
+    throw std::invalid_argument(name + ": expected a finite number, got '" + value + "'");
+  return v;
+}
+
+}  // namespace
+
+void loadConfigYaml(const std::string& file, ContactParameters* p) {
+  forEachKey(
+      file, [p](const std::string& key, const std::string& value) { setParameter(p, key, value); });
+}
+
+std::vector<ParameterDoc> wheelsetParameterDocs() {
+  const WheelsetTrackData d;
+  const auto text = [](double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  };
+  return {
+      {"nominal_radius", "m", text(d.nominal_radius),
+       "rolling radius where the wheel profile file has z = 0"},
+      {"flange_back_distance", "m", text(d.flange_back_distance),
+       "distance between the two wheels' flange backs"},
+      {"flange_back_position", "m", text(d.flange_back_position),
+       "lateral coordinate of the flange back in the wheel profile file's own coordinates"},
+      {"gauge", "m", text(d.gauge), "track gauge, between the gauge faces at gauge_depth"},
+      {"gauge_depth", "m", text(d.gauge_depth), "depth below the rails' top of the gauge points"},
+      {"rail_inclination", "-", text(d.rail_inclination),
+       "tilt of the rail profiles toward the centre (tangent, 0.025 = 1:40); 0: as read"},
+      {"cant", "rad", text(d.cant), "cant of the rails' plane, positive raises the left rail"},
+      {"profile_length_unit", "m", "file",
+       "metres per profile file unit (0.001, or mm / m); default: the file says"},
+      {"profile_lateral_axis", "", "toward_field",
+       "profile files' first column: toward_field (Simpack, CONTACT) | toward_gauge"},
+      {"profile_vertical_axis", "", "down", "profile files' second column: down | up"},
+      {"profile_smoothing_length", "m", text(kDefaultProfileSmoothingLength),
+       "smoothing spline's length L of the profiles (0 interpolates)"},
+  };
+}
+
+bool setWheelsetParameter(WheelsetConfig* w, const std::string& name, const std::string& value) {
+  WheelsetTrackData& t = w->track;
+  ProfileReadOptions& r = w->profile_read;
+  if (name == "nominal_radius") {
+    t.nominal_radius = number(name, value);
+  } else if (name == "flange_back_distance") {
+    t.flange_back_distance = number(name, value);
+  } else if (name == "flange_back_position") {
+    t.flange_back_position = number(name, value);
+  } else if (name == "gauge") {
+    t.gauge = number(name, value);
+  } else if (name == "gauge_depth") {
+    t.gauge_depth = number(name, value);
+  } else if (name == "rail_inclination") {
+    t.rail_inclination = number(name, value);
+  } else if (name == "cant") {
+    t.cant = number(name, value);
+  } else if (name == "profile_length_unit") {
+    r.length_unit = value == "mm" ? 1e-3 : value == "m" ? 1.0 : number(name, value);
+    if (!(r.length_unit > 0.0))
+      throw std::invalid_argument(name + ": must be > 0 (metres per file unit), got '" + value +
+                                  "'");
+  } else if (name == "profile_lateral_axis") {
+    if (value == "toward_field")
+      r.lateral = LateralAxis::kTowardField;
+    else if (value == "toward_gauge")
+      r.lateral = LateralAxis::kTowardGauge;
+    else
+      throw std::invalid_argument(name + ": toward_field or toward_gauge, got '" + value + "'");
+  } else if (name == "profile_vertical_axis") {
+    if (value == "down")
+      r.vertical = VerticalAxis::kDown;
+    else if (value == "up")
+      r.vertical = VerticalAxis::kUp;
+    else
+      throw std::invalid_argument(name + ": down or up, got '" + value + "'");
+  } else if (name == "profile_smoothing_length") {
+    r.smoothing_length = number(name, value);
+    if (!(r.smoothing_length >= 0.0))
+      throw std::invalid_argument(name + ": must be >= 0 m, got '" + value + "'");
+  } else {
+    return false;
+  }
+  return true;
+}
+
+void loadWheelsetConfigYaml(const std::string& file, ContactParameters* p, WheelsetConfig* w) {
+  forEachKey(file, [p, w](const std::string& key, const std::string& value) {
+    if (!setWheelsetParameter(w, key, value)) setParameter(p, key, value);
+  });
 }
 
 }  // namespace wheel_rail_contact

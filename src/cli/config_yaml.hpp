@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "wheel_rail_contact/contact_parameters.hpp"
+#include "wheel_rail_contact/profiles/profile.hpp"
+#include "wheel_rail_contact/profiles/wheelset_track.hpp"
 
 namespace wheel_rail_contact {
 
@@ -20,5 +22,24 @@ bool isNodeOnlyParameter(const std::string& name);
 /// std::invalid_argument whose message starts with the offending key (or "config" when the file
 /// cannot be read or is not a map).
 void loadConfigYaml(const std::string& file, ContactParameters* p);
+
+/// contact_cli wheelset's data besides the model's parameters: the wheelset and track (its
+/// profiles are the command's files) and how the profile files are read.
+struct WheelsetConfig {
+  WheelsetTrackData track;
+  ProfileReadOptions profile_read;
+};
+
+/// The keys of WheelsetConfig, with their defaults (the benchmark's, WheelsetTrackData{}).
+std::vector<ParameterDoc> wheelsetParameterDocs();
+
+/// Sets one wheelset key from text. Throws std::invalid_argument naming the key on a value that
+/// does not parse; false if `name` is not a wheelset key. Ranges are
+/// WheelsetTrackData::validate()'s and Profile::read()'s.
+bool setWheelsetParameter(WheelsetConfig* w, const std::string& name, const std::string& value);
+
+/// As loadConfigYaml, and the keys of wheelsetParameterDocs() go to *w: one file for the model and
+/// the wheelset.
+void loadWheelsetConfigYaml(const std::string& file, ContactParameters* p, WheelsetConfig* w);
 
 }  // namespace wheel_rail_contact

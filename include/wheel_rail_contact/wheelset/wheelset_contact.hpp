@@ -1,0 +1,139 @@
+/// A wheelset on its track: give it the wheelset's state, get every contact patch of each wheel
+/// with its geometry, normal solution, creepages and tangential forces. The one entry point that
+/// ties the contact search (or a contact table), the normal problem per patch, the creepages and a
+/// creep-force model together (doc/wheelset.md).
+///
+/// Axes: REP 103 track axes (x forward, y left, z up), as wheelset_track.hpp. Each patch's forces
+/// are in its own contact frame (doc/conventions.md: z the contact normal from the rail into the
+/// wheel, x forward in the contact plane, y = z x x), acting on the wheel. Units SI.
+///
+/// Per step, for each wheel:
+///   1. the contact candidates for the pose at first touch (ContactSearch::search, or
+///      ContactTable::search; pose.z is not used: the wheel is searched at the height where its
+///      closest candidate touches, one more search when z = 0 is more than 10 um from it);
+///   2. the wheel's vertical load shared among them (solveWheelLoad: the approach at which the
+///      patches' normal forces' vertical components add up to the load); a patch is a candidate
+///      with fn > 0;
+///   3. each patch's creepages xi, eta, phi from the wheelset's motion (patchCreepages);
+///   4. its tangential forces from the creep-force model of ContactParameters::model, run on the
+///      patch's equivalent ellipse (a, b) with its fn and creepages. This is the elliptic-patch
+///      model on the equivalent ellipse, not a tangential solution on the true (non-Hertzian)
+///      patch.
+///
+/// History: one model instance per patch slot, a slot being (wheel, zone, rank among that wheel's
+/// patches of the same zone counted from the field side). A slot whose patch is present is stepped
+/// with the step's dt; a slot whose patch is absent is reset (its model dropped), so a patch that
+/// appears starts from rest (zero traction history) on a new model, stepped with the step's dt as
+/// a model's first step is (the FastSim models roll dt from rest; exact's first step rolls
+/// nothing). nss thereby carries its transient across steps while a patch stays in its zone.
+///
+/// The model's reference patch (ContactParameters a0, b0, fz0, fz_max) is not used: a and b come
+/// from the normal problem every step, and a slot's model is made when its patch appears with the
+/// reference patch set to that patch's a, b, fn and fz_max 0, so that a fixed mesh covers the patch
+/// up to 1.5 times its first load. A FastSim model grows its mesh beyond that with a note
+/// (doc/varying_geometry.md); the exact model, whose grid is fixed, is restarted from rest on a
+/// grid for the patch when the patch's a or b outgrows it, with a note (PatchResult::message).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "wheel_rail_contact/contact_model.hpp"
+#include "wheel_rail_contact/contact_parameters.hpp"
+#include "wheel_rail_contact/normal/patch_normal.hpp"
+#include "wheel_rail_contact/profiles/contact_search.hpp"
+#include "wheel_rail_contact/profiles/contact_table.hpp"
+#include "wheel_rail_contact/profiles/wheelset_track.hpp"
+#include "wheel_rail_contact/wheelset/creepages.hpp"
+
+namespace wheel_rail_contact {
+
+/// The wheelset's state at one step.
+struct WheelsetState {
+  WheelsetPose pose;      ///< y, yaw, roll; z is not used (each wheel's load sets its approach)
+  WheelsetMotion motion;  ///< V, omega, vy, yaw_rate, curvature, vz, roll_rate
+  double fz_left = 0.0;   ///< vertical load on the left wheel [N], > 0 for contact
+  double fz_right = 0.0;  ///< vertical load on the right wheel [N]
+};
+
+struct WheelsetContactOptions {
+  /// Search through a ContactTable built once at construction (faster, interpolated; see
+  /// contact_table.hpp for its error) instead of the direct ContactSearch.
+  bool use_contact_table = false;
+  ContactSearchOptions search;
+  ContactTableOptions table;  ///< with use_contact_table
+  /// A contact table built once and shared by every wheelset on the same profiles and track data
+  /// (a vehicle's), instead of one built per object: used when set, whatever use_contact_table
+  /// says; its own search options apply. It must tabulate this object's track data (the same
+  /// values and profiles), else the constructor throws std::invalid_argument("contact_table: ...").
+  std::shared_ptr<const ContactTable> contact_table;
+  NormalOptions normal;
+};
+
+enum class WheelStatus {
+  kOk,            ///< one or more patches
+  kNoLoad,        ///< vertical load <= 0: zero forces, the wheel's history cleared
+  kNoContact,     ///< no contact candidate (the wheel is not above its rail): zero forces
+  kInvalidInput,  ///< a state value not finite, dt < 0, or the pose beyond the search's range
+  kNormalFailed,  ///< the normal problem gave no solution for the load (its status's message)
+};
+/// "ok", "no_load", "no_contact", "invalid_input", "normal_failed": the CLI's status column.
+const char* toString(WheelStatus s);
+
+/// One contact patch of a wheel.
+struct PatchResult {
+  ContactZone zone = ContactZone::kTread;
+  /// The patch's slot name: its zone ("tread", "gauge_corner", "flange"), with "_2", "_3" for a
+  /// second and third patch of the same zone on the wheel, counted from the field side.
+  std::string slot;
+  /// The candidate from the search: contact point (on both profiles in their files' coordinates:
+  /// rail_file, wheel_file), contact angle, rolling radius, gap function.
+  ContactCandidate geometry;
+  PatchCreepages creepages;  ///< xi [-], eta [-], phi [1/m] in the patch's contact frame
+  NormalPatch normal;        ///< fn [N], a, b [m], pmax [Pa], method, strips
+  /// Tangential forces on the wheel in the patch's contact frame, from the elliptic-patch model on
+  /// (normal.a, normal.b): fx along the rolling direction, fs lateral in the contact plane [N], mz
+  /// the spin moment about the normal [N m].
+  double fx = 0.0, fs = 0.0, mz = 0.0;
+  StepStatus tangential_status = StepStatus::kOk;  ///< the model's step status
+  std::string message;                             ///< the model's message or note, "" if none
+};
+
+struct WheelResult {
+  WheelSide side = WheelSide::kRight;
+  WheelStatus status = WheelStatus::kOk;
+  std::string message;
+  std::vector<PatchResult> patches;  ///< in contact (fn > 0), from the field side to the flange
+};
+
+struct WheelsetResult {
+  WheelResult left, right;
+};
+
+class WheelsetContact {
+ public:
+  /// Validates everything (std::invalid_argument naming the parameter): the track data
+  /// (WheelsetTrackData::validate), the parameters (validate(ContactParameters)), the options.
+  WheelsetContact(const WheelsetTrackData& track, const ContactParameters& parameters,
+                  const WheelsetContactOptions& options = {});
+  ~WheelsetContact();
+  WheelsetContact(WheelsetContact&&) noexcept;
+  WheelsetContact& operator=(WheelsetContact&&) noexcept;
+
+  /// Advances both wheels by one step of dt [s] (0 for the first step: no travel yet). Never
+  /// throws on a state and never gives a non-finite number: bad input gives a wheel status and
+  /// zero forces.
+  WheelsetResult step(const WheelsetState& state, double dt);
+  /// Clears every slot's history: the next step equals that of a fresh object.
+  void reset();
+
+  const ContactSearch& search() const;
+  const ContactParameters& parameters() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace wheel_rail_contact

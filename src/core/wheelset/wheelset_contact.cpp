@@ -1,0 +1,276 @@
+#include "wheel_rail_contact/wheelset/wheelset_contact.hpp"
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+namespace wheel_rail_contact {
+
+const char* toString(WheelStatus s) {
+  switch (s) {
+    case WheelStatus::kOk:
+      return "ok";
+    case WheelStatus::kNoLoad:
+      return "no_load";
+    case WheelStatus::kNoContact:
+      return "no_contact";
+    case WheelStatus::kInvalidInput:
+      return "invalid_input";
+    case WheelStatus::kNormalFailed:
+      return "normal_failed";
+  }
+  return "unknown";
+}
+
+namespace {
+
+const char* zoneName(ContactZone z) {
+  switch (z) {
+    case ContactZone::kTread:
+      return "tread";
+    case ContactZone::kGaugeCorner:
+      return "gauge_corner";
+    case ContactZone::kFlange:
+      return "flange";
+  }
+  return "unknown";
+}
+
+bool finite(const WheelsetPose& p) {
+  return std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.yaw) && std::isfinite(p.roll);
+}
+
+bool finite(const WheelsetMotion& m) {
+  return std::isfinite(m.V) && std::isfinite(m.omega) && std::isfinite(m.vy) &&
+         std::isfinite(m.yaw_rate) && std::isfinite(m.curvature) && std::isfinite(m.vz) &&
+         std::isfinite(m.roll_rate);
+}
+
+bool sameProfile(const std::shared_ptr<const Profile>& a, const std::shared_ptr<const Profile>& b) {
+  if (a == b) return true;
+  return a && b && a->kind() == b->kind() && a->smoothingLength() == b->smoothingLength() &&
+         a->points() == b->points();
+}
+
+// The same placement of the same profiles (as ContactSearch holds them: null right profiles
+// resolved to the standard ones).
+bool sameTrack(const WheelsetTrackData& a, const WheelsetTrackData& b) {
+  return a.nominal_radius == b.nominal_radius && a.flange_back_distance == b.flange_back_distance &&
+         a.flange_back_position == b.flange_back_position && a.gauge == b.gauge &&
+         a.gauge_depth == b.gauge_depth && a.rail_inclination == b.rail_inclination &&
+         a.cant == b.cant && sameProfile(a.wheel_right, b.wheel_right) &&
+         sameProfile(a.rail_right, b.rail_right) && sameProfile(a.wheel_left, b.wheel_left) &&
+         sameProfile(a.rail_left, b.rail_left);
+}
+
+// A slot's model (null while its patch is absent) and whether its patch was present this step.
+struct Slot {
+  std::unique_ptr<ContactModel> model;
+  double a_cover = 0.0, b_cover = 0.0;  // the patch the model's fixed mesh or grid covers [m]
+  bool present = false;
+};
+
+// How far from first touch the search may leave a wheel before it is searched again there [m]: a
+// tenth of a 10 kN wheel's elastic approach.
+constexpr double kTouchTolerance = 1e-5;
+
+// The share of the reference patch a fixed mesh covers: fz_max = 1.5 fz0 (fz_max 0), a ~ fz^(1/3).
+const double kCover = std::cbrt(1.5);
+
+}  // namespace
+
+struct WheelsetContact::Impl {
+  WheelsetTrackData track;
+  ContactParameters parameters;
+  WheelsetContactOptions options;
+  ContactSearch search;
+  std::shared_ptr<const ContactTable> table;
+  std::array<std::map<std::string, Slot>, 2> slots;  // [0] left, [1] right, by slot name
+
+  Impl(const WheelsetTrackData& t, const ContactParameters& p, const WheelsetContactOptions& o)
+      : track(t), parameters(p), options(o), search(t, o.search) {
+    validate(parameters);
+    makeContactModel(parameters);  // throws now for a model this build does not provide
+    if (options.contact_table) {
+      if (!sameTrack(options.contact_table->contactSearch().data(), search.data()))
+        throw std::invalid_argument(
+            "contact_table: the shared table tabulates other track data or profiles than this "
+            "wheelset's");
+      table = std::move(options.contact_table);  // one reference per object: `table`
+    } else if (options.use_contact_table) {
+      table = std::make_shared<const ContactTable>(search, options.table);
+    }
+  }
+
+  WheelContactGeometry geometry(WheelSide side, const WheelsetPose& pose) const {
+    return table ? table->search(side, pose) : search.search(side, pose);
+  }
+
+  // Drops the models of one wheel's slots whose patch was not present this step: the patch
+  // starts from rest when it comes back.
+  void resetAbsent(std::map<std::string, Slot>& wheel) {
+    for (auto& kv : wheel) {
+      if (!kv.second.present) kv.second.model.reset();
+      kv.second.present = false;
+    }
+  }
+
+  // A model for a patch that appears. The reference patch a0, b0, fz0 has no other use here (each
+  // step gives a, b): it is set to the patch's, so that a fixed mesh (fz_max 0: 1.5 fn) fits the
+  // patch instead of a reference patch of another scale. Null, with the reason, if the patch is
+  // outside the model's ranges (a/b beyond Kalker's table).
+  std::unique_ptr<ContactModel> modelFor(const NormalPatch& np, std::string* why) const {
+    // As checkStepInput would refuse the step: said in the patch's own terms, not as a0/b0.
+    if (!(np.a >= 0.1 * np.b && np.a <= 10.0 * np.b)) {
+      *why = "the patch's a/b = " + std::to_string(np.a / np.b) +
+             " is outside Kalker's table [0.1, 10], which the elliptic-patch models take";
+      return nullptr;
+    }
+    ContactParameters q = parameters;
+    q.a0 = np.a;
+    q.b0 = np.b;
+    q.fz0 = np.fn;
+    q.fz_max = 0.0;
+    try {
+      return makeContactModel(q);
+    } catch (const std::exception& e) {
+      *why = e.what();
+      return nullptr;
+    }
+  }
+
+  WheelResult stepWheel(WheelSide side, const WheelsetState& s, double dt) {
+    std::map<std::string, Slot>& wheel = slots[side == WheelSide::kLeft ? 0 : 1];
+    WheelResult r;
+    r.side = side;
+    const double load = side == WheelSide::kLeft ? s.fz_left : s.fz_right;
+    const auto finish = [&](WheelStatus status, std::string message, bool clear) {
+      r.status = status;
+      r.message = std::move(message);
+      r.patches.clear();
+      if (clear) resetAbsent(wheel);  // no patch present: every slot of the wheel
+      return r;
+    };
+    // Rejected input leaves the history as it was, as a model's kRejected step does.
+    if (!finite(s.pose) || !finite(s.motion) || !std::isfinite(load) || !std::isfinite(dt))
+      return finish(WheelStatus::kInvalidInput, "a state value or dt is not finite", false);
+    if (dt < 0.0) return finish(WheelStatus::kInvalidInput, "dt < 0", false);
+    if (!(load > 0.0)) return finish(WheelStatus::kNoLoad, "vertical load <= 0", true);
+
+    // The load sets the approach, so the wheel is searched at first touch: from z = 0 lowered or
+    // raised by the closest candidate's vertical gap (a vertical shift moves every vertical gap
+    // alike, so one more search lands on it) when that is more than kTouchTolerance. The normal
+    // problem's approach then starts where its gap functions were sampled.
+    WheelsetPose pose = s.pose;
+    pose.z = 0.0;
+    WheelContactGeometry g = geometry(side, pose);
+    if (g.status == ContactSearchStatus::kOk && g.closest >= 0 &&
+        std::abs(g.candidates[g.closest].vertical_gap) > kTouchTolerance) {
+      pose.z -= g.candidates[g.closest].vertical_gap;
+      g = geometry(side, pose);
+    }
+    if (g.status == ContactSearchStatus::kInvalidInput)
+      return finish(WheelStatus::kInvalidInput, g.message, false);
+    if (g.status != ContactSearchStatus::kOk || g.candidates.empty())
+      return finish(WheelStatus::kNoContact, g.message.empty() ? "no candidate" : g.message, true);
+
+    const WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, options.normal);
+    if (n.status == NormalStatus::kNoContact)
+      return finish(WheelStatus::kNoContact, n.message, true);
+    if (n.status != NormalStatus::kOk || n.patches.size() != g.candidates.size())
+      return finish(WheelStatus::kNormalFailed,
+                    n.message.empty() ? "the normal problem found no solution" : n.message, true);
+
+    std::map<ContactZone, int> rank;
+    for (size_t i = 0; i < g.candidates.size(); ++i) {
+      const NormalPatch& np = n.patches[i];
+      if (!(np.fn >= kMinLoad)) continue;  // out of contact
+      PatchResult p;
+      p.geometry = g.candidates[i];
+      p.zone = p.geometry.zone;
+      const int k = ++rank[p.zone];
+      p.slot = std::string(zoneName(p.zone)) + (k > 1 ? "_" + std::to_string(k) : "");
+      p.normal = np;
+      p.creepages = patchCreepages(side, pose, s.motion, p.geometry, track);
+
+      Slot& slot = wheel[p.slot];
+      slot.present = true;
+      if (p.creepages.status == CreepageStatus::kInvalidInput) {
+        // No creepages, no tangential forces; the slot is kept as a refused step keeps a model.
+        p.tangential_status = StepStatus::kRejected;
+        p.message = "creepages: " + p.creepages.message;
+        r.patches.push_back(std::move(p));
+        continue;
+      }
+      // The exact model refuses a patch beyond its grid (the FastSim models grow their mesh): a
+      // patch that outgrows it restarts from rest on a grid for the patch, saying so.
+      const bool outgrown =
+          slot.model && parameters.model == "exact" && (np.a > slot.a_cover || np.b > slot.b_cover);
+      if (!slot.model || outgrown) {  // appears: from rest
+        slot.model = modelFor(np, &p.message);
+        slot.a_cover = kCover * np.a;
+        slot.b_cover = kCover * np.b;
+      }
+      if (!slot.model) {
+        p.tangential_status = StepStatus::kRejected;
+        p.message = "tangential model: " + p.message;
+        r.patches.push_back(std::move(p));
+        continue;
+      }
+      StepInput in;
+      in.dt = dt;
+      in.V = s.motion.V;  // patchCreepages divides by it; at V = 0 the model stands still
+      in.xi = p.creepages.xi;
+      in.eta = p.creepages.eta;
+      in.phi = p.creepages.phi;
+      in.fz = np.fn;
+      in.a = np.a;
+      in.b = np.b;
+      const StepOutput out = slot.model->step(in);
+      p.fx = out.fx;
+      p.fs = out.fy;
+      p.mz = out.mz;
+      p.tangential_status = out.status;
+      p.message = out.message;
+      if (outgrown && out.status == StepStatus::kOk)
+        p.message =
+            "the patch outgrew the exact model's grid: restarted from rest on a grid for it";
+      r.patches.push_back(std::move(p));
+    }
+    resetAbsent(wheel);
+    if (r.patches.empty()) return finish(WheelStatus::kNoContact, "no patch carries load", false);
+    r.status = WheelStatus::kOk;
+    return r;
+  }
+};
+
+WheelsetContact::WheelsetContact(const WheelsetTrackData& track,
+                                 const ContactParameters& parameters,
+                                 const WheelsetContactOptions& options)
+    : impl_(std::make_unique<Impl>(track, parameters, options)) {}
+
+WheelsetContact::~WheelsetContact() = default;
+WheelsetContact::WheelsetContact(WheelsetContact&&) noexcept = default;
+WheelsetContact& WheelsetContact::operator=(WheelsetContact&&) noexcept = default;
+
+WheelsetResult WheelsetContact::step(const WheelsetState& state, double dt) {
+  WheelsetResult r;
+  r.left = impl_->stepWheel(WheelSide::kLeft, state, dt);
+  r.right = impl_->stepWheel(WheelSide::kRight, state, dt);
+  return r;
+}
+
+void WheelsetContact::reset() {
+  for (auto& wheel : impl_->slots) wheel.clear();
+}
+
+const ContactSearch& WheelsetContact::search() const {
+  return impl_->search;
+}
+const ContactParameters& WheelsetContact::parameters() const {
+  return impl_->parameters;
+}
+
+}  // namespace wheel_rail_contact

@@ -1,0 +1,380 @@
+// WheelsetContact: the search, the normal problem, the creepages and a creep-force model tied
+// together, on the Manchester benchmark's case A-2.2 (S1002 on UIC60 1:40, the built-in profiles).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "wheel_rail_contact/contact_model.hpp"
+#include "wheel_rail_contact/wheelset/wheelset_contact.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+/// The benchmark's right-wheel state at lateral shift y_mm (CONTACT's axes: to the right) in our
+/// REP 103 axes (doc/profiles.md): y and yaw change sign, roll does not; omega = -vpitch. The
+/// states are the right-wheel rows at 0.5, 5, 5.5 and 6.5 mm of test/data/profiles/a22_cases.csv.
+WheelsetState a22(double y_mm, double yaw, double roll, double vpitch) {
+  WheelsetState s;
+  s.pose.y = -y_mm * 1e-3;
+  s.pose.yaw = -yaw;
+  s.pose.roll = roll;
+  s.motion.V = 2.0;
+  s.motion.omega = -vpitch;
+  s.fz_left = s.fz_right = 1e4;
+  return s;
+}
+WheelsetState tread() {
+  return a22(0.5, 0.0012, -2.304e-05, -4.34741);
+}
+WheelsetState corner() {
+  return a22(5.0, 0.012, -0.0003554, -4.33536);
+}
+WheelsetState corner2() {
+  return a22(5.5, 0.0132, -0.0004777, -4.33189);
+}
+WheelsetState flange() {
+  return a22(6.5, 0.0156, -0.004376, -4.27488);
+}
+
+/// The elliptic-patch models take a/b in Kalker's table, [0.1, 10]; a patch beyond is refused.
+bool modelTakes(const NormalPatch& n) {
+  return n.a >= 0.1 * n.b && n.a <= 10.0 * n.b;
+}
+
+/// The mirror image in the track's x-z plane: the left wheel then sees what the right one saw.
+WheelsetState mirrored(WheelsetState s) {
+  s.pose.y = -s.pose.y;
+  s.pose.yaw = -s.pose.yaw;
+  s.pose.roll = -s.pose.roll;
+  s.motion.vy = -s.motion.vy;
+  s.motion.yaw_rate = -s.motion.yaw_rate;
+  s.motion.curvature = -s.motion.curvature;
+  std::swap(s.fz_left, s.fz_right);
+  return s;
+}
+
+ContactParameters parameters(const std::string& model) {
+  ContactParameters p;
+  p.model = model;
+  return p;
+}
+
+double verticalLoad(const WheelResult& w) {
+  double sum = 0.0;
+  for (const PatchResult& p : w.patches) sum += p.normal.fn * std::cos(p.geometry.contact_angle);
+  return sum;
+}
+
+void expectAllFinite(const WheelResult& w) {
+  for (const PatchResult& p : w.patches) {
+    for (double v : {p.fx, p.fs, p.mz, p.normal.fn, p.normal.a, p.normal.b, p.normal.pmax,
+                     p.creepages.xi, p.creepages.eta, p.creepages.phi})
+      EXPECT_TRUE(std::isfinite(v)) << p.slot;
+  }
+}
+
+const PatchResult* find(const WheelResult& w, ContactZone zone) {
+  for (const PatchResult& p : w.patches)
+    if (p.zone == zone) return &p;
+  return nullptr;
+}
+
+}  // namespace
+
+TEST(WheelsetContact, PatchesCarryTheWheelLoadAndTheSearchsGeometry) {
+  WheelsetContact c(WheelsetTrackData{}, parameters("steady"));
+  for (const WheelsetState& s : {tread(), corner(), corner2(), flange()}) {
+    const WheelsetResult r = c.step(s, 0.0);
+    for (const WheelResult* w : {&r.left, &r.right}) {
+      ASSERT_EQ(w->status, WheelStatus::kOk) << w->message;
+      ASSERT_FALSE(w->patches.empty());
+      // The normal forces' vertical components add up to the wheel's load.
+      EXPECT_NEAR(verticalLoad(*w), 1e4, 1e-3 * 1e4) << s.pose.y;
+      expectAllFinite(*w);
+      for (const PatchResult& p : w->patches) {
+        EXPECT_GT(p.normal.fn, 0.0);
+        EXPECT_GT(p.normal.a, 0.0);
+        EXPECT_GT(p.normal.b, 0.0);
+        EXPECT_GT(p.normal.pmax, 0.0);
+        if (modelTakes(p.normal)) {
+          EXPECT_EQ(p.tangential_status, StepStatus::kOk) << p.message;
+        } else {  // refused, saying why, with zero forces
+          EXPECT_EQ(p.tangential_status, StepStatus::kRejected) << p.slot;
+          EXPECT_NE(p.message.find("Kalker's table"), std::string::npos) << p.message;
+          EXPECT_EQ(p.fx, 0.0);
+          EXPECT_EQ(p.fs, 0.0);
+          EXPECT_EQ(p.mz, 0.0);
+        }
+      }
+    }
+    // The same candidates as the search's own.
+    const WheelContactGeometry g = c.search().search(WheelSide::kRight, s.pose);
+    ASSERT_EQ(g.status, ContactSearchStatus::kOk);
+    const PatchResult& first = r.right.patches.front();
+    bool found = false;
+    for (const ContactCandidate& k : g.candidates)
+      found |=
+          k.zone == first.zone && std::abs(k.rail_file.x() - first.geometry.rail_file.x()) < 1e-9;
+    EXPECT_TRUE(found) << s.pose.y;
+  }
+  // The benchmark's regimes on the right wheel: tread at 0.5 mm, flange at 6.5 mm.
+  EXPECT_NE(find(c.step(tread(), 0.0).right, ContactZone::kTread), nullptr);
+  EXPECT_NE(find(c.step(flange(), 0.0).right, ContactZone::kFlange), nullptr);
+}
+
+TEST(WheelsetContact, TangentialForcesAreTheModelsOnTheEquivalentEllipse) {
+  // Each patch's fx, fs, mz are the elliptic-patch model's forces for the patch's fn, a, b and
+  // creepages, in the patch's contact frame (fs the model's lateral force).
+  // Each slot's model is made when its patch appears, with the reference patch set to the
+  // patch's own (a0 = a, b0 = b, fz0 = fn, fz_max = 1.5 fn): the fixed mesh fits the patch.
+  for (const WheelsetState& s : {tread(), corner(), corner2(), flange()}) {
+    WheelsetContact c(WheelsetTrackData{}, parameters("steady"));
+    const WheelsetResult r = c.step(s, 0.0);
+    for (const WheelResult* w : {&r.left, &r.right})
+      for (const PatchResult& p : w->patches) {
+        if (!modelTakes(p.normal)) continue;  // refused (above)
+        ContactParameters q = parameters("steady");
+        q.a0 = p.normal.a;
+        q.b0 = p.normal.b;
+        q.fz0 = p.normal.fn;
+        auto model = makeContactModel(q);
+        StepInput in;
+        in.V = s.motion.V;
+        in.xi = p.creepages.xi;
+        in.eta = p.creepages.eta;
+        in.phi = p.creepages.phi;
+        in.fz = p.normal.fn;
+        in.a = p.normal.a;
+        in.b = p.normal.b;
+        const StepOutput o = model->step(in);
+        EXPECT_STREQ(o.message, "") << p.slot;  // the mesh covers the patch: no note
+        EXPECT_EQ(p.fx, o.fx);
+        EXPECT_EQ(p.fs, o.fy);
+        EXPECT_EQ(p.mz, o.mz);
+      }
+  }
+}
+
+TEST(WheelsetContact, TheLeftWheelInTheMirroredStateIsTheRightOneMirrored) {
+  // Mirror symmetry in the track's x-z plane: x and z keep their sense, y turns over; so the
+  // mirrored wheel's fn, a, b, pmax, xi and fx are the same, and eta, phi, fs, mz change sign.
+  for (const WheelsetState& s : {tread(), corner(), corner2(), flange()}) {
+    WheelsetContact c(WheelsetTrackData{}, parameters("steady"));
+    const WheelResult right = c.step(s, 0.0).right;
+    const WheelResult left = c.step(mirrored(s), 0.0).left;
+    ASSERT_EQ(right.patches.size(), left.patches.size());
+    for (size_t i = 0; i < right.patches.size(); ++i) {
+      const PatchResult &r = right.patches[i], &l = left.patches[i];
+      const double tol = 1e-6;
+      EXPECT_EQ(l.slot, r.slot);
+      EXPECT_NEAR(l.geometry.rail_file.x(), r.geometry.rail_file.x(), 1e-9);
+      EXPECT_NEAR(l.normal.fn, r.normal.fn, tol * r.normal.fn);
+      EXPECT_NEAR(l.normal.pmax, r.normal.pmax, tol * r.normal.pmax);
+      EXPECT_NEAR(l.creepages.xi, r.creepages.xi, 1e-9);
+      EXPECT_NEAR(l.creepages.eta, -r.creepages.eta, 1e-9);
+      EXPECT_NEAR(l.creepages.phi, -r.creepages.phi, 1e-6);
+      const double f = 1e-4 * r.normal.fn;
+      EXPECT_NEAR(l.fx, r.fx, f);
+      EXPECT_NEAR(l.fs, -r.fs, f);
+      EXPECT_NEAR(l.mz, -r.mz, f * 1e-2);
+    }
+  }
+}
+
+TEST(WheelsetContact, EachSlotKeepsItsHistoryAndAPatchThatAppearsStartsFromRest) {
+  // nss: the first step (dt = 0) has rolled nothing, so no tangential force; stepping on, the
+  // force builds up. A patch that vanishes is reset: back on the gauge corner, its patch's first
+  // step equals that of a fresh object's first step with the same dt.
+  const double dt = 2e-4;  // 0.4 mm of travel, a fraction of the patch
+  WheelsetContact c(WheelsetTrackData{}, parameters("nss"));
+  WheelsetResult r = c.step(corner2(), 0.0);
+  const PatchResult* p = find(r.right, ContactZone::kGaugeCorner);
+  ASSERT_NE(p, nullptr) << r.right.message;
+  EXPECT_EQ(p->fx, 0.0);
+  EXPECT_EQ(p->fs, 0.0);
+  double last = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    r = c.step(corner2(), dt);
+    p = find(r.right, ContactZone::kGaugeCorner);
+    ASSERT_NE(p, nullptr);
+    const double f = std::hypot(p->fx, p->fs);
+    EXPECT_GT(f, last) << k;  // carried over: it keeps building up
+    last = f;
+  }
+  r = c.step(tread(), dt);
+  EXPECT_EQ(find(r.right, ContactZone::kGaugeCorner), nullptr);
+  r = c.step(corner2(), dt);
+  WheelsetContact fresh(WheelsetTrackData{}, parameters("nss"));
+  const WheelsetResult f = fresh.step(corner2(), dt);
+  const PatchResult *again = find(r.right, ContactZone::kGaugeCorner),
+                    *first = find(f.right, ContactZone::kGaugeCorner);
+  ASSERT_NE(again, nullptr);
+  ASSERT_NE(first, nullptr);
+  EXPECT_EQ(again->fx, first->fx);
+  EXPECT_EQ(again->fs, first->fs);
+  EXPECT_LT(std::hypot(again->fx, again->fs), last);
+  // reset(): the next step equals a fresh object's.
+  c.reset();
+  const WheelsetResult afterReset = c.step(corner2(), dt);
+  ASSERT_NE(find(afterReset.right, ContactZone::kGaugeCorner), nullptr);
+  EXPECT_EQ(find(afterReset.right, ContactZone::kGaugeCorner)->fx, first->fx);
+}
+
+TEST(WheelsetContact, BadInputGivesAStatusAndZeroForcesNeverNaN) {
+  WheelsetContact c(WheelsetTrackData{}, parameters("nss"));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  WheelsetState s = tread();
+  s.pose.y = nan;
+  WheelsetResult r = c.step(s, 1e-3);
+  EXPECT_EQ(r.left.status, WheelStatus::kInvalidInput);
+  EXPECT_EQ(r.right.status, WheelStatus::kInvalidInput);
+  EXPECT_TRUE(r.left.patches.empty());
+  EXPECT_FALSE(r.left.message.empty());
+
+  s = tread();
+  s.motion.omega = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(c.step(s, 1e-3).right.status, WheelStatus::kInvalidInput);
+  EXPECT_EQ(c.step(tread(), -1e-3).right.status, WheelStatus::kInvalidInput);
+  EXPECT_EQ(c.step(tread(), nan).right.status, WheelStatus::kInvalidInput);
+
+  s = tread();
+  s.fz_left = 0.0;
+  s.fz_right = -5.0;
+  r = c.step(s, 1e-3);
+  EXPECT_EQ(r.left.status, WheelStatus::kNoLoad);
+  EXPECT_EQ(r.right.status, WheelStatus::kNoLoad);
+  EXPECT_TRUE(r.right.patches.empty());
+
+  s = tread();
+  s.pose.yaw = 0.5;  // beyond the search's range
+  r = c.step(s, 1e-3);
+  EXPECT_EQ(r.right.status, WheelStatus::kInvalidInput);
+  EXPECT_FALSE(r.right.message.empty());
+
+  // A wheel that is not above its rail: no candidate, no contact.
+  WheelsetContactOptions wide;
+  wide.search.max_abs_y = 0.5;
+  WheelsetContact off(WheelsetTrackData{}, parameters("nss"), wide);
+  s = tread();
+  s.pose.y = 0.2;
+  r = off.step(s, 1e-3);
+  EXPECT_EQ(r.left.status, WheelStatus::kNoContact) << r.left.message;
+  EXPECT_TRUE(r.left.patches.empty());
+  EXPECT_FALSE(r.left.message.empty());
+
+  // Finite but absurd values: a status or finite forces, never a throw or a NaN.
+  for (int k = 0; k < 4; ++k) {
+    s = tread();
+    if (k == 0) s.fz_right = 1e300;
+    if (k == 1) s.motion.V = 1e300;
+    if (k == 2) s.motion.omega = -1e300;
+    if (k == 3) s.motion.curvature = 1e300;
+    r = c.step(s, 1e-3);
+    expectAllFinite(r.right);
+    expectAllFinite(r.left);
+    if (r.right.status != WheelStatus::kOk) {
+      EXPECT_FALSE(r.right.message.empty()) << k;
+    }
+    for (const PatchResult& p : r.right.patches) {
+      if (p.tangential_status != StepStatus::kOk) {
+        EXPECT_FALSE(p.message.empty()) << k;
+      }
+    }
+  }
+
+  // After all that, a good step is a good step.
+  r = c.step(tread(), 1e-3);
+  EXPECT_EQ(r.right.status, WheelStatus::kOk);
+  expectAllFinite(r.right);
+}
+
+TEST(WheelsetContact, ConstructionRefusesBadDataNamingTheParameter) {
+  ContactParameters p;
+  p.G = -1.0;
+  try {
+    WheelsetContact c(WheelsetTrackData{}, p);
+    FAIL() << "accepted G < 0";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("G", 0), 0u) << e.what();
+  }
+  WheelsetTrackData t;
+  t.gauge = 5.0;
+  try {
+    WheelsetContact c(t, ContactParameters{});
+    FAIL() << "accepted a 5 m gauge";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("gauge"), std::string::npos) << e.what();
+  }
+}
+
+TEST(WheelsetContact, AContactTableGivesTheDirectSearchsPatches) {
+  // The table swaps in for the search (contact_table.hpp): the same slots, and the normal
+  // solution and place within what interpolating the geometry moves them. A small table covering
+  // the states (its own cost: one to three searches per node).
+  WheelsetContactOptions o;
+  o.use_contact_table = true;
+  o.table.max_abs_lateral = 0.004;  // the wheel's own lateral displacement, about |y| + 0.5 mm
+  o.table.max_abs_yaw = 0.02;
+  o.table.max_abs_roll = 0.005;
+  WheelsetContact table(WheelsetTrackData{}, parameters("steady"), o);
+  WheelsetContact direct(WheelsetTrackData{}, parameters("steady"));
+  for (const WheelsetState& s : {tread(), corner2()}) {
+    const WheelsetResult t = table.step(s, 0.0), d = direct.step(s, 0.0);
+    for (const auto& [wt, wd] : {std::pair{&t.left, &d.left}, std::pair{&t.right, &d.right}}) {
+      ASSERT_EQ(wt->status, WheelStatus::kOk) << wt->message;
+      ASSERT_EQ(wt->patches.size(), wd->patches.size());
+      for (size_t i = 0; i < wd->patches.size(); ++i) {
+        const PatchResult &pt = wt->patches[i], &pd = wd->patches[i];
+        EXPECT_EQ(pt.slot, pd.slot);
+        EXPECT_NEAR(pt.geometry.rail_file.x(), pd.geometry.rail_file.x(), 1e-4);
+        EXPECT_NEAR(pt.normal.fn, pd.normal.fn, 0.02 * pd.normal.fn);
+        EXPECT_NEAR(pt.normal.pmax, pd.normal.pmax, 0.05 * pd.normal.pmax);
+      }
+    }
+  }
+}
+
+TEST(WheelsetContact, AnExactModelsPatchThatOutgrowsItsGridRestartsSayingSo) {
+  // The exact model's grid is fixed (1.5 times the first patch's load); the tread patch at 1 mm is
+  // longer than at 0.5 mm by more than that covers, so the slot restarts on a new grid.
+  ContactParameters p = parameters("exact");
+  p.nx = p.ny = 8;
+  WheelsetContact c(WheelsetTrackData{}, p);
+  const double dt = 1e-3;  // 2 mm: a few of the grid's elements
+  c.step(tread(), 0.0);
+  const WheelsetResult before = c.step(tread(), dt);
+  const PatchResult* t0 = find(before.right, ContactZone::kTread);
+  ASSERT_NE(t0, nullptr);
+  EXPECT_EQ(t0->tangential_status, StepStatus::kOk) << t0->message;
+  EXPECT_NE(t0->fx, 0.0);
+  const WheelsetResult after = c.step(a22(1.0, 0.0024, -5.049e-05, -4.34658), dt);
+  const PatchResult* t1 = find(after.right, ContactZone::kTread);
+  ASSERT_NE(t1, nullptr);
+  ASSERT_GT(t1->normal.a, std::cbrt(1.5) * t0->normal.a);  // the premise: it outgrew the grid
+  EXPECT_EQ(t1->tangential_status, StepStatus::kOk) << t1->message;
+  EXPECT_NE(t1->message.find("outgrew the exact model's grid"), std::string::npos) << t1->message;
+}
+
+TEST(WheelsetContact, ASharedContactTableMustTabulateTheSameTrack) {
+  // A vehicle's wheelsets share one table (built once); one of other track data is refused.
+  ContactTableOptions small;
+  small.max_abs_lateral = 0.002;
+  small.max_abs_yaw = 0.01;
+  small.max_abs_roll = 0.0025;
+  WheelsetTrackData wide;
+  wide.gauge = 1.440;
+  WheelsetContactOptions o;
+  o.contact_table = std::make_shared<const ContactTable>(ContactSearch(wide), small);
+  try {
+    WheelsetContact c(WheelsetTrackData{}, ContactParameters{}, o);
+    FAIL() << "accepted a table of another gauge";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("contact_table:", 0), 0u) << e.what();
+  }
+  WheelsetContact first(wide, ContactParameters{}, o), second(wide, ContactParameters{}, o);
+  EXPECT_EQ(o.contact_table.use_count(), 3);  // held by both, built once
+}
