@@ -86,6 +86,9 @@ struct NormalPatch {
   /// solveWheelLoad: the candidate whose patch this candidate's has merged into (this one's fn
   /// 0), -1 if none. The merged patch lies in that candidate's contact plane.
   int merged_into = -1;
+  /// The strip method's weight in a patch blended from Hertz and the strips (0 for Hertz, 1 for
+  /// the strips alone); method names the larger part.
+  double strip_weight = 0.0;
 };
 
 struct NormalOptions {
