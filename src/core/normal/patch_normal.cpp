@@ -118,22 +118,6 @@ bool lateralExtent(const PatchGeometry& g, double depth, double* lo, double* hi)
   return true;
 }
 
-/// Least-squares B of h - h0 = B (eta - eta0)^2 over the samples inside [lo, hi]; the number of
-/// samples in *count.
-double fitLateralCurvature(const PatchGeometry& g, double lo, double hi, int* count) {
-  double num = 0.0, den = 0.0;
-  int k = 0;
-  for (std::size_t i = 0; i < g.eta.size(); ++i) {
-    if (g.eta[i] < lo || g.eta[i] > hi) continue;
-    const double q = (g.eta[i] - g.eta0) * (g.eta[i] - g.eta0);
-    num += (g.h[i] - g.h0) * q;
-    den += q * q;
-    ++k;
-  }
-  *count = k;
-  return den > 0.0 ? num / den : 0.0;
-}
-
 /// Gauss-Legendre nodes and weights on [0, 1], 6 points.
 constexpr double kGx[6] = {0.033765242898423986, 0.16939530676686776, 0.38069040695840156,
                            0.61930959304159845,  0.83060469323313224, 0.96623475710157603};
@@ -279,21 +263,21 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   const double ymid = 0.5 * (ys + ye);
   const double half = std::max(0.5 * (ye - ys), 1e-3 * spacing);
   const double B = std::max(0.5 * d0 / (half * half), 1e-3 * A0);
-  int inside = 0;
-  const double B_fit = fitLateralCurvature(g, ys, ye, &inside);
 
   // How far from elliptic (Hertz up to 1): the gap's largest departure from its least-squares
   // parabola about the minimum over the region, over hertz_tolerance d0 / 2, or R_x's largest
   // variation, over hertz_tolerance A. Samples count with a weight falling to 0 at the region's
   // edge (h - h0 = d0 / 2), so that a sample entering the region as the approach grows changes
-  // neither the fit (Hertz's B) nor the ratio at once. A patch within a few samples of the gap
-  // function is taken as elliptic (its samples cannot show more than a parabola).
+  // neither the fit (Hertz's B) nor the ratio at once.
   double ratio = std::numeric_limits<double>::infinity();
-  double B_taper = B_fit;
-  if (inside < 3) {
-    ratio = 0.0;
-  } else if (o.allow_hertz && B_fit > 0.0) {
-    double dev = 0.0, adev = 0.0, num = 0.0, den = 0.0;
+  double B_taper = 0.0;
+  {
+    // The fit starts from the gap's local parabola at its minimum, with the weight of one sample
+    // a spacing away, so that it goes over continuously from that parabola to the samples' fit
+    // as they enter the region.
+    const int m = std::clamp(g.imin, 1, static_cast<int>(g.eta.size()) - 2);
+    const double B_local = (g.h[m + 1] - 2.0 * g.h[m] + g.h[m - 1]) / (2.0 * spacing * spacing);
+    double num = B_local * std::pow(spacing, 4), den = std::pow(spacing, 4);
     auto taper = [&](std::size_t i) {
       return std::clamp(4.0 * (1.0 - (g.h[i] - g.h0) / (0.5 * d0)), 0.0, 1.0);
     };
@@ -303,27 +287,25 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
       num += tp * (g.h[i] - g.h0) * q;
       den += tp * q * q;
     }
-    if (den > 0.0 && num > 0.0) B_taper = num / den;
-    for (std::size_t i = 0; i < g.eta.size(); ++i) {
-      if (g.eta[i] < ys || g.eta[i] > ye) continue;
-      const double e = g.eta[i] - g.eta0, tp = taper(i);
-      dev = std::max(dev, tp * std::abs(g.h[i] - g.h0 - B_taper * e * e));
-      adev = std::max(adev, tp * std::abs(g.curvatureAt(static_cast<int>(i)) - A0));
+    B_taper = num / den;
+    if (o.allow_hertz && B_taper > 0.0) {
+      double dev = 0.0, adev = 0.0;
+      for (std::size_t i = 0; i < g.eta.size(); ++i) {
+        if (g.eta[i] < ys || g.eta[i] > ye) continue;
+        const double e = g.eta[i] - g.eta0, tp = taper(i);
+        dev = std::max(dev, tp * std::abs(g.h[i] - g.h0 - B_taper * e * e));
+        adev = std::max(adev, tp * std::abs(g.curvatureAt(static_cast<int>(i)) - A0));
+      }
+      const double tol = std::max(o.hertz_tolerance, 1e-12);
+      ratio = std::max(dev / (tol * 0.5 * d0), adev / (tol * A0));
     }
-    const double tol = std::max(o.hertz_tolerance, 1e-12);
-    ratio = std::max(dev / (tol * 0.5 * d0), adev / (tol * A0));
   }
 
   const int n = o.strips;
   start.strips.resize(n);
   auto hertzPatch = [&]() {
     NormalPatch out = start;
-    double Bh = B_taper;
-    if (inside < 3) {  // the gap's local parabola at its minimum
-      const int i = std::clamp(g.imin, 1, static_cast<int>(g.eta.size()) - 2);
-      Bh = (g.h[i + 1] - 2.0 * g.h[i] + g.h[i - 1]) / (2.0 * spacing * spacing);
-    }
-    Bh = std::max(Bh, 1e-3 * A0);
+    const double Bh = std::max(B_taper, 1e-3 * A0);
     const HertzApproach hz = hertzFromApproach(A0, Bh, d0, Estar);
     out.method = NormalMethod::kHertz;
     out.a = hz.a;
