@@ -10,6 +10,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <string>
 
 #include "wheel_rail_contact/normal/patch_normal.hpp"
 
@@ -46,7 +47,10 @@ void Patch(benchmark::State& state) {
   const WheelNormal w = solveWheelLoad(g, 1e4, 8.2e10, 0.28);
   if (w.status != NormalStatus::kOk) state.SkipWithError(w.message.c_str());
   std::size_t i = static_cast<std::size_t>(g.closest);
-  state.SetLabel(w.patches[i].method == NormalMethod::kHertz ? "hertz" : "strips");
+  const double ws = w.patches[i].strip_weight;
+  state.SetLabel(ws == 0.0   ? std::string("hertz")
+                 : ws == 1.0 ? std::string("strips")
+                             : "blend, strips' weight " + std::to_string(ws));
   const double approach = w.patches[i].approach;
   for (auto _ : state)
     benchmark::DoNotOptimize(solvePatchNormal(g.candidates[i], approach, 8.2e10, 0.28));

@@ -169,3 +169,59 @@ TEST(WheelLoad, WarmStartGivesTheColdResult) {
       }
     }
 }
+
+TEST(WheelLoad, PatchForceGrowsSmoothlyWhereHertzGivesWayToTheStrips) {
+  // Single-patch poses of the sweep where a patch leaves the elliptic regime as the approach
+  // grows (Hertz, the blend and the strips in turn): over 1000 approach steps up to the approach
+  // of 30 kN, fn never decreases, and fn, pmax, a and b have no jump: the local exponent
+  // d ln f / d ln(approach) of a step stays within bounds (Hertz: fn 3/2, pmax, a, b 1/2; a jump
+  // of 1 % at step 500 gives 5).
+  struct Pose {
+    WheelSide side;
+    double y_mm, yaw;
+  };
+  const Pose poses[] = {{WheelSide::kLeft, 6.0, 0.01},   {WheelSide::kLeft, 6.1, 0.01},
+                        {WheelSide::kLeft, 6.2, 0.01},   {WheelSide::kLeft, 5.8, 0.0},
+                        {WheelSide::kLeft, 3.9, 0.01},   {WheelSide::kLeft, 3.8, 0.01},
+                        {WheelSide::kRight, -3.3, 0.01}, {WheelSide::kRight, -5.8, 0.01},
+                        {WheelSide::kLeft, 5.7, 0.0},    {WheelSide::kLeft, 3.6, 0.0},
+                        {WheelSide::kLeft, 3.1, 0.01},   {WheelSide::kRight, -6.4, 0.01},
+                        {WheelSide::kLeft, 4.2, 0.01},   {WheelSide::kRight, -4.1, 0.01},
+                        {WheelSide::kLeft, 2.9, 0.01},   {WheelSide::kLeft, 6.5, 0.01}};
+  constexpr int kSteps = 1000;
+  int blended = 0;
+  for (const Pose& p : poses) {
+    const std::string where = std::string(p.side == WheelSide::kRight ? "right" : "left") + " y " +
+                              std::to_string(p.y_mm) + " yaw " + std::to_string(p.yaw);
+    const WheelContactGeometry g = atFirstTouch(p.side, p.y_mm, p.yaw);
+    ASSERT_EQ(g.candidates.size(), 1u) << where;
+    const ContactCandidate& c = g.candidates[0];
+    const WheelNormal w = solveWheelLoad(g, 3e4, kG, kNu);
+    ASSERT_EQ(w.status, NormalStatus::kOk) << where << ": " << w.message;
+    const double top = w.patches[0].approach;
+    NormalPatch before;
+    bool hertz = false, strips = false;
+    for (int i = 1; i <= kSteps; ++i) {
+      const NormalPatch now = solvePatchNormal(c, top * i / kSteps, kG, kNu);
+      ASSERT_EQ(now.status, NormalStatus::kOk) << where << " step " << i << ": " << now.message;
+      ASSERT_GT(now.fn, 0.0) << where << " step " << i;
+      hertz = hertz || now.strip_weight == 0.0;
+      strips = strips || now.strip_weight > 0.0;
+      blended += now.strip_weight > 0.0 && now.strip_weight < 1.0;
+      if (i > 1) {
+        EXPECT_GE(now.fn, before.fn) << where << " step " << i;
+        if (i > 50) {
+          const double lnd = std::log(double(i) / (i - 1));
+          EXPECT_LT(std::log(now.fn / before.fn) / lnd, 2.5) << where << " step " << i;
+          EXPECT_LT(std::abs(std::log(now.pmax / before.pmax)) / lnd, 2.5)
+              << where << " step " << i;
+          EXPECT_LT(std::abs(std::log(now.a / before.a)) / lnd, 2.5) << where << " step " << i;
+          EXPECT_LT(std::abs(std::log(now.b / before.b)) / lnd, 2.5) << where << " step " << i;
+        }
+      }
+      before = now;
+    }
+    EXPECT_TRUE(hertz && strips) << where << ": the pose no longer crosses the switch";
+  }
+  EXPECT_GT(blended, 0);
+}

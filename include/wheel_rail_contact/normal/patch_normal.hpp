@@ -13,10 +13,14 @@
 /// the deepest interpenetration and A = 1 / (2 R_x(eta0)).
 /// - Hertz (kHertz) where the patch is elliptic: over the region h(0, eta) - h(0, eta0) < d0 / 2
 ///   the gap departs from its least-squares parabola B (eta - eta0)^2 by less than
-///   NormalOptions::hertz_tolerance of d0 / 2 and R_x varies by less than that fraction (patches
-///   within three samples of the gap function count as elliptic): Hertz's closed form for
-///   curvatures A, B and approach d0.
-/// - Otherwise (kNonHertzian) Kik-Piotrowski's strips with a y-dependent penetration factor, as
+///   NormalOptions::hertz_tolerance of d0 / 2 and R_x varies by less than that fraction; the
+///   samples weighted by min(1, 4 (1 - (h - h0) / (d0/2))), 0 at the region's edge, the fit
+///   starting from the gap's local parabola at eta0. With r the larger departure over its
+///   tolerance: Hertz's closed form for curvatures A, B and approach d0 where r <= 1.
+/// - For 1 < r < 2 Hertz's and the strips' solutions blended, the strips' weight
+///   w = t^2 (3 - 2t), t = r - 1 (NormalPatch::strip_weight), so that fn, pmax, a, b and the
+///   strips are continuous and fn grows monotonically in the approach across the change.
+/// - For r >= 2 (kNonHertzian) Kik-Piotrowski's strips with a y-dependent penetration factor, as
 ///   CONTACT's KPEC: the region's lateral extent [ys, ye] gives B = (d0/2) / ((ye - ys)/2)^2 about
 ///   ymid = (ys + ye)/2, Hertz's semi-axes aa, bb for A, B at approach d0, and
 ///     eps(eta) d0 = A aa^2 - (A aa^2 - B bb^2) ((eta - ymid) / bb)^2.
@@ -86,6 +90,9 @@ struct NormalPatch {
   /// solveWheelLoad: the candidate whose patch this candidate's has merged into (this one's fn
   /// 0), -1 if none. The merged patch lies in that candidate's contact plane.
   int merged_into = -1;
+  /// The strip method's weight in a patch blended from Hertz and the strips (0 for Hertz, 1 for
+  /// the strips alone); method names the larger part.
+  double strip_weight = 0.0;
 };
 
 struct NormalOptions {

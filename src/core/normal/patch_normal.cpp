@@ -118,22 +118,6 @@ bool lateralExtent(const PatchGeometry& g, double depth, double* lo, double* hi)
   return true;
 }
 
-/// Least-squares B of h - h0 = B (eta - eta0)^2 over the samples inside [lo, hi]; the number of
-/// samples in *count.
-double fitLateralCurvature(const PatchGeometry& g, double lo, double hi, int* count) {
-  double num = 0.0, den = 0.0;
-  int k = 0;
-  for (std::size_t i = 0; i < g.eta.size(); ++i) {
-    if (g.eta[i] < lo || g.eta[i] > hi) continue;
-    const double q = (g.eta[i] - g.eta0) * (g.eta[i] - g.eta0);
-    num += (g.h[i] - g.h0) * q;
-    den += q * q;
-    ++k;
-  }
-  *count = k;
-  return den > 0.0 ? num / den : 0.0;
-}
-
 /// Gauss-Legendre nodes and weights on [0, 1], 6 points.
 constexpr double kGx[6] = {0.033765242898423986, 0.16939530676686776, 0.38069040695840156,
                            0.61930959304159845,  0.83060469323313224, 0.96623475710157603};
@@ -215,6 +199,10 @@ void zeroForces(NormalPatch* p) {
 /// strips' patch is flagged.
 constexpr double kConcave = 1e-3;
 
+/// The ellipticity ratio (solvePatchNormal) from which a patch is the strips' alone; between 1
+/// and this, Hertz and the strips blended.
+constexpr double kBlendEnd = 2.0;
+
 /// Why a patch outgrew its gap function: at an end whose gap lies within the interpenetration the
 /// function stopped at a ridge to a neighbouring candidate (the two patches merge), otherwise at
 /// the height the search sampled.
@@ -252,13 +240,13 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   std::string why;
   if (!buildGeometry(c, &g, &why)) return fail(NormalStatus::kNoGapFunction, why, approach);
 
-  NormalPatch out;
-  out.approach = approach;
+  NormalPatch start;
+  start.approach = approach;
   const double d0 = approach - g.h0;  // deepest interpenetration
-  out.eta_centre = out.eta_min = out.eta_max = g.eta0;
+  start.eta_centre = start.eta_min = start.eta_max = g.eta0;
   if (!(d0 > 0.0)) {
-    out.message = "not in contact at this approach";
-    return out;
+    start.message = "not in contact at this approach";
+    return start;
   }
   const double Estar = contactModulus(G, nu);
   const double A0 = g.curvature(g.eta0);
@@ -275,33 +263,49 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   const double ymid = 0.5 * (ys + ye);
   const double half = std::max(0.5 * (ye - ys), 1e-3 * spacing);
   const double B = std::max(0.5 * d0 / (half * half), 1e-3 * A0);
-  int inside = 0;
-  const double B_fit = fitLateralCurvature(g, ys, ye, &inside);
 
-  // Elliptic enough for Hertz: the gap departs from its least-squares parabola about the minimum
-  // by little over the region, and R_x hardly varies; a patch within a few samples of the gap
-  // function is taken as elliptic (its samples cannot show more than a parabola).
-  bool elliptic = inside < 3;
-  if (!elliptic && o.allow_hertz && B_fit > 0.0) {
-    double dev = 0.0, adev = 0.0;
+  // How far from elliptic (Hertz up to 1): the gap's largest departure from its least-squares
+  // parabola about the minimum over the region, over hertz_tolerance d0 / 2, or R_x's largest
+  // variation, over hertz_tolerance A. Samples count with a weight falling to 0 at the region's
+  // edge (h - h0 = d0 / 2), so that a sample entering the region as the approach grows changes
+  // neither the fit (Hertz's B) nor the ratio at once.
+  double ratio = std::numeric_limits<double>::infinity();
+  double B_taper = 0.0;
+  {
+    // The fit starts from the gap's local parabola at its minimum, with the weight of one sample
+    // a spacing away, so that it goes over continuously from that parabola to the samples' fit
+    // as they enter the region.
+    const int m = std::clamp(g.imin, 1, static_cast<int>(g.eta.size()) - 2);
+    const double B_local = (g.h[m + 1] - 2.0 * g.h[m] + g.h[m - 1]) / (2.0 * spacing * spacing);
+    double num = B_local * std::pow(spacing, 4), den = std::pow(spacing, 4);
+    auto taper = [&](std::size_t i) {
+      return std::clamp(4.0 * (1.0 - (g.h[i] - g.h0) / (0.5 * d0)), 0.0, 1.0);
+    };
     for (std::size_t i = 0; i < g.eta.size(); ++i) {
       if (g.eta[i] < ys || g.eta[i] > ye) continue;
-      const double e = g.eta[i] - g.eta0;
-      dev = std::max(dev, std::abs(g.h[i] - g.h0 - B_fit * e * e));
-      adev = std::max(adev, std::abs(g.curvatureAt(static_cast<int>(i)) - A0));
+      const double q = (g.eta[i] - g.eta0) * (g.eta[i] - g.eta0), tp = taper(i);
+      num += tp * (g.h[i] - g.h0) * q;
+      den += tp * q * q;
     }
-    elliptic = dev <= o.hertz_tolerance * 0.5 * d0 && adev <= o.hertz_tolerance * A0;
+    B_taper = num / den;
+    if (o.allow_hertz && B_taper > 0.0) {
+      double dev = 0.0, adev = 0.0;
+      for (std::size_t i = 0; i < g.eta.size(); ++i) {
+        if (g.eta[i] < ys || g.eta[i] > ye) continue;
+        const double e = g.eta[i] - g.eta0, tp = taper(i);
+        dev = std::max(dev, tp * std::abs(g.h[i] - g.h0 - B_taper * e * e));
+        adev = std::max(adev, tp * std::abs(g.curvatureAt(static_cast<int>(i)) - A0));
+      }
+      const double tol = std::max(o.hertz_tolerance, 1e-12);
+      ratio = std::max(dev / (tol * 0.5 * d0), adev / (tol * A0));
+    }
   }
 
   const int n = o.strips;
-  out.strips.resize(n);
-  if (elliptic) {
-    double Bh = B_fit;
-    if (inside < 3) {  // the gap's local parabola at its minimum
-      const int i = std::clamp(g.imin, 1, static_cast<int>(g.eta.size()) - 2);
-      Bh = (g.h[i + 1] - 2.0 * g.h[i] + g.h[i - 1]) / (2.0 * spacing * spacing);
-    }
-    Bh = std::max(Bh, 1e-3 * A0);
+  start.strips.resize(n);
+  auto hertzPatch = [&]() {
+    NormalPatch out = start;
+    const double Bh = std::max(B_taper, 1e-3 * A0);
     const HertzApproach hz = hertzFromApproach(A0, Bh, d0, Estar);
     out.method = NormalMethod::kHertz;
     out.a = hz.a;
@@ -327,108 +331,148 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
       s.force = 0.5 * kPi * hz.p0 * hz.a * r * r * w;  // midpoint in eta
     }
     return out;
-  }
+  };
 
   // Strips with the y-dependent penetration factor eps(eta), quadratic from A aa^2 / d0 at ymid
   // to B bb^2 / d0 at ymid +- bb: on a Hertz gap the strips' region is Hertz's ellipse.
-  out.method = NormalMethod::kNonHertzian;
-  const HertzApproach hz = hertzFromApproach(A0, B, d0, Estar);
-  const double bb = std::max(hz.b, 1.1 * std::abs(g.eta0 - ymid));
-  const double ex = A0 * hz.a * hz.a, ey = B * bb * bb;  // eps d0 at the centre and at bb
-  auto penetration = [&](double e) {                     // eps(eta) d0 - (h(0, eta) - h0)
-    const double u = (e - ymid) / bb;
-    return std::max(0.0, ex - (ex - ey) * u * u) - (g.gap(e) - g.h0);
-  };
-  // Lateral extent: where the penetration is positive, connected to the minimum, by bisection
-  // between samples.
-  auto edge = [&](int dir, double* at) {
-    double inner = g.eta0;
-    for (int i = dir > 0 ? g.imin + 1 : g.imin - 1;; i += dir) {
-      if (i < 0 || i >= static_cast<int>(g.eta.size())) return false;
-      if (penetration(g.eta[i]) <= 0.0) {
-        double outer = g.eta[i], p_in = penetration(inner), p_out = penetration(outer);
-        for (int it = 0; it < 16; ++it) {
-          const double mid = 0.5 * (inner + outer), p = penetration(mid);
-          if (p > 0.0) {
-            inner = mid;
-            p_in = p;
-          } else {
-            outer = mid;
-            p_out = p;
+  auto stripPatch = [&]() {
+    NormalPatch out = start;
+    out.method = NormalMethod::kNonHertzian;
+    out.strip_weight = 1.0;
+    const HertzApproach hz = hertzFromApproach(A0, B, d0, Estar);
+    const double bb = std::max(hz.b, 1.1 * std::abs(g.eta0 - ymid));
+    const double ex = A0 * hz.a * hz.a, ey = B * bb * bb;  // eps d0 at the centre and at bb
+    auto penetration = [&](double e) {                     // eps(eta) d0 - (h(0, eta) - h0)
+      const double u = (e - ymid) / bb;
+      return std::max(0.0, ex - (ex - ey) * u * u) - (g.gap(e) - g.h0);
+    };
+    // Lateral extent: where the penetration is positive, connected to the minimum, by bisection
+    // between samples.
+    auto edge = [&](int dir, double* at) {
+      double inner = g.eta0;
+      for (int i = dir > 0 ? g.imin + 1 : g.imin - 1;; i += dir) {
+        if (i < 0 || i >= static_cast<int>(g.eta.size())) return false;
+        if (penetration(g.eta[i]) <= 0.0) {
+          double outer = g.eta[i], p_in = penetration(inner), p_out = penetration(outer);
+          for (int it = 0; it < 16; ++it) {
+            const double mid = 0.5 * (inner + outer), p = penetration(mid);
+            if (p > 0.0) {
+              inner = mid;
+              p_in = p;
+            } else {
+              outer = mid;
+              p_out = p;
+            }
           }
+          *at = inner + (outer - inner) * p_in / (p_in - p_out);  // the last interval: linear
+          return true;
         }
-        *at = inner + (outer - inner) * p_in / (p_in - p_out);  // the last interval: linear
-        return true;
+        inner = g.eta[i];
       }
-      inner = g.eta[i];
+    };
+    double lo = 0.0, hi = 0.0;
+    if (!edge(-1, &lo) || !edge(+1, &hi))
+      return fail(NormalStatus::kBeyondGapFunction, beyondMessage(g, d0), approach);
+    {
+      // A gap that turns concave under the patch (a plateau, a second lump beside the minimum) is
+      // where the strips are weak: say so.
+      double worst = 0.0;
+      for (int i = 1; i + 1 < static_cast<int>(g.eta.size()); ++i)
+        if (g.eta[i] > lo && g.eta[i] < hi)
+          worst = std::min(worst, g.h[i + 1] - 2.0 * g.h[i] + g.h[i - 1]);  // spacing^2 h''
+      if (worst < -kConcave * d0)
+        out.message =
+            "the gap turns concave under the patch: the strips may miss part of the "
+            "contact (doc/normal_problem.md)";
     }
-  };
-  double lo = 0.0, hi = 0.0;
-  if (!edge(-1, &lo) || !edge(+1, &hi))
-    return fail(NormalStatus::kBeyondGapFunction, beyondMessage(g, d0), approach);
-  {
-    // A gap that turns concave under the patch (a plateau, a second lump beside the minimum) is
-    // where the strips are weak: say so.
-    double worst = 0.0;
-    for (int i = 1; i + 1 < static_cast<int>(g.eta.size()); ++i)
-      if (g.eta[i] > lo && g.eta[i] < hi)
-        worst = std::min(worst, g.h[i + 1] - 2.0 * g.h[i] + g.h[i - 1]);  // spacing^2 h''
-    if (worst < -kConcave * d0)
-      out.message =
-          "the gap turns concave under the patch: the strips may miss part of the "
-          "contact (doc/normal_problem.md)";
-  }
-  const double w = (hi - lo) / n;
-  std::vector<double> L(n);
-  auto halfLength = [&](double e) {
-    const double pen = penetration(e), Ae = g.curvature(e);
-    return pen > 0.0 && Ae > 0.0 ? std::sqrt(pen / Ae) : 0.0;
-  };
-  for (int j = 0; j < n; ++j) L[j] = halfLength(lo + (j + 0.5) * w);
-  // Displacement at (0, eta0) per unit amplitude P: over each strip the integral of
-  // sqrt(L^2 - x^2) / r, exact in eta (J differences) near eta0, midpoint further out.
-  double influence = 0.0;
-  for (int j = 0; j < n; ++j) {
-    const double y1 = lo + j * w - g.eta0, y2 = y1 + w;
-    if (y2 > -3.0 * w && y1 < 3.0 * w) {
-      if (y1 < 0.0 && y2 > 0.0)
-        influence += centralStrip(L[j], -y1) + centralStrip(L[j], y2);
-      else
-        influence += std::abs(centralStrip(L[j], std::max(std::abs(y1), std::abs(y2))) -
-                              centralStrip(L[j], std::min(std::abs(y1), std::abs(y2))));
-    } else {
-      influence += w * stripLine(L[j], 0.5 * (y1 + y2));
+    const double w = (hi - lo) / n;
+    std::vector<double> L(n);
+    auto halfLength = [&](double e) {
+      const double pen = penetration(e), Ae = g.curvature(e);
+      return pen > 0.0 && Ae > 0.0 ? std::sqrt(pen / Ae) : 0.0;
+    };
+    for (int j = 0; j < n; ++j) L[j] = halfLength(lo + (j + 0.5) * w);
+    // Displacement at (0, eta0) per unit amplitude P: over each strip the integral of
+    // sqrt(L^2 - x^2) / r, exact in eta (J differences) near eta0, midpoint further out.
+    double influence = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const double y1 = lo + j * w - g.eta0, y2 = y1 + w;
+      if (y2 > -3.0 * w && y1 < 3.0 * w) {
+        if (y1 < 0.0 && y2 > 0.0)
+          influence += centralStrip(L[j], -y1) + centralStrip(L[j], y2);
+        else
+          influence += std::abs(centralStrip(L[j], std::max(std::abs(y1), std::abs(y2))) -
+                                centralStrip(L[j], std::min(std::abs(y1), std::abs(y2))));
+      } else {
+        influence += w * stripLine(L[j], 0.5 * (y1 + y2));
+      }
     }
-  }
-  if (!(influence > 0.0)) {
-    out.message = "the patch has no strip in contact";
-    zeroForces(&out);
+    if (!(influence > 0.0)) {
+      out.message = "the patch has no strip in contact";
+      zeroForces(&out);
+      return out;
+    }
+    // (1 - nu) / (pi G) = 1 / (pi E*): both bodies' Boussinesq displacement.
+    const double P = d0 * kPi * Estar / influence;
+    double fn = 0.0, area = 0.0, pmax = P * halfLength(g.eta0);
+    for (int j = 0; j < n; ++j) {
+      NormalStrip& s = out.strips[j];
+      s.eta = lo + (j + 0.5) * w;
+      s.width = w;
+      s.x_lead = L[j];
+      s.x_trail = -L[j];
+      s.pmax = P * L[j];
+      s.force = 0.5 * kPi * P * L[j] * L[j] * w;
+      fn += s.force;
+      area += 2.0 * L[j] * w;
+      pmax = std::max(pmax, s.pmax);
+    }
+    out.fn = fn;
+    out.pmax = pmax;
+    out.area = area;
+    out.eta_min = lo;
+    out.eta_max = hi;
+    out.eta_centre = 0.5 * (lo + hi);
+    out.b = 0.5 * (hi - lo);
+    out.a = out.b > 0.0 ? area / (kPi * out.b) : 0.0;
     return out;
+  };
+
+  // Between Hertz (ratio up to 1) and the strips (ratio from kBlendEnd) the two solutions blended
+  // with a smooth weight in the ratio, so that fn, pmax, a, b and the strips are continuous in the
+  // approach where a patch leaves the elliptic regime (the strips' force on a near-Hertz gap lies
+  // a little below Hertz's, a step down in the force otherwise).
+  if (ratio <= 1.0) return hertzPatch();
+  if (!(ratio < kBlendEnd)) return stripPatch();
+  const NormalPatch hp = hertzPatch();
+  NormalPatch sp = stripPatch();
+  if (hp.status != NormalStatus::kOk || sp.status != NormalStatus::kOk ||
+      sp.strips.size() != hp.strips.size())
+    return sp;
+  const double t = (ratio - 1.0) / (kBlendEnd - 1.0);
+  const double ws = t * t * (3.0 - 2.0 * t);  // the strips' weight, smoothstep
+  auto mix = [&](double h, double st) { return h + ws * (st - h); };
+  sp.fn = mix(hp.fn, sp.fn);
+  sp.pmax = mix(hp.pmax, sp.pmax);
+  sp.a = mix(hp.a, sp.a);
+  sp.b = mix(hp.b, sp.b);
+  sp.area = mix(hp.area, sp.area);
+  sp.eta_centre = mix(hp.eta_centre, sp.eta_centre);
+  sp.eta_min = mix(hp.eta_min, sp.eta_min);
+  sp.eta_max = mix(hp.eta_max, sp.eta_max);
+  for (std::size_t j = 0; j < sp.strips.size(); ++j) {
+    NormalStrip& s = sp.strips[j];
+    const NormalStrip& h = hp.strips[j];
+    s.eta = mix(h.eta, s.eta);
+    s.width = mix(h.width, s.width);
+    s.x_lead = mix(h.x_lead, s.x_lead);
+    s.x_trail = mix(h.x_trail, s.x_trail);
+    s.pmax = mix(h.pmax, s.pmax);
+    s.force = mix(h.force, s.force);
   }
-  // (1 - nu) / (pi G) = 1 / (pi E*): both bodies' Boussinesq displacement.
-  const double P = d0 * kPi * Estar / influence;
-  double fn = 0.0, area = 0.0, pmax = P * halfLength(g.eta0);
-  for (int j = 0; j < n; ++j) {
-    NormalStrip& s = out.strips[j];
-    s.eta = lo + (j + 0.5) * w;
-    s.width = w;
-    s.x_lead = L[j];
-    s.x_trail = -L[j];
-    s.pmax = P * L[j];
-    s.force = 0.5 * kPi * P * L[j] * L[j] * w;
-    fn += s.force;
-    area += 2.0 * L[j] * w;
-    pmax = std::max(pmax, s.pmax);
-  }
-  out.fn = fn;
-  out.pmax = pmax;
-  out.area = area;
-  out.eta_min = lo;
-  out.eta_max = hi;
-  out.eta_centre = 0.5 * (lo + hi);
-  out.b = 0.5 * (hi - lo);
-  out.a = out.b > 0.0 ? area / (kPi * out.b) : 0.0;
-  return out;
+  sp.method = ws < 0.5 ? NormalMethod::kHertz : NormalMethod::kNonHertzian;
+  sp.strip_weight = ws;
+  return sp;
 }
 
 namespace {
@@ -551,6 +595,7 @@ NormalPatch solveMergedPatch(const ContactCandidate& c, const std::vector<double
   NormalPatch out;
   out.approach = approach;
   out.method = NormalMethod::kNonHertzian;
+  out.strip_weight = 1.0;
   const double Estar = contactModulus(G, nu);
   // The lumps' parts of the gap function: split at the sample nearest each ridge.
   std::vector<int> cut{0};
