@@ -7,13 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/normal/merge_candidates.hpp"
 #include "tool_options.hpp"
+#include "validation/manchester_a22.hpp"
 #include "validation/patch_exact.hpp"
 #include "wheel_rail_contact/normal/patch_normal.hpp"
 
@@ -46,8 +45,6 @@ double percent(double a, double b) {
 }
 
 int run(const Options& o) {
-  std::ifstream in(o.cases);
-  if (!in) throw std::runtime_error("cannot read " + o.cases);
   ContactSearchOptions so;
   so.min_ridge = o.min_ridge;
   so.gap_samples = o.gap_samples;
@@ -59,25 +56,9 @@ int run(const Options& o) {
       "| y mm | patch | angle | method | fn N | fn err %% | pmax GPa | pmax err %% | "
       "extent mm (exact) | share (exact) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
-  std::string line;
-  bool header = false;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      header = true;
-      continue;
-    }
-    std::istringstream ls(line);
-    std::string wheel, field;
-    std::vector<double> v;
-    std::getline(ls, wheel, ',');
-    while (std::getline(ls, field, ',')) v.push_back(std::stod(field));
-    if (wheel != "right" || v.size() < 4) continue;
-    // CONTACT's axes to ours: y and yaw change sign, roll does not (doc/profiles.md).
-    WheelsetPose pose;
-    pose.y = -v[1] * 1e-3;
-    pose.yaw = -v[2];
-    pose.roll = v[3];
+  for (const A22State& state : readA22States(o.cases)) {
+    if (state.side != WheelSide::kRight) continue;
+    WheelsetPose pose = a22Pose(state);  // the benchmark's axes turned to ours
     WheelContactGeometry geo;
     for (int k = 0; k < 4; ++k) {  // down to first touch
       geo = search.search(WheelSide::kRight, pose);
@@ -86,7 +67,7 @@ int run(const Options& o) {
     }
     const WheelNormal w = solveWheelLoad(geo, o.load, o.G, o.nu);
     if (w.status != NormalStatus::kOk) {
-      std::printf("| %.1f | - | - | %s | | | | | | |\n", v[1], w.message.c_str());
+      std::printf("| %.1f | - | - | %s | | | | | | |\n", state.y_mm, w.message.c_str());
       continue;
     }
     int loaded = 0;
@@ -118,7 +99,7 @@ int run(const Options& o) {
       std::printf(
           "| %.1f%s | %zu | %.3f | %s | %.0f | %+.1f | %.2f | %+.1f | %.2f..%.2f (%.2f..%.2f) "
           "| %s |\n",
-          v[1], p.message.find("concave") == std::string::npos ? "" : " *", i,
+          state.y_mm, p.message.find("concave") == std::string::npos ? "" : " *", i,
           geo.candidates[i].contact_angle,
           last > first                       ? "lumps"
           : p.method == NormalMethod::kHertz ? "Hertz"

@@ -4,65 +4,15 @@
 #include <Eigen/QR>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "a22_states.hpp"
 #include "wheel_rail_contact/profiles/contact_search.hpp"
 
 using namespace wheel_rail_contact;
 
 namespace {
-
-const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/test/data/profiles/";
-
-/// One wheelset state of case as the benchmark gives it (CONTACT's axes: y to the right,
-/// z down; mm, rad).
-struct A22Case {
-  std::string wheel;
-  double y_mm = 0.0, yaw = 0.0, roll = 0.0;
-};
-
-std::vector<A22Case> readA22() {
-  std::ifstream in(kDataDir + "a22_cases.csv");
-  std::vector<A22Case> out;
-  std::string line;
-  bool header = false;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      EXPECT_EQ(line, "wheel,case,y_mm,yaw_rad,roll_rad,fz_N,vs_mm_s,vpitch_rad_s");
-      header = true;
-      continue;
-    }
-    std::istringstream ls(line);
-    A22Case c;
-    std::string field;
-    std::getline(ls, c.wheel, ',');
-    std::getline(ls, field, ',');  // case number
-    std::getline(ls, field, ',');
-    c.y_mm = std::stod(field);
-    std::getline(ls, field, ',');
-    c.yaw = std::stod(field);
-    std::getline(ls, field, ',');
-    c.roll = std::stod(field);
-    out.push_back(c);
-  }
-  EXPECT_EQ(out.size(), 42u);
-  return out;
-}
-
-/// The benchmark's state in our REP 103 axes: CONTACT's axes are ours turned half a turn about
-/// x, so y and yaw change sign and roll does not (doc/profiles.md).
-WheelsetPose poseOf(const A22Case& c) {
-  WheelsetPose p;
-  p.y = -c.y_mm * 1e-3;
-  p.yaw = -c.yaw;
-  p.roll = c.roll;
-  return p;
-}
 
 /// The mirror image of a pose in the track's x-z plane (the left wheel's view of the right's).
 WheelsetPose mirrored(const WheelsetPose& p) {
@@ -118,9 +68,9 @@ TEST(ContactSearch, A22RegimesTreadGaugeCornerFlange) {
   double previous = -1.0, largest_tread_step = 0.0;
   std::printf(
       "  y_mm    zone  candidates  contact_angle  y_rail_mm  y_wheel_mm  radius_mm  lead_mm\n");
-  for (const A22Case& c : readA22()) {
-    if (c.wheel != "right") continue;
-    const WheelContactGeometry g = cs.search(WheelSide::kRight, poseOf(c));
+  for (const A22State& c : a22States()) {
+    if (c.side != WheelSide::kRight) continue;
+    const WheelContactGeometry g = cs.search(WheelSide::kRight, a22Pose(c));
     const ContactCandidate& k = closest(g);
     std::printf("%6.1f  %6s  %10zu  %13.4f  %9.2f  %10.2f  %9.2f  %7.2f\n", c.y_mm,
                 k.zone == ContactZone::kTread    ? "tread"
@@ -152,15 +102,15 @@ TEST(ContactSearch, A22TwoPatchesAtTheJumpToTheGaugeCorner) {
   // At 5 mm the tread and the gauge corner are both minima of the gap, so close in height that
   // a 10 kN wheel's elastic approach (some 0.05 mm) closes both: two patches at once.
   const ContactSearch cs{WheelsetTrackData()};
-  for (const A22Case& c : readA22()) {
-    if (c.wheel != "right" || c.y_mm != 5.0) continue;
-    const WheelContactGeometry g = cs.search(WheelSide::kRight, poseOf(c));
+  for (const A22State& c : a22States()) {
+    if (c.side != WheelSide::kRight || c.y_mm != 5.0) continue;
+    const WheelContactGeometry g = cs.search(WheelSide::kRight, a22Pose(c));
     ASSERT_EQ(g.candidates.size(), 2u);
     EXPECT_EQ(g.candidates[0].zone, ContactZone::kTread);  // field side first
     EXPECT_EQ(g.candidates[1].zone, ContactZone::kGaugeCorner);
     EXPECT_LT(std::abs(g.candidates[0].vertical_gap - g.candidates[1].vertical_gap), 0.05e-3);
     // With the wheelset lowered until the closer one overlaps by 0.05 mm, both overlap.
-    WheelsetPose lowered = poseOf(c);
+    WheelsetPose lowered = a22Pose(c);
     lowered.z -= closest(g).vertical_gap + 0.05e-3;
     const WheelContactGeometry h = cs.search(WheelSide::kRight, lowered);
     ASSERT_EQ(h.candidates.size(), 2u);
@@ -176,9 +126,9 @@ TEST(ContactSearch, A22BenchmarksRollPutsBothWheelsOnTheirRails) {
   // the wheelset's placement and the axes' signs are the benchmark's.
   const ContactSearch cs{WheelsetTrackData()};
   double worst_flipped = 0.0;
-  for (const A22Case& c : readA22()) {
-    if (c.wheel != "right") continue;
-    const WheelsetPose p = poseOf(c);
+  for (const A22State& c : a22States()) {
+    if (c.side != WheelSide::kRight) continue;
+    const WheelsetPose p = a22Pose(c);
     const double right = closest(cs.search(WheelSide::kRight, p)).vertical_gap;
     const double left = closest(cs.search(WheelSide::kLeft, p)).vertical_gap;
     EXPECT_LT(std::abs(right - left), 0.1e-3) << "y = " << c.y_mm << " mm";
@@ -200,9 +150,9 @@ TEST(ContactSearch, LeftWheelIsTheRightMirrored) {
   given.wheel_left = Profile::standardWheel();
   given.rail_left = Profile::standardRail();
   const ContactSearch cs_given(given);
-  for (const A22Case& c : readA22()) {
-    if (c.wheel != "left") continue;
-    const WheelsetPose p = poseOf(c);
+  for (const A22State& c : a22States()) {
+    if (c.side != WheelSide::kLeft) continue;
+    const WheelsetPose p = a22Pose(c);
     const WheelContactGeometry r = cs.search(WheelSide::kRight, p);
     const WheelContactGeometry l = cs.search(WheelSide::kLeft, mirrored(p));
     const WheelContactGeometry lg = cs_given.search(WheelSide::kLeft, mirrored(p));
@@ -246,9 +196,9 @@ TEST(ContactSearch, YawMovesTheContactAlongTheTrackAsFirstOrderTheorySays) {
   // few per cent on the tread and the flange, and ahead of the axle on the flange that the yaw
   // steers into the rail.
   const ContactSearch cs{WheelsetTrackData()};
-  for (const A22Case& c : readA22()) {
-    if (c.wheel != "right" || c.y_mm == 0.0) continue;
-    const WheelsetPose p = poseOf(c);
+  for (const A22State& c : a22States()) {
+    if (c.side != WheelSide::kRight || c.y_mm == 0.0) continue;
+    const WheelsetPose p = a22Pose(c);
     const ContactCandidate k = closest(cs.search(WheelSide::kRight, p));
     const double first_order = -k.rolling_radius * std::tan(k.contact_angle) * std::sin(p.yaw);
     EXPECT_NEAR(k.lead, first_order, 0.05 * std::abs(first_order)) << "y = " << c.y_mm;
@@ -309,10 +259,10 @@ TEST(ContactSearch, RailInclinationTurnsAnUprightRailIntoTheInclinedOne) {
       Profile::fromPoints(pts, ProfileKind::kRail, "UIC60 upright"));
   upright.rail_inclination = 1.0 / 40.0;
   const ContactSearch built_in{WheelsetTrackData()}, turned(upright);
-  for (const A22Case& c : readA22()) {
-    if (c.wheel != "right") continue;
-    const ContactCandidate& x = closest(built_in.search(WheelSide::kRight, poseOf(c)));
-    const ContactCandidate& y = closest(turned.search(WheelSide::kRight, poseOf(c)));
+  for (const A22State& c : a22States()) {
+    if (c.side != WheelSide::kRight) continue;
+    const ContactCandidate& x = closest(built_in.search(WheelSide::kRight, a22Pose(c)));
+    const ContactCandidate& y = closest(turned.search(WheelSide::kRight, a22Pose(c)));
     EXPECT_NEAR(x.contact_angle, y.contact_angle, 1e-6) << c.y_mm;
     EXPECT_NEAR(x.vertical_gap, y.vertical_gap, 1e-8) << c.y_mm;
     EXPECT_NEAR(x.point.y(), y.point.y(), 1e-6) << c.y_mm;

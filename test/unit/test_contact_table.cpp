@@ -5,13 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <random>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "a22_states.hpp"
 #include "wheel_rail_contact/normal/patch_normal.hpp"
 #include "wheel_rail_contact/profiles/contact_table.hpp"
 
@@ -19,31 +18,18 @@ using namespace wheel_rail_contact;
 
 namespace {
 
-const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/test/data/profiles/";
-
-/// The benchmark's right-wheel states in our axes (doc/profiles.md: y and yaw change sign,
-/// roll does not): y [m], yaw, roll.
-struct State {
-  double y, yaw, roll;
-};
-std::vector<State> a22() {
-  std::ifstream in(kDataDir + "a22_cases.csv");
-  std::vector<State> out;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("right,", 0) != 0) continue;
-    std::istringstream ls(line);
-    std::string f[5];
-    for (auto& s : f) std::getline(ls, s, ',');
-    out.push_back({-std::stod(f[2]) * 1e-3, -std::stod(f[3]), std::stod(f[4])});
-  }
+/// The benchmark's right-wheel states in our axes (validation/manchester_a22.hpp's a22Pose).
+std::vector<WheelsetPose> a22() {
+  std::vector<WheelsetPose> out;
+  for (const A22State& s : a22States())
+    if (s.side == WheelSide::kRight) out.push_back(a22Pose(s));
   EXPECT_EQ(out.size(), 21u);
   return out;
 }
 
 /// The benchmark's roll at our lateral displacement y (its equilibrium, both wheels on their
 /// rails), linear between its cases and beyond 10 mm, odd in y.
-double benchmarkRoll(const std::vector<State>& s, double y) {
+double benchmarkRoll(const std::vector<WheelsetPose>& s, double y) {
   const double a = std::abs(y);
   std::size_t k = 0;
   while (k + 2 < s.size() && -s[k + 1].y < a) ++k;
@@ -312,7 +298,7 @@ TEST(ContactTable, RefusesBadOptionsByName) {
 TEST(ContactTable, A22CasesAsTheSearch) {
   // The benchmark's 21 states and their mirror images, both wheels.
   std::vector<WheelsetPose> poses;
-  for (const State& s : a22())
+  for (const WheelsetPose& s : a22())
     for (double sign : {1.0, -1.0}) {
       WheelsetPose p;
       p.y = sign * s.y;
@@ -329,7 +315,7 @@ TEST(ContactTable, A22CasesAsTheSearch) {
 
 TEST(ContactTable, RandomPosesAsTheSearch) {
   // y in [-12, 12] mm, yaw in [-25, 25] mrad, the benchmark's roll for y.
-  const std::vector<State> s = a22();
+  const std::vector<WheelsetPose> s = a22();
   std::mt19937 rng(45);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<WheelsetPose> poses(150);
@@ -495,13 +481,9 @@ TEST(ContactTable, NormalProblemOnTheTablesGeometryAsOnTheSearchs) {
   const double G = 8.2e10, nu = 0.28, load = 1e4;
   double worst_fn = 0.0, worst_pmax = 0.0;
   int solved = 0;
-  for (const State& s : a22())
+  for (const WheelsetPose& s : a22())
     for (WheelSide side : {WheelSide::kRight, WheelSide::kLeft}) {
-      WheelsetPose p;
-      p.y = s.y;
-      p.yaw = s.yaw;
-      p.roll = s.roll;
-      p = loaded(cs, side, p, 0.0);
+      const WheelsetPose p = loaded(cs, side, s, 0.0);
       const WheelContactGeometry d = cs.search(side, p), t = table.search(side, p);
       const WheelNormal nd = solveWheelLoad(d, load, G, nu), nt = solveWheelLoad(t, load, G, nu);
       const std::string where =

@@ -5,67 +5,17 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "a22_states.hpp"
 #include "wheel_rail_contact/profiles/contact_search.hpp"
 #include "wheel_rail_contact/wheelset/creepages.hpp"
 
 using namespace wheel_rail_contact;
 
 namespace {
-
-const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/test/data/profiles/";
-
-/// One wheelset state of case as the benchmark gives it (CONTACT's axes: y to the right,
-/// z down; mm, rad, mm/s, rad/s).
-struct A22Case {
-  std::string wheel;
-  double y_mm = 0.0, yaw = 0.0, roll = 0.0, vs_mm_s = 0.0, vpitch = 0.0;
-};
-
-std::vector<A22Case> readA22() {
-  std::ifstream in(kDataDir + "a22_cases.csv");
-  std::vector<A22Case> out;
-  std::string line;
-  bool header = false;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      EXPECT_EQ(line, "wheel,case,y_mm,yaw_rad,roll_rad,fz_N,vs_mm_s,vpitch_rad_s");
-      header = true;
-      continue;
-    }
-    std::istringstream ls(line);
-    std::vector<std::string> f;
-    for (std::string field; std::getline(ls, field, ',');) f.push_back(field);
-    EXPECT_EQ(f.size(), 8u) << line;
-    if (f.size() != 8u) continue;
-    A22Case c;
-    c.wheel = f[0];
-    c.y_mm = std::stod(f[2]);
-    c.yaw = std::stod(f[3]);
-    c.roll = std::stod(f[4]);
-    c.vs_mm_s = std::stod(f[6]);
-    c.vpitch = std::stod(f[7]);
-    out.push_back(c);
-  }
-  EXPECT_EQ(out.size(), 42u);
-  return out;
-}
-
-/// The benchmark's state in our REP 103 axes (doc/profiles.md): y, yaw and the pitch rate change
-/// sign, roll does not.
-WheelsetPose poseOf(const A22Case& c) {
-  WheelsetPose p;
-  p.y = -c.y_mm * 1e-3;
-  p.yaw = -c.yaw;
-  p.roll = c.roll;
-  return p;
-}
 
 WheelsetPose mirrored(const WheelsetPose& p) {
   WheelsetPose m = p;
@@ -359,9 +309,9 @@ TEST(Creepages, LeftWheelInTheMirroredStateHasTheMirroredCreepages) {
   canted.cant = 0.1;
   WheelsetTrackData canted_m = data;
   canted_m.cant = -0.1;
-  for (const A22Case& a : readA22()) {
-    if (a.wheel != "right") continue;
-    const WheelsetPose p = poseOf(a);
+  for (const A22State& a : a22States()) {
+    if (a.side != WheelSide::kRight) continue;
+    const WheelsetPose p = a22Pose(a);
     WheelsetMotion m;
     m.V = 2.0;
     m.omega = 4.3;
@@ -519,21 +469,19 @@ TEST(Creepages, A22BenchmarkInputsGiveSmallPlausibleCreepages) {
   const WheelsetTrackData data;
   const ContactSearch cs(data);
   std::printf("wheel  y_mm  zone  delta    r_mm      xi         eta        phi_1/m\n");
-  for (const A22Case& a : readA22()) {
-    const WheelSide side = a.wheel == "right" ? WheelSide::kRight : WheelSide::kLeft;
+  for (const A22State& a : a22States()) {
+    const WheelSide side = a.side;
     // The benchmark's left rows are the left wheel of the same wheelset state (CONTACT's
     // mbench_a22_left example: the same Y_WS, its left wheel rolling toward its field side).
-    const WheelsetPose p = poseOf(a);
-    WheelsetMotion m;
-    m.V = a.vs_mm_s * 1e-3;
-    m.omega = -a.vpitch;
+    const WheelsetPose p = a22Pose(a);
+    const WheelsetMotion m = a22Motion(a);
     const WheelContactGeometry g = cs.search(side, p);
     ASSERT_EQ(g.status, ContactSearchStatus::kOk);
     for (const ContactCandidate& c : g.candidates) {
       const PatchCreepages k = ok(patchCreepages(side, p, m, c, data));
-      std::printf("%-5s %5.1f  %d  %7.4f  %7.2f  %9.2e  %9.2e  %9.3e\n", a.wheel.c_str(), a.y_mm,
-                  static_cast<int>(c.zone), c.contact_angle, c.rolling_radius * 1e3, k.xi, k.eta,
-                  k.phi);
+      std::printf("%-5s %5.1f  %d  %7.4f  %7.2f  %9.2e  %9.2e  %9.3e\n",
+                  side == WheelSide::kRight ? "right" : "left", a.y_mm, static_cast<int>(c.zone),
+                  c.contact_angle, c.rolling_radius * 1e3, k.xi, k.eta, k.phi);
       if (a.y_mm == 0.0) {
         EXPECT_NEAR(k.xi, (m.V - m.omega * c.rolling_radius) / m.V, 1e-12);
       }

@@ -5,16 +5,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/exact/halfspace_normal.hpp"
 #include "core/normal/hertz_approach.hpp"
 #include "core/normal/merge_candidates.hpp"
+#include "validation/manchester_a22.hpp"
 #include "validation/patch_exact.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
 #include "wheel_rail_contact/normal/patch_normal.hpp"
@@ -47,33 +46,11 @@ ExactPatch exactPatch(const ContactCandidate& c, double approach, int mx, int my
 
 const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/test/data/profiles/";
 
-/// The right wheel's state of case at the benchmark's y [mm], in our axes (as
-/// test_contact_search.cpp reads it; doc/profiles.md: y and yaw change sign, roll does not).
+/// The right wheel's state of case at the benchmark's y [mm], in our axes
+/// (validation/manchester_a22.hpp).
 WheelsetPose a22Right(double y_mm) {
-  std::ifstream in(kDataDir + "a22_cases.csv");
-  std::string line;
-  bool header = false;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      header = true;
-      continue;
-    }
-    std::istringstream ls(line);
-    std::string wheel, field;
-    std::getline(ls, wheel, ',');
-    std::getline(ls, field, ',');
-    std::getline(ls, field, ',');
-    const double y = std::stod(field);
-    if (wheel != "right" || std::abs(y - y_mm) > 1e-9) continue;
-    WheelsetPose p;
-    p.y = -y * 1e-3;
-    std::getline(ls, field, ',');
-    p.yaw = -std::stod(field);
-    std::getline(ls, field, ',');
-    p.roll = std::stod(field);
-    return p;
-  }
+  for (const A22State& s : readA22States(kDataDir + "a22_cases.csv"))
+    if (s.side == WheelSide::kRight && std::abs(s.y_mm - y_mm) <= 1e-9) return a22Pose(s);
   ADD_FAILURE() << "no right-wheel case at y = " << y_mm << " mm";
   return {};
 }
