@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "a22_states.hpp"
@@ -418,27 +419,19 @@ TEST(Creepages, BadInputGivesAStatusNeverNaN) {
   };
   m.V = 2.0;
   for (double bad : {nan, inf, 2e12}) {
-    WheelsetMotion b = m;
-    b.V = bad;
-    refused(patchCreepages(WheelSide::kRight, pose, b, c, data), "V");
-    b = m;
-    b.omega = bad;
-    refused(patchCreepages(WheelSide::kRight, pose, b, c, data), "omega");
-    b = m;
-    b.vy = bad;
-    refused(patchCreepages(WheelSide::kRight, pose, b, c, data), "vy");
-    b = m;
-    b.yaw_rate = bad;
-    refused(patchCreepages(WheelSide::kRight, pose, b, c, data), "yaw_rate");
-    b = m;
-    b.curvature = bad;
-    refused(patchCreepages(WheelSide::kRight, pose, b, c, data), "curvature");
-    b = m;
-    b.vz = bad;
-    refused(patchCreepages(WheelSide::kRight, pose, b, c, data), "vz");
-    b = m;
-    b.roll_rate = bad;
-    refused(patchCreepages(WheelSide::kRight, pose, b, c, data), "roll_rate");
+    const std::pair<double WheelsetMotion::*, const char*> fields[] = {
+        {&WheelsetMotion::V, "V"},
+        {&WheelsetMotion::omega, "omega"},
+        {&WheelsetMotion::vy, "vy"},
+        {&WheelsetMotion::yaw_rate, "yaw_rate"},
+        {&WheelsetMotion::curvature, "curvature"},
+        {&WheelsetMotion::vz, "vz"},
+        {&WheelsetMotion::roll_rate, "roll_rate"}};
+    for (const auto& [field, name] : fields) {
+      WheelsetMotion b = m;
+      b.*field = bad;
+      refused(patchCreepages(WheelSide::kRight, pose, b, c, data), name);
+    }
     WheelsetPose q = pose;
     q.yaw = bad;
     refused(patchCreepages(WheelSide::kRight, q, m, c, data), "yaw");
