@@ -222,6 +222,47 @@ NormalPatch fail(NormalStatus s, const std::string& why, double approach) {
   return p;
 }
 
+/// The strips' penetration eps(eta) d0 - (h(0, eta) - h0) at the central approach d0, the factor
+/// eps quadratic from A0 aa^2 / d0 at ymid to B bb^2 / d0 at ymid +- bb, (aa, bb) Hertz's ellipse
+/// for A0, B at d0 (bb widened to reach eta0): on a Hertz gap the strips' region is Hertz's
+/// ellipse.
+class StripPenetration {
+ public:
+  StripPenetration(const PatchGeometry& g, double A0, double B, double d0, double Estar,
+                   double ymid)
+      : g_(g), ymid_(ymid) {
+    const HertzApproach hz = hertzFromApproach(A0, B, d0, Estar);
+    bb_ = std::max(hz.b, 1.1 * std::abs(g.eta0 - ymid));
+    ex_ = A0 * hz.a * hz.a;  // eps d0 at the centre
+    ey_ = B * bb_ * bb_;     // and at bb
+  }
+  double operator()(double e) const {
+    const double u = (e - ymid_) / bb_;
+    return std::max(0.0, ex_ - (ex_ - ey_) * u * u) - (g_.gap(e) - g_.h0);
+  }
+
+ private:
+  const PatchGeometry& g_;
+  double ymid_, bb_ = 0.0, ex_ = 0.0, ey_ = 0.0;
+};
+
+/// Where the penetration f ends between inner (f > 0) and outer (f <= 0): bisection, then linear
+/// in the last interval.
+double penetrationEdge(const StripPenetration& f, double inner, double outer) {
+  double p_in = f(inner), p_out = f(outer);
+  for (int it = 0; it < 16; ++it) {
+    const double mid = 0.5 * (inner + outer), p = f(mid);
+    if (p > 0.0) {
+      inner = mid;
+      p_in = p;
+    } else {
+      outer = mid;
+      p_out = p;
+    }
+  }
+  return inner + (outer - inner) * p_in / (p_in - p_out);
+}
+
 }  // namespace
 
 NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double G, double nu,
@@ -339,13 +380,7 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
     NormalPatch out = start;
     out.method = NormalMethod::kNonHertzian;
     out.strip_weight = 1.0;
-    const HertzApproach hz = hertzFromApproach(A0, B, d0, Estar);
-    const double bb = std::max(hz.b, 1.1 * std::abs(g.eta0 - ymid));
-    const double ex = A0 * hz.a * hz.a, ey = B * bb * bb;  // eps d0 at the centre and at bb
-    auto penetration = [&](double e) {                     // eps(eta) d0 - (h(0, eta) - h0)
-      const double u = (e - ymid) / bb;
-      return std::max(0.0, ex - (ex - ey) * u * u) - (g.gap(e) - g.h0);
-    };
+    const StripPenetration penetration(g, A0, B, d0, Estar, ymid);
     // Lateral extent: where the penetration is positive, connected to the minimum, by bisection
     // between samples.
     auto edge = [&](int dir, double* at) {
@@ -353,18 +388,7 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
       for (int i = dir > 0 ? g.imin + 1 : g.imin - 1;; i += dir) {
         if (i < 0 || i >= static_cast<int>(g.eta.size())) return false;
         if (penetration(g.eta[i]) <= 0.0) {
-          double outer = g.eta[i], p_in = penetration(inner), p_out = penetration(outer);
-          for (int it = 0; it < 16; ++it) {
-            const double mid = 0.5 * (inner + outer), p = penetration(mid);
-            if (p > 0.0) {
-              inner = mid;
-              p_in = p;
-            } else {
-              outer = mid;
-              p_out = p;
-            }
-          }
-          *at = inner + (outer - inner) * p_in / (p_in - p_out);  // the last interval: linear
+          *at = penetrationEdge(penetration, inner, g.eta[i]);
           return true;
         }
         inner = g.eta[i];
@@ -518,13 +542,7 @@ bool lumpStrips(const PatchGeometry& g, double approach, bool ridge_lo, bool rid
   const double ymid = 0.5 * (ys + ye);
   const double half = std::max(0.5 * (ye - ys), 1e-3 * spacing);
   const double B = std::max(0.5 * d0 / (half * half), 1e-3 * A0);
-  const HertzApproach hz = hertzFromApproach(A0, B, d0, Estar);
-  const double bb = std::max(hz.b, 1.1 * std::abs(g.eta0 - ymid));
-  const double ex = A0 * hz.a * hz.a, ey = B * bb * bb;
-  auto penetration = [&](double e) {
-    const double u = (e - ymid) / bb;
-    return std::max(0.0, ex - (ex - ey) * u * u) - (g.gap(e) - g.h0);
-  };
+  const StripPenetration penetration(g, A0, B, d0, Estar, ymid);
   // The lump's extent: out to its outermost sample in contact, the strips between at zero where
   // the penetration dips below zero. Stopping at the first such dip instead would make the patch
   // jump to the ridge when the dip fills, and with it the force the load iteration needs
@@ -537,19 +555,7 @@ bool lumpStrips(const PatchGeometry& g, double approach, bool ridge_lo, bool rid
       *at = g.eta[last];
       return dir < 0 ? ridge_lo : ridge_hi;
     }
-    double inner = last == g.imin ? g.eta0 : g.eta[last], outer = g.eta[last + dir];
-    double p_in = penetration(inner), p_out = penetration(outer);
-    for (int it = 0; it < 16; ++it) {
-      const double mid = 0.5 * (inner + outer), p = penetration(mid);
-      if (p > 0.0) {
-        inner = mid;
-        p_in = p;
-      } else {
-        outer = mid;
-        p_out = p;
-      }
-    }
-    *at = inner + (outer - inner) * p_in / (p_in - p_out);
+    *at = penetrationEdge(penetration, last == g.imin ? g.eta0 : g.eta[last], g.eta[last + dir]);
     return true;
   };
   if (!edge(-1, &k->lo) || !edge(+1, &k->hi)) return false;
