@@ -151,27 +151,13 @@ struct ContactTable::Impl {
 
 namespace {
 
-/// The candidate of `others` that is `c` (within match_distance on both profiles), or null.
-const TableCandidate* match(const TableCandidate& c, const std::vector<TableCandidate>& others,
-                            double distance) {
-  const TableCandidate* best = nullptr;
+/// The candidate of `others` that is `c` (within match_distance on both profiles), or null: a
+/// TableCandidate or a ContactCandidate, both with the arc lengths s_wheel and s_rail.
+template <class Candidate>
+const Candidate* match(const Candidate& c, const std::vector<Candidate>& others, double distance) {
+  const Candidate* best = nullptr;
   double best_d = std::numeric_limits<double>::infinity();
-  for (const TableCandidate& o : others) {
-    const double dw = std::abs(o.s_wheel - c.s_wheel), dr = std::abs(o.s_rail - c.s_rail);
-    if (dw < distance && dr < distance && dw + dr < best_d) {
-      best_d = dw + dr;
-      best = &o;
-    }
-  }
-  return best;
-}
-
-const ContactCandidate* matchSearched(const ContactCandidate& c,
-                                      const std::vector<ContactCandidate>& others,
-                                      double distance) {
-  const ContactCandidate* best = nullptr;
-  double best_d = std::numeric_limits<double>::infinity();
-  for (const ContactCandidate& o : others) {
+  for (const Candidate& o : others) {
     const double dw = std::abs(o.s_wheel - c.s_wheel), dr = std::abs(o.s_rail - c.s_rail);
     if (dw < distance && dr < distance && dw + dr < best_d) {
       best_d = dw + dr;
@@ -284,7 +270,7 @@ ContactTable::ContactTable(const ContactSearch& search, const ContactTableOption
             t.wheel_file = ca.wheel_file;
             t.s_rail = ca.s_rail;
             t.s_wheel = ca.s_wheel;
-            const ContactCandidate* cb = matchSearched(ca, b.candidates, options_.match_distance);
+            const ContactCandidate* cb = match(ca, b.candidates, options_.match_distance);
             t.gap_dz = cb ? (cb->gap - ca.gap) / (z_b - z_a) : std::cos(ca.contact_angle);
             if (cb && ca.gap_function.size() >= 2 && cb->gap_function.size() >= 2) {
               const double lo = std::max(ca.gap_function.front().eta, cb->gap_function.front().eta);
