@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../../src/cli/cli.hpp"
+#include "cli_test_helpers.hpp"
 #include "csv_rows.hpp"
 #include "wheel_rail_contact/contact_parameters.hpp"
 #include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
@@ -16,23 +17,6 @@
 using namespace wheel_rail_contact;
 
 namespace {
-
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result cli(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int code = runCli(args, out, err);
-  return {code, out.str(), err.str()};
-}
-
-std::string writeTemp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
 
 std::vector<std::vector<std::string>> parseCsv(const std::string& text) {
   std::istringstream in(text);
@@ -45,7 +29,7 @@ TEST(ContactCli, RunSteadyReproducesLinearTheoryAndSaturation) {
   const std::string f = writeTemp("lin.csv",
                                   "t,V,xi,eta,phi,fz\n0,20,1e-7,0,0,8e4\n0.001,20,0,1e-7,0,8e4\n"
                                   "0.002,20,0.5,0,0,6.4e5\n");
-  const Result r = cli({"run", "--scenario", f, "--model", "steady"});
+  const CliResult r = cli({"run", "--scenario", f, "--model", "steady"});
   ASSERT_EQ(r.code, 0) << r.err;
   const auto rows = parseCsv(r.out);
   ASSERT_EQ(rows.size(), 4u);
@@ -61,7 +45,7 @@ TEST(ContactCli, RunSteadyReproducesLinearTheoryAndSaturation) {
 }
 
 TEST(ContactCli, HelpDocumentsEveryOptionDefault) {
-  const Result r = cli({"--help"});
+  const CliResult r = cli({"--help"});
   EXPECT_EQ(r.code, 0);
   for (const char* opt : {"--G ", "--nu ", "--mu ", "--a0 ", "--b0 ", "--fz0 ", "--nx ", "--ny ",
                           "--model ", "--scenario "})
@@ -95,7 +79,7 @@ TEST(ContactCli, BadOptionsExitNonZeroNamingTheOption) {
       {{"fly"}, "unknown command 'fly'"},
   };
   for (const auto& c : cases) {
-    const Result r = cli(c.args);
+    const CliResult r = cli(c.args);
     EXPECT_NE(r.code, 0) << c.mention;
     EXPECT_NE(r.err.find(c.mention), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty() || r.out.find("nan") == std::string::npos);
@@ -104,7 +88,7 @@ TEST(ContactCli, BadOptionsExitNonZeroNamingTheOption) {
 
 TEST(ContactCli, HelpListsEveryParameterWithItsDefault) {
   // The options are made from parameterDocs(): a parameter added there is an option, documented.
-  const Result r = cli({"run", "--help"});  // after a command too: the whole help
+  const CliResult r = cli({"run", "--help"});  // after a command too: the whole help
   EXPECT_EQ(r.code, 0);
   for (const auto& d : parameterDocs()) {
     const size_t at = r.out.find("\n  --" + d.name + " ");
@@ -135,15 +119,15 @@ TEST(ContactCli, CommandLineErrorsExitTwoRefusedValuesOne) {
                                              {"run", "--scenario", "/nonexistent/x.csv"}})
     EXPECT_EQ(cli(args).code, 1) << args.back();
   // Given twice, an option's last value counts; --name=value reads as --name value.
-  const Result twice = cli({"run", "--scenario", f, "--model", "exact", "--model", "steady"});
-  const Result once = cli({"run", "--scenario=" + f, "--model=steady"});
+  const CliResult twice = cli({"run", "--scenario", f, "--model", "exact", "--model", "steady"});
+  const CliResult once = cli({"run", "--scenario=" + f, "--model=steady"});
   ASSERT_EQ(twice.code, 0) << twice.err;
   EXPECT_EQ(twice.out, once.out);
 }
 
 TEST(ContactCli, BadScenarioExitsNonZeroNamingLineAndField) {
   const std::string missing = writeTemp("m.csv", "t,V,xi,eta,phi\n0,20,0,0,0\n");
-  Result r = cli({"run", "--scenario", missing});
+  CliResult r = cli({"run", "--scenario", missing});
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.err.find("m.csv:1: missing column 'fz'"), std::string::npos) << r.err;
   const std::string bad =
@@ -157,7 +141,7 @@ TEST(ContactCli, RefusedRowsAreWrittenWithStatusNotNaN) {
   // The exact model refuses a load above fz_max (its fixed grid must cover the patch).
   const std::string f =
       writeTemp("big.csv", "t,V,xi,eta,phi,fz\n0,20,1e-3,0,0,1e6\n1,20,1e-3,0,0,0\n");
-  const Result r = cli({"run", "--scenario", f, "--model", "exact", "--nx", "8", "--ny", "8"});
+  const CliResult r = cli({"run", "--scenario", f, "--model", "exact", "--nx", "8", "--ny", "8"});
   EXPECT_EQ(r.code, 0);
   const auto rows = parseCsv(r.out);
   ASSERT_EQ(rows.size(), 3u);
@@ -176,7 +160,7 @@ TEST(ContactCli, AnOkRowsNoteGoesToStderrWhereItBegins) {
                 "t,V,xi,eta,phi,fz,a,b\n0,20,1e-5,0,0,8e4,6e-3,4e-3\n"
                 "1e-4,20,1e-5,0,0,8e4,12e-3,8e-3\n2e-4,20,1e-5,0,0,8e4,12e-3,8e-3\n"
                 "3e-4,20,1e-5,0,0,8e4,12e-3,8e-3\n");
-  const Result r = cli({"run", "--scenario", f, "--model", "nss"});
+  const CliResult r = cli({"run", "--scenario", f, "--model", "nss"});
   EXPECT_EQ(r.code, 0);
   const auto rows = parseCsv(r.out);
   ASSERT_EQ(rows.size(), 5u);
@@ -191,7 +175,7 @@ TEST(ContactCli, BackwardsRowsRollBackwards) {
   const std::string f =
       writeTemp("back.csv", "t,V,xi,eta,phi,fz\n0,-20,1e-3,0,0,8e4\n0.001,-20,1e-3,0,0,8e4\n");
   for (const char* model : {"steady", "shen-li", "nss", "exact"}) {
-    const Result r = cli({"run", "--scenario", f, "--model", model, "--nx", "8", "--ny", "8"});
+    const CliResult r = cli({"run", "--scenario", f, "--model", model, "--nx", "8", "--ny", "8"});
     EXPECT_EQ(r.code, 0) << model;
     const auto rows = parseCsv(r.out);
     ASSERT_EQ(rows.size(), 3u) << model;
@@ -215,8 +199,8 @@ TEST(ContactCli, ExecutableRunsTheShippedDemoScenario) {
 
 TEST(ContactCli, FreqForEveryFastSimModel) {
   for (const char* model : {"steady", "shen-li", "nss"}) {
-    const Result r = cli({"freq", "--model", model, "--kind", "eta", "--ab", "1", "--lambda-over-a",
-                          "3,30", "--nx", "16", "--ny", "16"});
+    const CliResult r = cli({"freq", "--model", model, "--kind", "eta", "--ab", "1",
+                             "--lambda-over-a", "3,30", "--nx", "16", "--ny", "16"});
     ASSERT_EQ(r.code, 0) << model << r.err;
     const auto rows = parseCsv(r.out);
     ASSERT_EQ(rows.size(), 3u);
@@ -242,7 +226,7 @@ TEST(ContactCli, RunHonoursTheOptionalGeometryAndFrictionColumns) {
                                   "0.002,20,0.5,0,0,8e4,0,0,0.1\n"
                                   "0.003,20,0.5,0,0,8e4,-5e-3,5e-3,0\n");
   for (const char* model : {"steady", "nss"}) {
-    const Result r = cli({"run", "--scenario", f, "--model", model, "--mesh", "adaptive"});
+    const CliResult r = cli({"run", "--scenario", f, "--model", model, "--mesh", "adaptive"});
     ASSERT_EQ(r.code, 0) << r.err;
     const auto rows = parseCsv(r.out);
     ASSERT_EQ(rows.size(), 5u);

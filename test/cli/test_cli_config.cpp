@@ -10,16 +10,11 @@
 #include "../../src/cli/cli.hpp"
 #include "../../src/cli/config_yaml.hpp"
 #include "../../src/ros/contact_stepper.hpp"
+#include "cli_test_helpers.hpp"
 
 using namespace wheel_rail_contact;
 
 namespace {
-
-std::string writeTemp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
 
 std::string errorOf(const std::string& yaml) {
   ContactParameters p;

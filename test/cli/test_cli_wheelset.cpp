@@ -13,6 +13,7 @@
 
 #include "../../src/cli/cli.hpp"
 #include "../../src/cli/config_yaml.hpp"
+#include "cli_test_helpers.hpp"
 #include "csv_rows.hpp"
 #include "wheel_rail_contact/profiles/profile.hpp"
 #include "wheel_rail_contact/wheelset/wheelset_scenario.hpp"
@@ -20,12 +21,6 @@
 using namespace wheel_rail_contact;
 
 namespace {
-
-std::string writeTemp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
 
 std::string configErrorOf(const std::string& yaml) {
   ContactParameters p;
@@ -36,17 +31,6 @@ std::string configErrorOf(const std::string& yaml) {
     return e.what();
   }
   return "(no error)";
-}
-
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result cli(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int code = runCli(args, out, err);
-  return {code, out.str(), err.str()};
 }
 
 const std::string kWheel = std::string(WRC_SOURCE_DIR) + "/config/profiles/MBench_S1002_v3.prw";
@@ -152,8 +136,8 @@ A22Run runA22(A22 which) {
   A22Run a;
   const std::string scenario = a22Scenario(&a.y_mm, which);
   const size_t n = a.y_mm.size();
-  const Result r = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail,
-                        "--scenario", scenario, "--model", "steady"});
+  const CliResult r = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail,
+                           "--scenario", scenario, "--model", "steady"});
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
   std::istringstream in(r.out);
@@ -239,8 +223,8 @@ TEST(ContactCliWheelset, AWheelWithoutContactGetsOneRowWithItsStatus) {
   const std::string f = writeTemp("w_noload.csv",
                                   "t,y,yaw,roll,V,omega,fz_left,fz_right\n"
                                   "0,-0.0005,-0.0012,-2.304e-05,2,4.34741,0,1e4\n");
-  const Result r = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail,
-                        "--scenario", f, "--model", "steady"});
+  const CliResult r = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail,
+                           "--scenario", f, "--model", "steady"});
   ASSERT_EQ(r.code, 0) << r.err;
   std::istringstream in(r.out);
   const auto rows = csvRows(in);
@@ -257,7 +241,7 @@ TEST(ContactCliWheelset, BadFilesAndOptionsAreRefusedNamingThem) {
   const std::string good = writeTemp("w_good.csv", "t,y,yaw,roll,V,omega,fz\n0,0,0,0,2,4.3,1e4\n");
   const std::string bad =
       writeTemp("w_bad.csv", "t,y,yaw,roll,V,omega,fz\n0,0,0,0,2,4.3,1e4\n1,0,0,zz,2,4.3,1e4\n");
-  Result r =
+  CliResult r =
       cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail, "--scenario", bad});
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("w_bad.csv:3: field 'roll': not a number ('zz')"), std::string::npos)
@@ -322,16 +306,16 @@ TEST(ContactCliWheelset, TextProfilesTakeTheirUnitFromTheFileOrTheConfig) {
   const std::string rail = writeTemp("w_rail_mm.csv", text(*Profile::standardRail()));
   const std::string scenario = writeTemp(
       "w_one.csv", "t,y,yaw,roll,V,omega,fz\n0,-0.0005,-0.0012,-2.304e-05,2,4.34741,1e4\n");
-  Result r = cli({"wheelset", "--wheel-profile", wheel, "--rail-profile", rail, "--scenario",
-                  scenario, "--model", "steady"});
+  CliResult r = cli({"wheelset", "--wheel-profile", wheel, "--rail-profile", rail, "--scenario",
+                     scenario, "--model", "steady"});
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("no length unit"), std::string::npos) << r.err;
   const std::string config = writeTemp("w_mm.yaml", "profile_length_unit: mm\n");
   r = cli({"wheelset", "--wheel-profile", wheel, "--rail-profile", rail, "--scenario", scenario,
            "--model", "steady", "--config", config});
   ASSERT_EQ(r.code, 0) << r.err;
-  const Result simpack = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail,
-                              "--scenario", scenario, "--model", "steady"});
+  const CliResult simpack = cli({"wheelset", "--wheel-profile", kWheel, "--rail-profile", kRail,
+                                 "--scenario", scenario, "--model", "steady"});
   ASSERT_EQ(simpack.code, 0) << simpack.err;
   std::istringstream a(r.out), b(simpack.out);
   const auto ra = csvRows(a), rb = csvRows(b);
