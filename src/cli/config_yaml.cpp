@@ -7,6 +7,7 @@
 #include <functional>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace wheel_rail_contact {
 
@@ -111,23 +112,21 @@ std::vector<ParameterDoc> wheelsetParameterDocs() {
 }
 
 bool setWheelsetParameter(WheelsetConfig* w, const std::string& name, const std::string& value) {
-  WheelsetTrackData& t = w->track;
+  static const std::pair<const char*, double WheelsetTrackData::*> kTrackNumbers[] = {
+      {"nominal_radius", &WheelsetTrackData::nominal_radius},
+      {"flange_back_distance", &WheelsetTrackData::flange_back_distance},
+      {"flange_back_position", &WheelsetTrackData::flange_back_position},
+      {"gauge", &WheelsetTrackData::gauge},
+      {"gauge_depth", &WheelsetTrackData::gauge_depth},
+      {"rail_inclination", &WheelsetTrackData::rail_inclination},
+      {"cant", &WheelsetTrackData::cant}};
+  for (const auto& [key, field] : kTrackNumbers)
+    if (name == key) {
+      w->track.*field = number(name, value);
+      return true;
+    }
   ProfileReadOptions& r = w->profile_read;
-  if (name == "nominal_radius") {
-    t.nominal_radius = number(name, value);
-  } else if (name == "flange_back_distance") {
-    t.flange_back_distance = number(name, value);
-  } else if (name == "flange_back_position") {
-    t.flange_back_position = number(name, value);
-  } else if (name == "gauge") {
-    t.gauge = number(name, value);
-  } else if (name == "gauge_depth") {
-    t.gauge_depth = number(name, value);
-  } else if (name == "rail_inclination") {
-    t.rail_inclination = number(name, value);
-  } else if (name == "cant") {
-    t.cant = number(name, value);
-  } else if (name == "profile_length_unit") {
+  if (name == "profile_length_unit") {
     r.length_unit = value == "mm" ? 1e-3 : value == "m" ? 1.0 : number(name, value);
     if (!(r.length_unit > 0.0))
       throw std::invalid_argument(name + ": must be > 0 (metres per file unit), got '" + value +
