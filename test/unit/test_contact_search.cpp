@@ -8,29 +8,10 @@
 #include <vector>
 
 #include "a22_states.hpp"
+#include "contact_search_helpers.hpp"
 #include "wheel_rail_contact/profiles/contact_search.hpp"
 
 using namespace wheel_rail_contact;
-
-namespace {
-
-/// The mirror image of a pose in the track's x-z plane (the left wheel's view of the right's).
-WheelsetPose mirrored(const WheelsetPose& p) {
-  WheelsetPose m = p;
-  m.y = -p.y;
-  m.yaw = -p.yaw;
-  m.roll = -p.roll;
-  return m;
-}
-
-// A copy: callers pass the search's result as a temporary, which a reference would outlive.
-ContactCandidate closest(const WheelContactGeometry& g) {
-  EXPECT_EQ(g.status, ContactSearchStatus::kOk) << g.message;
-  EXPECT_GE(g.closest, 0);
-  return g.candidates.at(g.closest);
-}
-
-}  // namespace
 
 TEST(ContactSearch, PlacesTheRailsByGauge) {
   const WheelsetTrackData d;

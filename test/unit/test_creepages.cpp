@@ -11,20 +11,13 @@
 #include <vector>
 
 #include "a22_states.hpp"
+#include "contact_search_helpers.hpp"
 #include "wheel_rail_contact/profiles/contact_search.hpp"
 #include "wheel_rail_contact/wheelset/creepages.hpp"
 
 using namespace wheel_rail_contact;
 
 namespace {
-
-WheelsetPose mirrored(const WheelsetPose& p) {
-  WheelsetPose m = p;
-  m.y = -p.y;
-  m.yaw = -p.yaw;
-  m.roll = -p.roll;
-  return m;
-}
 
 /// The mirror image of a motion in the track's x-z plane: lateral and rotations about z and x
 /// change sign, the forward speed and the pitch rate do not.
@@ -35,12 +28,6 @@ WheelsetMotion mirrored(const WheelsetMotion& m) {
   r.roll_rate = -m.roll_rate;
   r.curvature = -m.curvature;
   return r;
-}
-
-ContactCandidate closest(const WheelContactGeometry& g) {
-  EXPECT_EQ(g.status, ContactSearchStatus::kOk) << g.message;
-  EXPECT_GE(g.closest, 0);
-  return g.candidates.at(g.closest);
 }
 
 double sideSign(WheelSide s) {
