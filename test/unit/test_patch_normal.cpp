@@ -415,7 +415,9 @@ TEST(PatchNormal, OddGapsNeverGiveNaN) {
     ASSERT_TRUE(std::isfinite(p.a) && std::isfinite(p.b) && std::isfinite(p.area)) << k;
     for (const NormalStrip& s : p.strips)
       ASSERT_TRUE(std::isfinite(s.force) && std::isfinite(s.x_lead) && std::isfinite(s.pmax)) << k;
-    if (p.status != NormalStatus::kOk) EXPECT_EQ(p.fn, 0.0) << k;
+    if (p.status != NormalStatus::kOk) {
+      EXPECT_EQ(p.fn, 0.0) << k;
+    }
   }
 }
 

@@ -25,22 +25,6 @@ GapSample moved(const GapSample& s, const ContactCandidate& k, const ContactCand
   return m;
 }
 
-/// A gap function the merge can take: at least five samples (as the normal problem needs),
-/// finite, strictly increasing in eta at one spacing, the wheel's radius > 0.
-bool usable(const std::vector<GapSample>& f) {
-  if (f.size() < 5) return false;
-  const double de = f[1].eta - f[0].eta;
-  if (!(de > 0.0) || !std::isfinite(de)) return false;
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    const GapSample& s = f[i];
-    if (!std::isfinite(s.eta) || !std::isfinite(s.gap) || !std::isfinite(s.contact_angle) ||
-        !(s.rolling_radius > 0.0) || !std::isfinite(s.rolling_radius))
-      return false;
-    if (i > 0 && !(std::abs(s.eta - f[i - 1].eta - de) <= 1e-6 * de)) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 double ridgeApproach(const ContactCandidate& a, const ContactCandidate& b) {
