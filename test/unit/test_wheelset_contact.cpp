@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/wheelset/wheelset_contact.hpp"
@@ -377,4 +379,53 @@ TEST(WheelsetContact, ASharedContactTableMustTabulateTheSameTrack) {
   }
   WheelsetContact first(wide, ContactParameters{}, o), second(wide, ContactParameters{}, o);
   EXPECT_EQ(o.contact_table.use_count(), 3);  // held by both, built once
+}
+
+TEST(WheelsetContact, AWarmStartGivesTheColdStartsPatches) {
+  // Only the load iteration's cost depends on where it starts (NormalOptions::start_beyond_touch):
+  // a sequence of steps as a simulator makes them (0.01 mm apart around each state, jumps between
+  // states that change the wheel's candidates, a step without load) gives the same slots and
+  // geometry, and each patch's fn within the iteration's load tolerance (1e-6 of the load, here
+  // 1e-5 of the patch's fn for a patch sharing the load).
+  WheelsetContactOptions cold_options;
+  cold_options.warm_start = false;
+  cold_options.tangential = false;
+  WheelsetContactOptions warm_options;
+  warm_options.tangential = false;
+  WheelsetContact warm(WheelsetTrackData{}, parameters("nss"), warm_options);
+  WheelsetContact cold(WheelsetTrackData{}, parameters("nss"), cold_options);
+  std::vector<WheelsetState> steps;
+  for (const WheelsetState& s : {tread(), corner(), corner2(), flange(), tread()}) {
+    for (int k = 0; k < 6; ++k) {
+      WheelsetState t = s;
+      t.pose.y -= 1e-5 * k;
+      t.fz_right = 1e4 * (1.0 + 0.01 * k);
+      steps.push_back(t);
+    }
+  }
+  WheelsetState unloaded = steps[8];  // the right wheel's history cleared in between
+  unloaded.fz_right = 0.0;
+  steps.insert(steps.begin() + 9, unloaded);
+  int patches = 0;
+  for (const WheelsetState& s : steps) {
+    const WheelsetResult w = warm.step(s, 1e-3), c = cold.step(s, 1e-3);
+    for (const auto& [ww, wc] : {std::pair{&w.left, &c.left}, std::pair{&w.right, &c.right}}) {
+      ASSERT_EQ(ww->status, wc->status) << ww->message;
+      ASSERT_EQ(ww->patches.size(), wc->patches.size());
+      for (size_t i = 0; i < wc->patches.size(); ++i) {
+        const PatchResult &pw = ww->patches[i], &pc = wc->patches[i];
+        EXPECT_EQ(pw.slot, pc.slot);
+        EXPECT_EQ(pw.geometry.rail_file, pc.geometry.rail_file);
+        EXPECT_EQ(pw.geometry.wheel_file, pc.geometry.wheel_file);
+        EXPECT_EQ(pw.geometry.contact_angle, pc.geometry.contact_angle);
+        EXPECT_NEAR(pw.normal.fn, pc.normal.fn, 1e-5 * pc.normal.fn) << pc.slot;
+        EXPECT_EQ(pw.normal.method, pc.normal.method) << pc.slot;
+        // tangential false: no model run, said so
+        EXPECT_EQ(pw.fx, 0.0);
+        EXPECT_NE(pw.message.find("not computed"), std::string::npos);
+        ++patches;
+      }
+    }
+  }
+  EXPECT_GT(patches, static_cast<int>(steps.size()));  // both wheels mostly in contact
 }

@@ -15,7 +15,8 @@
 ///      patches' normal forces' vertical components add up to the load); a patch is a candidate
 ///      with fn > 0;
 ///   3. each patch's creepages xi, eta, phi from the wheelset's motion (patchCreepages);
-///   4. its tangential forces from the creep-force model of ContactParameters::model, run on the
+///   4. its tangential forces from the creep-force model of ContactParameters::model (unless
+///      WheelsetContactOptions::tangential is false), run on the
 ///      patch's equivalent ellipse (a, b) with its fn and creepages. This is the elliptic-patch
 ///      model on the equivalent ellipse, not a tangential solution on the true (non-Hertzian)
 ///      patch.
@@ -68,7 +69,17 @@ struct WheelsetContactOptions {
   /// says; its own search options apply. It must tabulate this object's track data (the same
   /// values and profiles), else the constructor throws std::invalid_argument("contact_table: ...").
   std::shared_ptr<const ContactTable> contact_table;
+  /// normal.start_beyond_touch and start_exponent are set per wheel when warm_start is on.
   NormalOptions normal;
+  /// Start each wheel's load iteration (solveWheelLoad) from its previous step's solution (the
+  /// approach beyond first touch and the load's exponent there) when the wheel's candidates are
+  /// of the same zones in the same order as then; else, and after a step that cleared the wheel's
+  /// history (no load, no contact, no normal solution, reset()), cold. Only the cost depends on
+  /// it: the patches are the same within the iteration's load tolerance.
+  bool warm_start = true;
+  /// false: each patch's geometry, normal solution and creepages only; no tangential model is
+  /// run (fx = fs = mz = 0, the slots keep no history) and every patch says so in its message.
+  bool tangential = true;
 };
 
 enum class WheelStatus {

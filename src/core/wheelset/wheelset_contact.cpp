@@ -88,6 +88,13 @@ struct WheelsetContact::Impl {
   ContactSearch search;
   std::shared_ptr<const ContactTable> table;
   std::array<std::map<std::string, Slot>, 2> slots;  // [0] left, [1] right, by slot name
+  // Each wheel's previous normal solution for the warm start, with its candidates' zones; empty
+  // zones: none (cold start).
+  struct Previous {
+    std::vector<ContactZone> zones;
+    double beyond_touch = 0.0, exponent = 1.5;
+  };
+  std::array<Previous, 2> previous;
 
   Impl(const WheelsetTrackData& t, const ContactParameters& p, const WheelsetContactOptions& o)
       : track(t), parameters(p), options(o), search(t, o.search) {
@@ -142,7 +149,9 @@ struct WheelsetContact::Impl {
   }
 
   WheelResult stepWheel(WheelSide side, const WheelsetState& s, double dt) {
-    std::map<std::string, Slot>& wheel = slots[side == WheelSide::kLeft ? 0 : 1];
+    const int w = side == WheelSide::kLeft ? 0 : 1;
+    std::map<std::string, Slot>& wheel = slots[w];
+    Previous& prev = previous[w];
     WheelResult r;
     r.side = side;
     const double load = side == WheelSide::kLeft ? s.fz_left : s.fz_right;
@@ -150,7 +159,10 @@ struct WheelsetContact::Impl {
       r.status = status;
       r.message = std::move(message);
       r.patches.clear();
-      if (clear) resetAbsent(wheel);  // no patch present: every slot of the wheel
+      if (clear) {
+        resetAbsent(wheel);  // no patch present: every slot of the wheel
+        prev.zones.clear();
+      }
       return r;
     };
     // Rejected input leaves the history as it was, as a model's kRejected step does.
@@ -176,7 +188,21 @@ struct WheelsetContact::Impl {
     if (g.status != ContactSearchStatus::kOk || g.candidates.empty())
       return finish(WheelStatus::kNoContact, g.message.empty() ? "no candidate" : g.message, true);
 
-    const WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, options.normal);
+    std::vector<ContactZone> zones;
+    for (const ContactCandidate& c : g.candidates) zones.push_back(c.zone);
+    NormalOptions no = options.normal;
+    if (options.warm_start && zones == prev.zones) {
+      no.start_beyond_touch = prev.beyond_touch;
+      no.start_exponent = prev.exponent;
+    }
+    const WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, no);
+    prev.zones.clear();
+    if (n.status == NormalStatus::kOk && std::isfinite(n.vertical_approach - n.touch_approach) &&
+        n.vertical_approach > n.touch_approach && std::isfinite(n.load_exponent)) {
+      prev.zones = std::move(zones);
+      prev.beyond_touch = n.vertical_approach - n.touch_approach;
+      prev.exponent = n.load_exponent;
+    }
     if (n.status == NormalStatus::kNoContact)
       return finish(WheelStatus::kNoContact, n.message, true);
     if (n.status != NormalStatus::kOk || n.patches.size() != g.candidates.size())
@@ -195,6 +221,11 @@ struct WheelsetContact::Impl {
       p.normal = np;
       p.creepages = patchCreepages(side, pose, s.motion, p.geometry, track);
 
+      if (!options.tangential) {
+        p.message = "tangential forces not computed (WheelsetContactOptions::tangential false)";
+        r.patches.push_back(std::move(p));
+        continue;
+      }
       Slot& slot = wheel[p.slot];
       slot.present = true;
       if (p.creepages.status == CreepageStatus::kInvalidInput) {
@@ -264,6 +295,7 @@ WheelsetResult WheelsetContact::step(const WheelsetState& state, double dt) {
 
 void WheelsetContact::reset() {
   for (auto& wheel : impl_->slots) wheel.clear();
+  for (auto& prev : impl_->previous) prev.zones.clear();
 }
 
 const ContactSearch& WheelsetContact::search() const {
