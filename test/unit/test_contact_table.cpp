@@ -522,3 +522,61 @@ TEST(ContactTable, NormalProblemOnTheTablesGeometryAsOnTheSearchs) {
       solved, 100.0 * worst_fn, 100.0 * worst_pmax);
   EXPECT_GE(solved, 30);
 }
+
+TEST(ContactTable, SearchAtTouchAsTwoLookups) {
+  // searchAtTouch (one lookup) against what callers did before it: a lookup at the pose, then one
+  // at the pose lowered by the closest candidate's vertical gap. The height shifts the vertical
+  // gaps exactly, so the two agree to rounding: the geometry within a nanometre (far inside the
+  // table's bounds above), the normal problem's patches within 1e-4 of their force.
+  const ContactTable& table = defaultTable();
+  const double G = 8.2e10, nu = 0.28, load = 1e4, tolerance = 1e-5;
+  std::vector<WheelsetPose> poses;
+  for (const WheelsetPose& s : a22())
+    for (double z : {-2e-3, 0.0, 5e-6, 1e-3}) {
+      WheelsetPose p = s;
+      p.z = z;
+      poses.push_back(p);
+    }
+  WheelsetPose beyond;  // beyond the table's lateral range: the direct search answers
+  beyond.y = 1.5 * table.options().max_abs_lateral;
+  poses.push_back(beyond);
+  int shifted = 0;
+  for (const WheelsetPose& s : poses)
+    for (WheelSide side : {WheelSide::kRight, WheelSide::kLeft}) {
+      WheelsetPose two = s;
+      WheelContactGeometry a = table.search(side, two);
+      if (a.status == ContactSearchStatus::kOk && a.closest >= 0 &&
+          std::abs(a.candidates[a.closest].vertical_gap) > tolerance) {
+        two.z -= a.candidates[a.closest].vertical_gap;
+        a = table.search(side, two);
+        ++shifted;
+      }
+      WheelsetPose one = s;
+      const WheelContactGeometry b = table.searchAtTouch(side, &one, tolerance);
+      const std::string where = std::string(side == WheelSide::kLeft ? "left" : "right") + " y " +
+                                std::to_string(s.y) + " z " + std::to_string(s.z);
+      EXPECT_NEAR(one.z, two.z, 1e-12) << where;
+      ASSERT_EQ(a.status, b.status) << where;
+      ASSERT_EQ(a.candidates.size(), b.candidates.size()) << where;
+      EXPECT_EQ(a.closest, b.closest) << where;
+      for (std::size_t i = 0; i < a.candidates.size(); ++i) {
+        const ContactCandidate &ca = a.candidates[i], &cb = b.candidates[i];
+        EXPECT_EQ(ca.zone, cb.zone) << where;
+        EXPECT_NEAR(ca.vertical_gap, cb.vertical_gap, 1e-9) << where;
+        EXPECT_NEAR(ca.gap, cb.gap, 1e-9) << where;
+        EXPECT_NEAR(ca.contact_angle, cb.contact_angle, 1e-12) << where;
+        ASSERT_EQ(ca.gap_function.size(), cb.gap_function.size()) << where;
+        for (std::size_t k = 0; k < ca.gap_function.size(); ++k) {
+          EXPECT_NEAR(ca.gap_function[k].eta, cb.gap_function[k].eta, 1e-9) << where;
+          EXPECT_NEAR(ca.gap_function[k].gap, cb.gap_function[k].gap, 1e-9) << where;
+        }
+      }
+      if (a.status != ContactSearchStatus::kOk) continue;
+      const WheelNormal na = solveWheelLoad(a, load, G, nu), nb = solveWheelLoad(b, load, G, nu);
+      ASSERT_EQ(na.status, nb.status) << where;
+      ASSERT_EQ(na.patches.size(), nb.patches.size()) << where;
+      for (std::size_t i = 0; i < na.patches.size(); ++i)
+        EXPECT_NEAR(na.patches[i].fn, nb.patches[i].fn, 1e-4 * load) << where;
+    }
+  EXPECT_GT(shifted, 100);  // most poses are lowered or raised to touch
+}

@@ -84,6 +84,14 @@ class ContactTable {
   /// the search refuses gives the search's status and message.
   WheelContactGeometry search(WheelSide side, const WheelsetPose& pose) const;
 
+  /// The geometry at first touch, in one lookup: what `search` gives at `*pose` when its closest
+  /// candidate's vertical gap g is within touch_tolerance [m] of zero, else what it gives at the
+  /// pose lowered by g (pose->z -= g, which this sets: a height moves every candidate's vertical
+  /// gap alike, so the closest one then touches). Poses the table answers with the direct search
+  /// get the two direct searches.
+  WheelContactGeometry searchAtTouch(WheelSide side, WheelsetPose* pose,
+                                     double touch_tolerance) const;
+
   const ContactSearch& contactSearch() const;
   const ContactTableOptions& options() const { return options_; }
   /// Nodes per wheel table, tables held (1 when the left wheel mirrors the right), and the bytes
@@ -99,6 +107,8 @@ class ContactTable {
   ~ContactTable();
 
  private:
+  WheelContactGeometry lookup(WheelSide side, const WheelsetPose& pose, WheelsetPose* touch_pose,
+                              double touch_tolerance) const;
   struct Impl;
   ContactTableOptions options_;
   std::unique_ptr<Impl> impl_;

@@ -338,6 +338,29 @@ std::size_t ContactTable::bytes() const {
 }
 
 WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& pose) const {
+  return lookup(side, pose, nullptr, 0.0);
+}
+
+WheelContactGeometry ContactTable::searchAtTouch(WheelSide side, WheelsetPose* pose,
+                                                 double touch_tolerance) const {
+  return lookup(side, *pose, pose, touch_tolerance);
+}
+
+// The direct search's answer at first touch, as searchAtTouch promises: one search at the pose,
+// one more lowered or raised by the closest candidate's vertical gap.
+static WheelContactGeometry searchAtTouchDirect(const ContactSearch& search, WheelSide side,
+                                                WheelsetPose* pose, double touch_tolerance) {
+  WheelContactGeometry g = search.search(side, *pose);
+  if (g.status == ContactSearchStatus::kOk && g.closest >= 0 &&
+      std::abs(g.candidates[g.closest].vertical_gap) > touch_tolerance) {
+    pose->z -= g.candidates[g.closest].vertical_gap;
+    g = search.search(side, *pose);
+  }
+  return g;
+}
+
+WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& pose,
+                                          WheelsetPose* touch_pose, double touch_tolerance) const {
   const Impl& im = *impl_;
   const ContactSearchOptions& so = im.search.options();
   // The search's own checks first: a pose it refuses is refused with its message.
@@ -345,7 +368,8 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
       !std::isfinite(pose.roll) || std::abs(pose.y) > so.max_abs_y ||
       std::abs(pose.z) > so.max_abs_z || std::abs(pose.yaw) > so.max_abs_yaw ||
       std::abs(pose.roll) > so.max_abs_roll)
-    return im.search.search(side, pose);
+    return touch_pose ? searchAtTouchDirect(im.search, side, touch_pose, touch_tolerance)
+                      : im.search.search(side, pose);
 
   // The left wheel of a mirrored pair is the right one in the mirrored pose.
   const bool mirror = side == WheelSide::kLeft && im.left_mirrors_right;
@@ -361,7 +385,8 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
 
   auto beyond = [&](const std::string& why) {
     if (options_.beyond == ContactTableOptions::Beyond::kSearch)
-      return im.search.search(side, pose);
+      return touch_pose ? searchAtTouchDirect(im.search, side, touch_pose, touch_tolerance)
+                        : im.search.search(side, pose);
     WheelContactGeometry out;
     out.status = ContactSearchStatus::kOutOfRange;
     out.message = why;
@@ -420,14 +445,28 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
   WheelContactGeometry out;
   const double sigma = mirror ? -1.0 : (side == WheelSide::kRight ? 1.0 : -1.0);
   const double sy = std::sin(p.yaw) * std::cos(p.roll);
-  for (const TableCandidate& mc : corners[master].node->candidates) {
-    // The nodes that interpolate this candidate, its match at each, and their weights: the
-    // quadratic stencil where every one of its nodes has the candidate, else the linear cell's
-    // nodes that have it, their weights renormalised.
+  // Pass one: each candidate's nodes and weights, and what does not depend on the height.
+  struct Interpolated {
     std::array<const TableCandidate*, 12> m{};
     std::array<const Node*, 12> at{};
     std::array<double, 12> w{}, w_linear{};
     int nm = 0;
+    double sw_gf = 0.0;
+    ContactCandidate c;
+  };
+  std::vector<Interpolated> cands;
+  cands.reserve(corners[master].node->candidates.size());
+  for (const TableCandidate& mc : corners[master].node->candidates) {
+    cands.emplace_back();
+    Interpolated& ic = cands.back();
+    auto& m = ic.m;
+    auto& at = ic.at;
+    auto& w = ic.w;
+    auto& w_linear = ic.w_linear;
+    int& nm = ic.nm;
+    // The nodes that interpolate this candidate, its match at each, and their weights: the
+    // quadratic stencil where every one of its nodes has the candidate, else the linear cell's
+    // nodes that have it, their weights renormalised.
     if (quad_ok) {
       for (int q = 0; q < 12; ++q) {
         m[q] = quad[q].node == corners[master].node
@@ -460,11 +499,11 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
     }
     // The gap function's shape from the linear cell (it changes slowly with yaw), put at the
     // gap the stencil gives.
-    double sw_gf = 0.0;
+    double& sw_gf = ic.sw_gf;
     for (int q = 0; q < nm; ++q)
       if (!m[q]->rows.empty()) sw_gf += w_linear[q];
-    ContactCandidate c;
-    double vg0 = 0.0, gap = 0.0, angle = 0.0, lead = 0.0, axial = 0.0;
+    ContactCandidate& c = ic.c;
+    double vg0 = 0.0, angle = 0.0, lead = 0.0, axial = 0.0;
     for (int q = 0; q < nm; ++q) {
       const TableCandidate& t = *m[q];
       vg0 += w[q] * t.vertical_gap0;
@@ -480,12 +519,6 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
       lead += w[q] * t.lead_per_yaw;
     }
     c.vertical_gap = vg0 + place.Z;
-    // Each node's gap and gap function at the candidate's vertical gap here, not at this height:
-    // the nodes' candidates then overlap alike, where each node's linearisation in the height
-    // holds, while at one height they would differ by the vertical gap's change from node to node
-    // (half a millimetre per lateral step on a flange).
-    auto heightAt = [&](int q) { return c.vertical_gap - m[q]->vertical_gap0 - at[q]->z_a; };
-    for (int q = 0; q < nm; ++q) gap += w[q] * (m[q]->gap_a + m[q]->gap_dz * heightAt(q));
     c.contact_angle = angle;
     c.zone = angle < so.tread_max_angle     ? ContactZone::kTread
              : angle >= so.flange_min_angle ? ContactZone::kFlange
@@ -493,6 +526,35 @@ WheelContactGeometry ContactTable::search(WheelSide side, const WheelsetPose& po
     c.lead = lead * p.yaw;
     c.point.x() = c.lead - axial * sy;
     c.normal = Eigen::Vector2d(sigma * std::sin(angle), std::cos(angle));
+  }
+  // At first touch: the height moves every candidate's vertical gap alike (exactly), so the
+  // touching height follows from this pose's and the rest is interpolated there once.
+  if (touch_pose && !cands.empty()) {
+    double closest = std::numeric_limits<double>::infinity();
+    for (const Interpolated& ic : cands) closest = std::min(closest, ic.c.vertical_gap);
+    if (std::abs(closest) > touch_tolerance) {
+      touch_pose->z -= closest;
+      if (std::abs(touch_pose->z) > so.max_abs_z) return im.search.search(side, *touch_pose);
+      for (Interpolated& ic : cands) ic.c.vertical_gap -= closest;
+    }
+  }
+
+  // Pass two: the gap and the gap function at the candidate's height.
+  for (Interpolated& ic : cands) {
+    const auto& m = ic.m;
+    const auto& at = ic.at;
+    const auto& w = ic.w;
+    const auto& w_linear = ic.w_linear;
+    const int nm = ic.nm;
+    const double sw_gf = ic.sw_gf;
+    ContactCandidate& c = ic.c;
+    double gap = 0.0;
+    // Each node's gap and gap function at the candidate's vertical gap here, not at this height:
+    // the nodes' candidates then overlap alike, where each node's linearisation in the height
+    // holds, while at one height they would differ by the vertical gap's change from node to node
+    // (half a millimetre per lateral step on a flange).
+    auto heightAt = [&](int q) { return c.vertical_gap - m[q]->vertical_gap0 - at[q]->z_a; };
+    for (int q = 0; q < nm; ++q) gap += w[q] * (m[q]->gap_a + m[q]->gap_dz * heightAt(q));
     c.gap = gap;
 
     if (sw_gf > 0.0) {

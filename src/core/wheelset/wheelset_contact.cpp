@@ -111,8 +111,16 @@ struct WheelsetContact::Impl {
     }
   }
 
-  WheelContactGeometry geometry(WheelSide side, const WheelsetPose& pose) const {
-    return table ? table->search(side, pose) : search.search(side, pose);
+  // The geometry at first touch; the table finds the touching height within one lookup.
+  WheelContactGeometry geometryAtTouch(WheelSide side, WheelsetPose* pose) const {
+    if (table) return table->searchAtTouch(side, pose, kTouchTolerance);
+    WheelContactGeometry g = search.search(side, *pose);
+    if (g.status == ContactSearchStatus::kOk && g.closest >= 0 &&
+        std::abs(g.candidates[g.closest].vertical_gap) > kTouchTolerance) {
+      pose->z -= g.candidates[g.closest].vertical_gap;
+      g = search.search(side, *pose);
+    }
+    return g;
   }
 
   // Drops the models of one wheel's slots whose patch was not present this step: the patch
@@ -177,12 +185,7 @@ struct WheelsetContact::Impl {
     // problem's approach then starts where its gap functions were sampled.
     WheelsetPose pose = s.pose;
     pose.z = 0.0;
-    WheelContactGeometry g = geometry(side, pose);
-    if (g.status == ContactSearchStatus::kOk && g.closest >= 0 &&
-        std::abs(g.candidates[g.closest].vertical_gap) > kTouchTolerance) {
-      pose.z -= g.candidates[g.closest].vertical_gap;
-      g = geometry(side, pose);
-    }
+    WheelContactGeometry g = geometryAtTouch(side, &pose);
     if (g.status == ContactSearchStatus::kInvalidInput)
       return finish(WheelStatus::kInvalidInput, g.message, false);
     if (g.status != ContactSearchStatus::kOk || g.candidates.empty())
