@@ -64,12 +64,19 @@ std::vector<ContactState> viaTopics(ContactClient& c, size_t n) {
 }
 
 void viaStep(ContactClient& c, size_t from, size_t to) {
+  const size_t published = c.states.size();
   for (size_t k = from; k < to; ++k) {
     const auto& row = sut.rows[k];
     wheel_rail_contact::Step::Response res;
     ASSERT_TRUE(c.step(sut.stampOf(row.t), row.xi, row.eta, row.phi, row.V, row.fz, &res));
     expectMatches(k, res);
     EXPECT_EQ(res.dt, k == from && from == 0 ? 0.0 : res.dt);
+    // Each step's publication arrives before the next step, as a simulator's loop takes it: a
+    // burst of service calls faster than a loaded machine delivers would overrun the node's
+    // publisher queue (publish_queue_size), which is the configuration's limit, not the node's.
+    const size_t expected = published + (k - from + 1);
+    ASSERT_TRUE(spinUntil([&] { return c.states.size() >= expected; }, 10.0))
+        << "step " << k << ": contact_state not published";
   }
 }
 
