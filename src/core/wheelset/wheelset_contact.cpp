@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
+
 namespace wheel_rail_contact {
 
 const char* toString(WheelStatus s) {
@@ -138,7 +140,7 @@ struct WheelsetContact::Impl {
   // outside the model's ranges (a/b beyond Kalker's table).
   std::unique_ptr<ContactModel> modelFor(const NormalPatch& np, std::string* why) const {
     // As checkStepInput would refuse the step: said in the patch's own terms, not as a0/b0.
-    if (!(np.a >= 0.1 * np.b && np.a <= 10.0 * np.b)) {
+    if (!(np.a >= kKalkerMinAOverB * np.b && np.a <= kKalkerMaxAOverB * np.b)) {
       *why = "the patch's a/b = " + std::to_string(np.a / np.b) +
              " is outside Kalker's table [0.1, 10], which the elliptic-patch models take";
       return nullptr;
