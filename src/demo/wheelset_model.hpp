@@ -45,6 +45,17 @@ struct Irregularity {
     if (cycles > 0.0 && x > start + cycles * wavelength) return 0.0;
     return amplitude * std::sin(2.0 * M_PI * (x - start) / wavelength);
   }
+  /// dy_t/dx and d^2y_t/dx^2 (the track's local direction and curvature).
+  double slope(double x) const {
+    if (amplitude == 0.0 || x < start) return 0.0;
+    if (cycles > 0.0 && x > start + cycles * wavelength) return 0.0;
+    const double k = 2.0 * M_PI / wavelength;
+    return amplitude * k * std::cos(k * (x - start));
+  }
+  double curvature(double x) const {
+    const double k = 2.0 * M_PI / wavelength;
+    return -k * k * lateral(x);
+  }
 };
 
 struct WheelsetState {

@@ -440,6 +440,15 @@ TEST(ContactTable, LeftWheelSharesTheRightTableWhenMirrored) {
     // Each table's touching heights follow its own sweep: the gap's linearisation differs.
     EXPECT_NEAR(a.candidates[k].gap, b.candidates[k].gap, 0.2e-6);
     EXPECT_NEAR(a.candidates[k].lead, b.candidates[k].lead, 1e-9);
+    EXPECT_NEAR((a.candidates[k].normal - b.candidates[k].normal).norm(), 0.0, 1e-9);
+  }
+  // Both as the direct search: the left wheel's normal points from its rail toward the track
+  // centre (-y) on a contact angle > 0, as patchCreepages checks.
+  const WheelContactGeometry d = ContactSearch{WheelsetTrackData()}.search(WheelSide::kLeft, p);
+  ASSERT_EQ(d.candidates.size(), a.candidates.size());
+  for (std::size_t k = 0; k < a.candidates.size(); ++k) {
+    ASSERT_GT(std::abs(d.candidates[k].normal.x()), 0.01) << k;  // a sign to get wrong
+    EXPECT_NEAR((a.candidates[k].normal - d.candidates[k].normal).norm(), 0.0, 1e-3) << k;
   }
 }
 

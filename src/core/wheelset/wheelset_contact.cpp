@@ -116,6 +116,9 @@ struct WheelsetContact::Impl {
   // The geometry at first touch; the table finds the touching height within one lookup.
   WheelContactGeometry geometryAtTouch(WheelSide side, WheelsetPose* pose) const {
     if (table) return table->searchAtTouch(side, pose, kTouchTolerance);
+    return searchAtTouchDirect(side, pose);
+  }
+  WheelContactGeometry searchAtTouchDirect(WheelSide side, WheelsetPose* pose) const {
     WheelContactGeometry g = search.search(side, *pose);
     if (g.status == ContactSearchStatus::kOk && g.closest >= 0 &&
         std::abs(g.candidates[g.closest].vertical_gap) > kTouchTolerance) {
@@ -200,7 +203,24 @@ struct WheelsetContact::Impl {
       no.start_beyond_touch = prev.beyond_touch;
       no.start_exponent = prev.exponent;
     }
-    const WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, no);
+    WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, no);
+    if (table && n.status != NormalStatus::kOk && n.status != NormalStatus::kNoContact) {
+      // The table takes its nearest node's candidates: next to a ridge lower than the approach
+      // it can drop the neighbour the patch must merge with, leaving a gap function that ends
+      // at the ridge. The direct search keeps both; its geometry answers this step.
+      pose = s.pose;
+      pose.z = 0.0;
+      WheelContactGeometry d = searchAtTouchDirect(side, &pose);
+      if (d.status == ContactSearchStatus::kOk && !d.candidates.empty()) {
+        WheelNormal nd = solveWheelLoad(d, load, parameters.G, parameters.nu, no);
+        if (nd.status == NormalStatus::kOk) {
+          g = std::move(d);
+          n = std::move(nd);
+          zones.clear();
+          for (const ContactCandidate& c : g.candidates) zones.push_back(c.zone);
+        }
+      }
+    }
     prev.zones.clear();
     if (n.status == NormalStatus::kOk && std::isfinite(n.vertical_approach - n.touch_approach) &&
         n.vertical_approach > n.touch_approach && std::isfinite(n.load_exponent)) {
