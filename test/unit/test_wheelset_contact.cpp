@@ -429,3 +429,80 @@ TEST(WheelsetContact, AWarmStartGivesTheColdStartsPatches) {
   }
   EXPECT_GT(patches, static_cast<int>(steps.size()));  // both wheels mostly in contact
 }
+
+TEST(WheelsetContact, ATableStepWhoseNormalProblemFailsIsAnsweredByTheDirectSearch) {
+  // Near the centre the left wheel of S1002 on UIC60 1:40 has two tread candidates 9 mm apart
+  // across a ridge a few micrometres high, which 80 kN's approach (about 0.1 mm) crosses: the
+  // patches merge. At this pose (from the closed-loop demo) the table's nearest node has only the
+  // one candidate, whose gap function ends at the ridge, and the normal problem on it fails; the
+  // step takes the direct search's geometry instead, and gives the direct step's patches.
+  ContactTableOptions to;
+  to.max_abs_lateral = 0.002;
+  to.max_abs_yaw = 0.01;
+  to.yaw_step = 0.005;
+  to.max_abs_roll = 0.0025;
+  WheelsetPose p;
+  p.y = 0.365375e-3;
+  p.yaw = -2.096573e-3;
+  p.roll = 0.016182e-3;
+  const ContactTable table(ContactSearch{WheelsetTrackData{}}, to);
+  WheelsetPose touch = p;
+  const WheelContactGeometry g = table.searchAtTouch(WheelSide::kLeft, &touch, 1e-8);
+  ASSERT_NE(solveWheelLoad(g, 8e4, 8.2e10, 0.28).status, NormalStatus::kOk)
+      << "the table's geometry no longer fails here: the test needs another pose";
+
+  WheelsetContactOptions o;
+  o.use_contact_table = true;
+  o.table = to;
+  WheelsetContact withTable(WheelsetTrackData{}, parameters("steady"), o);
+  WheelsetContact direct(WheelsetTrackData{}, parameters("steady"));
+  WheelsetState s;
+  s.pose = p;
+  s.motion.V = 40.0;
+  s.motion.omega = 40.0 / 0.46;
+  s.fz_left = s.fz_right = 8e4;
+  const WheelsetResult t = withTable.step(s, 0.0), d = direct.step(s, 0.0);
+  ASSERT_EQ(t.left.status, WheelStatus::kOk) << t.left.message;
+  ASSERT_EQ(t.left.patches.size(), d.left.patches.size());
+  for (size_t i = 0; i < d.left.patches.size(); ++i) {
+    const PatchResult &pt = t.left.patches[i], &pd = d.left.patches[i];
+    EXPECT_EQ(pt.slot, pd.slot);
+    EXPECT_NEAR(pt.normal.fn, pd.normal.fn, 1e-9 * pd.normal.fn);
+    EXPECT_NEAR(pt.fx, pd.fx, 1e-9 * std::abs(pd.fx) + 1e-6);
+    EXPECT_NEAR(pt.fs, pd.fs, 1e-9 * std::abs(pd.fs) + 1e-6);
+  }
+  // The right wheel, where the table's geometry serves: its patches as the direct step's within
+  // what interpolation moves, and the creepages accepted (the table's normals point as the
+  // search's on both wheels).
+  ASSERT_EQ(t.right.status, WheelStatus::kOk) << t.right.message;
+  ASSERT_EQ(t.right.patches.size(), d.right.patches.size());
+  for (size_t i = 0; i < d.right.patches.size(); ++i) {
+    EXPECT_EQ(t.right.patches[i].tangential_status, StepStatus::kOk);
+    EXPECT_NEAR(t.right.patches[i].fs, d.right.patches[i].fs,
+                0.02 * std::abs(d.right.patches[i].fs));
+  }
+}
+
+TEST(WheelsetContact, AContactTablesLeftWheelHasTheSearchsNormals) {
+  // The left wheel shares the right one's table, mirrored: its patches' creepages (which check
+  // the normal against the contact angle on each side) are accepted and its forces are the
+  // direct step's.
+  WheelsetContactOptions o;
+  o.use_contact_table = true;
+  o.table.max_abs_lateral = 0.004;
+  o.table.max_abs_yaw = 0.02;
+  o.table.max_abs_roll = 0.005;
+  WheelsetContact withTable(WheelsetTrackData{}, parameters("steady"), o);
+  WheelsetContact direct(WheelsetTrackData{}, parameters("steady"));
+  const WheelsetState s = mirrored(tread());  // the left wheel on the benchmark's 0.5 mm case
+  const WheelsetResult t = withTable.step(s, 0.0), d = direct.step(s, 0.0);
+  ASSERT_EQ(t.left.status, WheelStatus::kOk) << t.left.message;
+  ASSERT_EQ(t.left.patches.size(), d.left.patches.size());
+  for (size_t i = 0; i < d.left.patches.size(); ++i) {
+    const PatchResult &pt = t.left.patches[i], &pd = d.left.patches[i];
+    ASSERT_GT(std::abs(pd.geometry.contact_angle), 0.01);  // a normal's sign to get wrong
+    EXPECT_EQ(pt.tangential_status, StepStatus::kOk) << pt.message;
+    EXPECT_NEAR((pt.geometry.normal - pd.geometry.normal).norm(), 0.0, 2e-3);
+    EXPECT_NEAR(pt.fs, pd.fs, 0.05 * std::abs(pd.fs));
+  }
+}

@@ -13,7 +13,10 @@
 ///      closest candidate touches, one more search when z = 0 is more than 10 um from it);
 ///   2. the wheel's vertical load shared among them (solveWheelLoad: the approach at which the
 ///      patches' normal forces' vertical components add up to the load); a patch is a candidate
-///      with fn > 0;
+///      with fn > 0. With a table, a wheel whose normal problem fails on the table's geometry is
+///      searched again directly (at the search's cost) and takes that geometry when its normal
+///      problem succeeds: the table keeps its nearest node's candidates, and next to a ridge lower
+///      than the approach it can drop the neighbour that the patch must merge with;
 ///   3. each patch's creepages xi, eta, phi from the wheelset's motion (patchCreepages);
 ///   4. its tangential forces from the creep-force model of ContactParameters::model (unless
 ///      WheelsetContactOptions::tangential is false), run on the
