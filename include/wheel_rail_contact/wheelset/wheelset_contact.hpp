@@ -5,7 +5,8 @@
 ///
 /// Axes: REP 103 track axes (x forward, y left, z up), as wheelset_track.hpp. Each patch's forces
 /// are in its own contact frame (doc/conventions.md: z the contact normal from the rail into the
-/// wheel, x forward in the contact plane, y = z x x), acting on the wheel. Units SI.
+/// wheel, x forward in the contact plane, y = z x x), acting on the wheel; PatchResult::wrench and
+/// WheelResult::wrench give them in track axes about the wheel's centre (TrackWrench). Units SI.
 ///
 /// Per step, for each wheel:
 ///   1. the contact candidates for the pose at first touch (ContactSearch::search, or
@@ -36,6 +37,7 @@
 /// grid for the patch when the patch's a or b outgrows it, with a note (PatchResult::message).
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
@@ -92,6 +94,23 @@ enum class WheelStatus {
 /// "ok", "no_load", "no_contact", "invalid_input", "normal_failed": the CLI's status column.
 const char* toString(WheelStatus s);
 
+/// A force on the wheel in track axes (REP 103: x forward, y left, z up) [N] and its moment about
+/// the wheel's centre (WheelResult::centre) [N m].
+///
+/// For one patch, with n = (0, n_y, n_z) its contact normal (ContactCandidate::normal, rail into
+/// wheel), e_x the track's x and e_y = n x e_x = (0, n_z, -n_y) its contact frame's axes (the same
+/// on both wheels), p its contact point (ContactCandidate::point, on the rail) and c the wheel's
+/// centre:
+///   F = fx e_x + fs e_y + fn n,   M = (p - c) x F + mz n.
+/// So fz = fn n_z - fs n_y: with n_y = sin(delta) on the right wheel and -sin(delta) on the left
+/// (delta the contact angle), fz = fn cos(delta) - fs sin(delta) on the right wheel and
+/// fn cos(delta) + fs sin(delta) on the left; on a flange the second term is large. The normal
+/// force alone has no moment about the axle (a wheel's normals cross its axle), so M's component
+/// along the axle is the tangential forces' rolling resistance moment.
+struct TrackWrench {
+  double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0;
+};
+
 /// One contact patch of a wheel.
 struct PatchResult {
   ContactZone zone = ContactZone::kTread;
@@ -109,6 +128,9 @@ struct PatchResult {
   double fx = 0.0, fs = 0.0, mz = 0.0;
   StepStatus tangential_status = StepStatus::kOk;  ///< the model's step status
   std::string message;                             ///< the model's message or note, "" if none
+  /// fn, fx, fs and mz in track axes about the wheel's centre (TrackWrench): the whole force the
+  /// rail exerts on the wheel at this patch.
+  TrackWrench wrench;
 };
 
 struct WheelResult {
@@ -116,6 +138,15 @@ struct WheelResult {
   WheelStatus status = WheelStatus::kOk;
   std::string message;
   std::vector<PatchResult> patches;  ///< in contact (fn > 0), from the field side to the flange
+  /// The sum of the patches' wrenches: the rail's whole force on the wheel, track axes, and its
+  /// moment about `centre`. Zero for a wheel with no patch (any status but kOk).
+  TrackWrench wrench;
+  /// The wheel's centre [m], track axes: the point of the axle in the plane of the wheel
+  /// profile's nominal rolling circle (the profile file's lateral origin, where its radius is
+  /// nominal_radius; the benchmark's S1002: its taping line, flange_back_distance / 2 + 70 mm
+  /// from the wheelset's centre), at the wheel's loaded height (the searched height lowered by the
+  /// normal problem's vertical approach). Zero for a wheel with no patch.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
 };
 
 struct WheelsetResult {

@@ -1,5 +1,6 @@
 #include "wheel_rail_contact/wheelset/wheelset_contact.hpp"
 
+#include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 #include <map>
@@ -78,6 +79,25 @@ struct Slot {
 // tenth of a 10 kN wheel's elastic approach.
 constexpr double kTouchTolerance = 1e-5;
 
+// The patch's forces in track axes about the wheel's centre c (TrackWrench's formula).
+TrackWrench trackWrench(const PatchResult& p, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d n =
+      Eigen::Vector3d(0.0, p.geometry.normal.x(), p.geometry.normal.y()).normalized();
+  const Eigen::Vector3d ex = Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d f = p.fx * ex + p.fs * n.cross(ex) + p.normal.fn * n;
+  const Eigen::Vector3d m = (p.geometry.point - c).cross(f) + p.mz * n;
+  return {f.x(), f.y(), f.z(), m.x(), m.y(), m.z()};
+}
+
+void add(TrackWrench* sum, const TrackWrench& w) {
+  sum->fx += w.fx;
+  sum->fy += w.fy;
+  sum->fz += w.fz;
+  sum->mx += w.mx;
+  sum->my += w.my;
+  sum->mz += w.mz;
+}
+
 // The share of the reference patch a fixed mesh covers: fz_max = 1.5 fz0 (fz_max 0), a ~ fz^(1/3).
 const double kCover = std::cbrt(1.5);
 
@@ -97,6 +117,7 @@ struct WheelsetContact::Impl {
     double beyond_touch = 0.0, exponent = 1.5;
   };
   std::array<Previous, 2> previous;
+  std::array<double, 2> centre_axial{};  // each wheel's centre along the axle [m] (WheelResult)
 
   Impl(const WheelsetTrackData& t, const ContactParameters& p, const WheelsetContactOptions& o)
       : track(t), parameters(p), options(o), search(t, o.search) {
@@ -110,6 +131,16 @@ struct WheelsetContact::Impl {
       table = std::move(options.contact_table);  // one reference per object: `table`
     } else if (options.use_contact_table) {
       table = std::make_shared<const ContactTable>(search, options.table);
+    }
+    // The wheel profile file's lateral origin placed on the axle as the search places the
+    // profile: sigma (y_p - flange back) - sigma flange_back_distance / 2 (contact_search.cpp).
+    const WheelsetTrackData& d = search.data();
+    for (int k = 0; k < 2; ++k) {
+      const double sigma = k == 0 ? -1.0 : 1.0;
+      const Profile& w = k == 0 && d.wheel_left ? *d.wheel_left : *d.wheel_right;
+      const double back = w.fromFile(Eigen::Vector2d(d.flange_back_position, 0.0)).x();
+      centre_axial[k] = sigma * (w.fromFile(Eigen::Vector2d::Zero()).x() - back) -
+                        sigma * 0.5 * d.flange_back_distance;
     }
   }
 
@@ -169,6 +200,7 @@ struct WheelsetContact::Impl {
       r.status = status;
       r.message = std::move(message);
       r.patches.clear();
+      r.centre.setZero();
       if (clear) {
         resetAbsent(wheel);  // no patch present: every slot of the wheel
         prev.zones.clear();
@@ -214,6 +246,12 @@ struct WheelsetContact::Impl {
       return finish(WheelStatus::kNormalFailed,
                     n.message.empty() ? "the normal problem found no solution" : n.message, true);
 
+    // The wheel's centre at its loaded height: the searched pose lowered by the vertical approach.
+    const Eigen::Matrix3d R = (Eigen::AngleAxisd(pose.yaw, Eigen::Vector3d::UnitZ()) *
+                               Eigen::AngleAxisd(pose.roll, Eigen::Vector3d::UnitX()))
+                                  .toRotationMatrix();
+    r.centre = Eigen::Vector3d(0.0, pose.y, track.nominal_radius + pose.z - n.vertical_approach) +
+               centre_axial[w] * R.col(1);
     std::map<ContactZone, int> rank;
     for (size_t i = 0; i < g.candidates.size(); ++i) {
       const NormalPatch& np = n.patches[i];
@@ -278,6 +316,10 @@ struct WheelsetContact::Impl {
     resetAbsent(wheel);
     if (r.patches.empty()) return finish(WheelStatus::kNoContact, "no patch carries load", false);
     r.status = WheelStatus::kOk;
+    for (PatchResult& p : r.patches) {
+      p.wrench = trackWrench(p, r.centre);
+      add(&r.wrench, p.wrench);
+    }
     return r;
   }
 };
