@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -189,4 +190,159 @@ TEST(WheelsetWrench, AWheelWithNoPatchHasZeroWrench) {
   r = c.step(s, 0.0);
   EXPECT_EQ(r.right.status, WheelStatus::kInvalidInput);
   for (double v : values(r.right.wrench)) EXPECT_EQ(v, 0.0);
+}
+
+// ---- the load balance with the tangential forces' vertical components ----
+
+TEST(WheelLoadTangential, TheWholeForcesVerticalComponentsCarryTheLoad) {
+  // solveWheelLoad's tangential_vertical t_i: sum_i fn_i (n_z,i + t_i) = load.
+  const ContactSearch search{WheelsetTrackData{}};
+  for (const WheelsetState& s : a22States()) {
+    WheelsetPose pose = s.pose;
+    WheelContactGeometry g = search.search(WheelSide::kRight, pose);
+    ASSERT_EQ(g.status, ContactSearchStatus::kOk);
+    pose.z -= g.candidates[g.closest].vertical_gap;  // at first touch
+    g = search.search(WheelSide::kRight, pose);
+    const ContactParameters p;
+    const NormalOptions o;
+    const WheelNormal plain = solveWheelLoad(g, 1e4, p.G, p.nu, o);
+    ASSERT_EQ(plain.status, NormalStatus::kOk) << plain.message;
+    // Each patch in lateral full slip toward the field side: the friction holds the wheel up.
+    std::vector<double> t;
+    for (const ContactCandidate& c : g.candidates) t.push_back(p.mu * std::abs(c.normal.x()));
+    const WheelNormal lifted = solveWheelLoad(g, 1e4, p.G, p.nu, o, t);
+    ASSERT_EQ(lifted.status, NormalStatus::kOk) << lifted.message;
+    double sum = 0.0, fn_plain = 0.0, fn_lifted = 0.0;
+    for (size_t i = 0; i < g.candidates.size(); ++i) {
+      sum += lifted.patches[i].fn * (g.candidates[i].normal.y() + t[i]);
+      fn_plain += plain.patches[i].fn;
+      fn_lifted += lifted.patches[i].fn;
+    }
+    EXPECT_NEAR(sum, 1e4, 2.0 * o.load_tolerance * 1e4) << s.pose.y;
+    EXPECT_LT(fn_lifted, fn_plain);  // less normal force for the same load
+    EXPECT_LT(lifted.vertical_approach, plain.vertical_approach);
+    // An empty vector and zeros are the normal forces' balance itself.
+    const WheelNormal zero =
+        solveWheelLoad(g, 1e4, p.G, p.nu, o, std::vector<double>(g.candidates.size(), 0.0));
+    EXPECT_EQ(zero.vertical_approach, plain.vertical_approach);
+
+    // No balance: a patch whose whole force has no upward component; wrong sizes, NaN.
+    for (int k = 0; k < 3; ++k) {
+      std::vector<double> bad = t;
+      if (k == 0) bad.back() = -g.candidates.back().normal.y();
+      if (k == 1) bad.push_back(0.0);
+      if (k == 2) bad.front() = std::numeric_limits<double>::quiet_NaN();
+      const WheelNormal n = solveWheelLoad(g, 1e4, p.G, p.nu, o, bad);
+      EXPECT_EQ(n.status, NormalStatus::kInvalidInput) << k;
+      EXPECT_NE(n.message.find("tangential_vertical"), std::string::npos) << n.message;
+      for (const NormalPatch& q : n.patches) EXPECT_EQ(q.fn, 0.0);
+    }
+  }
+}
+
+namespace {
+
+WheelsetContactOptions wholeForce() {
+  WheelsetContactOptions o;
+  o.whole_force_balance = true;
+  return o;
+}
+
+}  // namespace
+
+TEST(WheelsetBalance, EachStepTakesItsSlotsPreviousTractionRatio) {
+  // The first step of a patch has no previous ratio: the normal forces' balance. Each later step
+  // balances sum_i fn_i (n_z,i - r_i n_y,i) = load with r_i the slot's previous fs / fn.
+  const double tolerance = NormalOptions{}.load_tolerance;
+  for (const WheelsetState& s : a22States()) {
+    WheelsetContact plain(WheelsetTrackData{}, steady());
+    WheelsetContact whole(WheelsetTrackData{}, steady(), wholeForce());
+    const WheelsetResult p0 = plain.step(s, 0.0);
+    WheelsetResult before = whole.step(s, 0.0);
+    for (const WheelResult* w : {&before.left, &before.right}) {
+      const WheelResult& q = w->side == WheelSide::kLeft ? p0.left : p0.right;
+      ASSERT_EQ(w->patches.size(), q.patches.size());
+      for (size_t i = 0; i < q.patches.size(); ++i)
+        EXPECT_EQ(w->patches[i].normal.fn, q.patches[i].normal.fn);
+    }
+    for (int k = 0; k < 2; ++k) {
+      const WheelsetResult r = whole.step(s, 0.0);
+      for (const WheelResult* w : {&r.left, &r.right}) {
+        const WheelResult& b = w->side == WheelSide::kLeft ? before.left : before.right;
+        ASSERT_EQ(w->status, WheelStatus::kOk) << w->message;
+        ASSERT_EQ(w->patches.size(), b.patches.size());
+        double sum = 0.0;
+        for (size_t i = 0; i < w->patches.size(); ++i) {
+          const PatchResult& p = w->patches[i];
+          const double ratio = b.patches[i].fs / b.patches[i].normal.fn;
+          sum += p.normal.fn * (p.geometry.normal.y() - ratio * p.geometry.normal.x());
+        }
+        EXPECT_NEAR(sum, 1e4, 2.0 * tolerance * 1e4) << s.pose.y << " step " << k;
+      }
+      before = r;
+    }
+  }
+}
+
+TEST(WheelsetBalance, SettledTheWrenchsVerticalForceIsTheLoad) {
+  // A steady evaluation: the whole forces' vertical components add up to the load, and the
+  // normal forces' do not (the tangential share, up to 1 kN on the gauge corner at 5.5 mm).
+  for (const WheelsetState& s : a22States()) {
+    WheelsetContact whole(WheelsetTrackData{}, steady(), wholeForce());
+    const WheelsetResult r = whole.settle(s, 0.0, 1e-6);
+    WheelsetContact plain(WheelsetTrackData{}, steady());
+    const WheelsetResult q = plain.step(s, 0.0);
+    for (const WheelResult* w : {&r.left, &r.right}) {
+      ASSERT_EQ(w->status, WheelStatus::kOk) << w->message;
+      EXPECT_EQ(w->message.find("not settled"), std::string::npos) << w->message;
+      EXPECT_NEAR(w->wrench.fz, 1e4, 1e-4 * 1e4) << s.pose.y;
+      for (double v : values(w->wrench)) EXPECT_TRUE(std::isfinite(v));
+      const WheelResult& n = w->side == WheelSide::kLeft ? q.left : q.right;
+      // The plain balance's fz is off by the tangential share wherever there is one.
+      double share = 0.0;
+      for (const PatchResult& p : n.patches) share -= p.fs * p.geometry.normal.x();
+      if (std::abs(share) > 10.0) {
+        EXPECT_GT(std::abs(n.wrench.fz - 1e4), 0.5 * std::abs(share)) << s.pose.y;
+      }
+    }
+  }
+  // Bad settle arguments: both wheels refused.
+  WheelsetContact c(WheelsetTrackData{}, steady(), wholeForce());
+  const WheelsetResult bad = c.settle(a22States().front(), 0.0, 0.0);
+  EXPECT_EQ(bad.left.status, WheelStatus::kInvalidInput);
+  EXPECT_EQ(bad.right.status, WheelStatus::kInvalidInput);
+  EXPECT_EQ(bad.left.side, WheelSide::kLeft);
+}
+
+TEST(WheelsetBalance, WithNoBalanceTheNormalForcesCarryTheLoadSayingSo) {
+  // At mu = 5 a gauge corner (delta 0.34 rad) dragged outwards in full slip has fs = 5 fn, whose
+  // vertical component pulls the wheel down by more than fn cos(delta) pushes it up: no balance.
+  // The normal forces alone carry the load that step; the wheel says so; nothing NaN.
+  ContactParameters p = steady();
+  p.mu = 5.0;
+  WheelsetState s = a22States()[2];  // 5.5 mm: one patch, the gauge corner
+  s.motion.vy = -0.4;                // eta about -0.2: the wheel slides to the right
+  WheelsetContact whole(WheelsetTrackData{}, p, wholeForce());
+  WheelsetContact plain(WheelsetTrackData{}, p);
+  whole.step(s, 0.0);
+  const WheelResult r = whole.step(s, 0.0).right;
+  const WheelResult q = plain.step(s, 0.0).right;
+  ASSERT_EQ(r.status, WheelStatus::kOk) << r.message;
+  ASSERT_EQ(r.patches.size(), 1u);
+  EXPECT_EQ(r.patches[0].zone, ContactZone::kGaugeCorner);
+  EXPECT_GT(
+      r.patches[0].fs / r.patches[0].normal.fn * std::tan(r.patches[0].geometry.contact_angle),
+      1.0);  // the case is what it says
+  EXPECT_NE(r.message.find("no balance"), std::string::npos) << r.message;
+  EXPECT_EQ(r.patches[0].normal.fn, q.patches[0].normal.fn);
+  for (double v : values(r.wrench)) EXPECT_TRUE(std::isfinite(v));
+  // A configuration without tangential forces cannot balance them.
+  WheelsetContactOptions o = wholeForce();
+  o.tangential = false;
+  try {
+    WheelsetContact c(WheelsetTrackData{}, p, o);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("whole_force_balance"), std::string::npos);
+  }
 }

@@ -13,7 +13,8 @@
 ///      ContactTable::search; pose.z is not used: the wheel is searched at the height where its
 ///      closest candidate touches, one more search when z = 0 is more than 10 um from it);
 ///   2. the wheel's vertical load shared among them (solveWheelLoad: the approach at which the
-///      patches' normal forces' vertical components add up to the load); a patch is a candidate
+///      patches' normal forces' vertical components add up to the load, or with
+///      WheelsetContactOptions::whole_force_balance their whole forces'); a patch is a candidate
 ///      with fn > 0;
 ///   3. each patch's creepages xi, eta, phi from the wheelset's motion (patchCreepages);
 ///   4. its tangential forces from the creep-force model of ContactParameters::model (unless
@@ -82,6 +83,25 @@ struct WheelsetContactOptions {
   /// false: each patch's geometry, normal solution and creepages only; no tangential model is
   /// run (fx = fs = mz = 0, the slots keep no history) and every patch says so in its message.
   bool tangential = true;
+  /// The wheel's vertical load carried by the vertical components of the patches' whole contact
+  /// forces, normal and tangential (sum_i fn_i n_z,i - fs_i n_y,i = load, as multibody codes and
+  /// CONTACT balance it), instead of the normal forces' alone (sum_i fn_i n_z,i = load). The
+  /// tangential forces depend on fn, and a model's step cannot be repeated within a step, so the
+  /// balance takes each patch slot's fs / fn from the slot's previous step (lagged one step; a
+  /// patch new this step, or one whose model gave no force, 0), bounded by mu (Coulomb: a traction
+  /// ratio beyond mu is impossible), as solveWheelLoad's tangential_vertical term
+  /// t = -(fs / fn) n_y. A simulator stepping at a small dt sees the lag as a step's delay on a
+  /// slowly changing ratio; a steady evaluation at one state repeats the step (settle()). Where the
+  /// term leaves the load no balance (a patch whose whole force has no upward component, n_z + t
+  /// <= 0: on a flange of tan(delta) >= 1 / mu in full slip), or the normal problem fails with it,
+  /// the normal forces alone carry the load that step and the wheel's message says so (status
+  /// kOk). Needs `tangential`.
+  /// Off by default: it moves fn by about |fs| tan(delta) (on the benchmark's 1.4 to 3.4 %
+  /// on the tread, 9 to 11 % on the gauge corner), it makes a step's patches depend on the
+  /// previous step's forces, and where it matters most, the flange, the elliptic-patch models
+  /// refuse the patch (a/b beyond Kalker's table: no tangential force, so no term) until they run
+  /// on the true patch (doc/wheelset.md).
+  bool whole_force_balance = false;
 };
 
 enum class WheelStatus {
@@ -167,6 +187,17 @@ class WheelsetContact {
   /// throws on a state and never gives a non-finite number: bad input gives a wheel status and
   /// zero forces.
   WheelsetResult step(const WheelsetState& state, double dt);
+  /// A steady evaluation at one state for whole_force_balance: step(state, dt) repeated until no
+  /// patch's fn changes by more than tolerance times its wheel's load from one step to the next
+  /// and the patches stay the same, at most max_steps steps; the last step's result. A wheel that
+  /// has not settled says so in its message (status kOk). Each repeat's balance takes the previous
+  /// repeat's tangential forces, so it settles on the state's steady balance where the model's
+  /// forces are steady: the steady model at any dt, nss and shen-li at a dt that rolls many patch
+  /// lengths (V dt >> a; at dt = 0 they roll nothing and give no force). The slots' history
+  /// advances by every repeat. Without whole_force_balance the second step settles it.
+  /// tolerance in (0, 0.1), max_steps >= 2, else both wheels kInvalidInput.
+  WheelsetResult settle(const WheelsetState& state, double dt, double tolerance = 1e-4,
+                        int max_steps = 30);
   /// Clears every slot's history: the next step equals that of a fresh object.
   void reset();
 
