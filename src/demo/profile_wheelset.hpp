@@ -13,9 +13,10 @@
 ///  - pitch rate: the wheelset rolls at V over the mean of its two rolling radii at its lateral
 ///    displacement (its pitch mode, with a time constant of about a millisecond, taken as settled);
 ///  - loads: each wheel's vertical load is the static wheel load (no load transfer);
-///  - forces: every patch's normal and tangential forces in the track frame; the lateral force
-///    (creep forces and the normal forces' lateral components: gravitational stiffness, flange
-///    force) and the yaw moment about the wheelset's centre drive the two equations of motion.
+///  - forces: each wheel's wrench in the track frame (WheelResult::wrench: its patches' normal and
+///    tangential forces); the lateral force (creep forces and the normal forces' lateral
+///    components: gravitational stiffness, flange force) and the yaw moment about the wheelset's
+///    centre drive the two equations of motion.
 #pragma once
 
 #include <Eigen/Core>
@@ -199,23 +200,19 @@ struct LateralImpulse {
   }
 };
 
-/// Sum of one wheel's patch forces in the track frame: the force on the wheel and its moment about
-/// the wheelset's centre c (track axes).
+/// One wheel's force from its rail in the track frame and its moment about the wheelset's centre
+/// c: WheelResult::wrench (about the wheel's centre) moved to c.
 struct WheelTotals {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();
 };
 
 inline WheelTotals wheelTotals(const WheelResult& wheel, const Eigen::Vector3d& centre) {
-  // Scaffolding until WheelResult::wrench: each patch's (fx, fs, fn) and spin moment through its
-  // contact frame into track axes, the force acting at the contact point on the rail.
   WheelTotals t;
-  for (const PatchResult& p : wheel.patches) {
-    const Eigen::Matrix3d& frame = p.creepages.frame;
-    const Eigen::Vector3d f = frame * Eigen::Vector3d(p.fx, p.fs, p.normal.fn);
-    t.force += f;
-    t.moment += (p.geometry.point - centre).cross(f) + p.mz * frame.col(2);
-  }
+  const TrackWrench& w = wheel.wrench;
+  t.force = Eigen::Vector3d(w.fx, w.fy, w.fz);
+  if (wheel.patches.empty()) return t;  // no patch: no wrench, and no centre either
+  t.moment = Eigen::Vector3d(w.mx, w.my, w.mz) + (wheel.centre - centre).cross(t.force);
   return t;
 }
 
