@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The demo behind `bash scripts/quickstart.sh demo` (which builds and sources the devel space): by
-# default the closed-loop wheelset demo (scripts/wheelset_demo.sh: a wheelset simulator driving a
-# left and a right contact_node, steady against nss; doc/wheelset_demo.md). DEMO=scenes instead:
+# default the closed-loop wheelset demos (scripts/wheelset_demo.sh: a wheelset on S1002 / UIC60
+# through WheelsetContact, then an equivalent-conicity wheelset driving a left and a right
+# contact_node; steady against nss; doc/wheelset_demo.md). DEMO=scenes instead:
 # roslaunch launch/demo.launch — two real contact_nodes fed the paper's combined-creepage and
 # varying-load scenes by scene_player, recorded by force_recorder — then plots the forces and checks
 # them against `contact_cli run` on the same scenes. Ends by itself; prints where its outputs are.
