@@ -270,7 +270,10 @@ class ProfileWheelset {
     cs.motion.V = V;
     cs.motion.omega = 2.0 * V / (k.r_left + k.r_right);
     cs.motion.vy = vyr;
-    cs.motion.yaw_rate = s_.vpsi - V * V * curv;
+    // The alignment y_t(x) is a track whose centre line turns: its frame at the wheelset is yawed
+    // by y_t' and turns at V y_t'' (its curvature), relative to which yaw and yaw rate are taken.
+    cs.motion.curvature = curv;
+    cs.motion.yaw_rate = s_.vpsi - V * curv;
     cs.motion.roll_rate = droll * vyr;
     cs.motion.vz = dz * vyr;
     cs.fz_left = cs.fz_right = p_.wheelLoad;

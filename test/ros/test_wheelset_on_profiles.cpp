@@ -37,13 +37,13 @@ std::shared_ptr<const ContactTable> table() {
 }
 
 struct LoopRun {
-  std::vector<double> t, y;
+  std::vector<double> t, y, yTrack;
   std::vector<demo::ProfileStep> steps;
   std::string stopped;  ///< why the loop stopped early, "" if it ran to the end
 };
 
 LoopRun run(const std::string& model, double V, double duration, double y0,
-            const demo::LateralImpulse& impulse = {}) {
+            const demo::LateralImpulse& impulse = {}, const demo::Irregularity& track = {}) {
   ContactParameters cp;
   cp.model = model;
   WheelsetContactOptions o;
@@ -58,11 +58,10 @@ LoopRun run(const std::string& model, double V, double duration, double y0,
   const long n = std::lround(duration / dt);
   for (long k = 0; k <= n; ++k) {
     demo::ProfileStep st;
-    if (!ws.step(V, dt, demo::Irregularity{}, impulse, static_cast<double>(k) * dt, &st,
-                 &r.stopped))
-      return r;
+    if (!ws.step(V, dt, track, impulse, static_cast<double>(k) * dt, &st, &r.stopped)) return r;
     r.t.push_back(st.t);
     r.y.push_back(st.s.y);
+    r.yTrack.push_back(st.yTrack);
     r.steps.push_back(std::move(st));
   }
   return r;
@@ -162,6 +161,25 @@ TEST(WheelsetOnProfiles, AnImpactBringsTheFlangeIntoContactAndTheWheelsetBack) {
   EXPECT_GT(maxY, 6e-3);               // the flange's clearance is some 6-7 mm
   EXPECT_LT(maxY, 9e-3);               // and the flange holds
   EXPECT_LT(r.y.back(), maxY - 3e-3);  // thrown back
+}
+
+TEST(WheelsetOnProfiles, TheWheelsetFollowsALongLateralAlignment) {
+  // A 3 mm alignment of 30 m wavelength at 40 m/s (1.3 Hz, well below the hunting's 7 Hz): the
+  // profiles steer the wheelset along the track (its pose, motion and curvature taken relative to
+  // the track's turning frame), so y follows y_t in amplitude (within 15 %) and phase (0.3 rad),
+  // with the hunting on top, and never reaches the flange.
+  demo::Irregularity track;
+  track.amplitude = 3e-3;
+  track.wavelength = 30.0;
+  const LoopRun r = run("steady", 40.0, 2.5, 0.0, {}, track);
+  ASSERT_EQ(r.stopped, "");
+  const double f = 40.0 / 30.0;
+  const demo::HarmonicFit y = demo::fitHarmonic(r.t, r.y, f, 1.0);
+  const demo::HarmonicFit yt = demo::fitHarmonic(r.t, r.yTrack, f, 1.0);
+  ASSERT_TRUE(y.ok && yt.ok);
+  EXPECT_NEAR(y.amplitude / yt.amplitude, 1.0, 0.15);
+  EXPECT_NEAR(std::remainder(y.phase - yt.phase, 2 * M_PI), 0.0, 0.3);
+  for (size_t i = 0; i < r.y.size(); ++i) ASSERT_LT(std::abs(r.y[i] - r.yTrack[i]), 2e-3) << i;
 }
 
 TEST(WheelsetOnProfiles, BadInputNamesTheParameterOrStops) {
