@@ -16,7 +16,10 @@
 ///  - forces: each wheel's wrench in the track frame (WheelResult::wrench: its patches' normal and
 ///    tangential forces); the lateral force (creep forces and the normal forces' lateral
 ///    components: gravitational stiffness, flange force) and the yaw moment about the wheelset's
-///    centre drive the two equations of motion.
+///    centre drive the two equations of motion;
+///  - inputs: a lateral force on the wheelset (an impact) and an optional lateral alignment y_t(x)
+///    of the track, which the contact sees as a track whose frame yaws by y_t' and turns at
+///    V y_t'' (both rails follow it).
 #pragma once
 
 #include <Eigen/Core>
