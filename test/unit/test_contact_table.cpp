@@ -440,6 +440,7 @@ TEST(ContactTable, LeftWheelSharesTheRightTableWhenMirrored) {
     // Each table's touching heights follow its own sweep: the gap's linearisation differs.
     EXPECT_NEAR(a.candidates[k].gap, b.candidates[k].gap, 0.2e-6);
     EXPECT_NEAR(a.candidates[k].lead, b.candidates[k].lead, 1e-9);
+    EXPECT_NEAR((a.candidates[k].normal - b.candidates[k].normal).norm(), 0.0, 1e-9);
   }
 }
 

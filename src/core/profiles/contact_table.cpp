@@ -443,7 +443,9 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
   }
 
   WheelContactGeometry out;
-  const double sigma = mirror ? -1.0 : (side == WheelSide::kRight ? 1.0 : -1.0);
+  // The normal's lateral sign of the wheel tabulated: a mirrored left wheel is looked up as the
+  // right one (its normal is mirrored with its point below).
+  const double sigma = mirror || side == WheelSide::kRight ? 1.0 : -1.0;
   const double sy = std::sin(p.yaw) * std::cos(p.roll);
   // Pass one: each candidate's nodes and weights, and what does not depend on the height.
   struct Interpolated {
