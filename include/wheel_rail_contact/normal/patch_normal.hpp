@@ -125,7 +125,7 @@ struct WheelNormal {
   std::string message;
   std::vector<NormalPatch> patches;  ///< one per candidate, in the geometry's order
   /// The wheel's vertical approach [m] from the pose the geometry was searched at (down onto the
-  /// rail, > 0 to close a gap): candidate i takes the approach
+  /// rail, > 0 to close a gap) at which the load balances: candidate i takes the approach
   ///   vertical_approach * n_z,i - gap_i   along its normal (n_z,i its normal's z component).
   double vertical_approach = 0.0;
   /// The vertical approach at which the first candidate touches, min_i gap_i / n_z,i [m].
@@ -136,11 +136,25 @@ struct WheelNormal {
   double load_exponent = 1.5;
 };
 
-/// The vertical approach at which sum_i fn_i n_z,i = vertical_load [N] (> 0), each candidate's
-/// patch solved by solvePatchNormal: two patches share the load by their own stiffness. The gap
-/// functions describe the profiles about the searched pose: search near first touch. Never
-/// throws; bad input (load not finite or <= 0, no candidate, a patch beyond its gap function)
-/// gives a status and message with zero forces.
+/// The vertical approach at which sum_i fn_i (n_z,i + t_i) = vertical_load [N] (> 0), each
+/// candidate's patch solved by solvePatchNormal: two patches share the load by their own
+/// stiffness. The gap functions describe the profiles about the searched pose: search near first
+/// touch. Never throws; bad input (load not finite or <= 0, no candidate, a patch beyond its gap
+/// function) gives a status and message with zero forces.
+///
+/// t_i = tangential_vertical[i] (all 0 when the vector is empty) is the vertical component of
+/// candidate i's tangential force per unit of its normal force: the wheel's load then equals the
+/// vertical component of every patch's whole contact force, as a multibody code balances it. With
+/// the contact frame of contact_search.hpp (e_x the track's x, e_y = n x e_x = (0, n_z, -n_y)), a
+/// tangential force fx e_x + fs e_y has the vertical component -fs n_y, so t_i = -(fs / fn)_i
+/// n_y,i, and Coulomb's |(fx, fs)| <= mu fn bounds it by mu |n_y,i|. The caller gives it: the
+/// tangential forces depend on fn (WheelsetContact takes each patch's previous step's fs / fn). A
+/// merged patch takes the t of the candidate that carries it. Each n_z,i + t_i must be > 0 (the
+/// patch's whole force pushes the wheel up as the approach grows, so the force grows monotonically
+/// in the approach and the balance has one solution); else, or a vector of another size than the
+/// candidates' or with a value not finite: kInvalidInput naming the candidate, zero forces. A
+/// patch with n_z + t <= 0 would carry no load however deep (the wheel climbs its flange: Nadal's
+/// limit tan(delta) = 1 / mu for a patch in full lateral slip).
 ///
 /// Candidates whose separating ridge lies below the approach form one patch: where the rigid
 /// wheel at vertical approach dv overlaps the rail across the ridge between neighbouring
@@ -163,6 +177,7 @@ struct WheelNormal {
 /// the bracket is 1e-13 m wide: status kOk, the message "the patches' vertical force jumps from
 /// ... N to ... N ...". NormalOptions::start_beyond_touch, start_exponent: a warm start.
 WheelNormal solveWheelLoad(const WheelContactGeometry& geometry, double vertical_load, double G,
-                           double nu, const NormalOptions& options = {});
+                           double nu, const NormalOptions& options = {},
+                           const std::vector<double>& tangential_vertical = {});
 
 }  // namespace wheel_rail_contact

@@ -5,14 +5,16 @@
 ///
 /// Axes: REP 103 track axes (x forward, y left, z up), as wheelset_track.hpp. Each patch's forces
 /// are in its own contact frame (doc/conventions.md: z the contact normal from the rail into the
-/// wheel, x forward in the contact plane, y = z x x), acting on the wheel. Units SI.
+/// wheel, x forward in the contact plane, y = z x x), acting on the wheel; PatchResult::wrench and
+/// WheelResult::wrench give them in track axes about the wheel's centre (TrackWrench). Units SI.
 ///
 /// Per step, for each wheel:
 ///   1. the contact candidates for the pose at first touch (ContactSearch::search, or
 ///      ContactTable::search; pose.z is not used: the wheel is searched at the height where its
 ///      closest candidate touches, one more search when z = 0 is more than 10 um from it);
 ///   2. the wheel's vertical load shared among them (solveWheelLoad: the approach at which the
-///      patches' normal forces' vertical components add up to the load); a patch is a candidate
+///      patches' normal forces' vertical components add up to the load, or with
+///      WheelsetContactOptions::whole_force_balance their whole forces'); a patch is a candidate
 ///      with fn > 0;
 ///   3. each patch's creepages xi, eta, phi from the wheelset's motion (patchCreepages);
 ///   4. its tangential forces from the creep-force model of ContactParameters::model (unless
@@ -36,6 +38,7 @@
 /// grid for the patch when the patch's a or b outgrows it, with a note (PatchResult::message).
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
@@ -80,6 +83,25 @@ struct WheelsetContactOptions {
   /// false: each patch's geometry, normal solution and creepages only; no tangential model is
   /// run (fx = fs = mz = 0, the slots keep no history) and every patch says so in its message.
   bool tangential = true;
+  /// The wheel's vertical load carried by the vertical components of the patches' whole contact
+  /// forces, normal and tangential (sum_i fn_i n_z,i - fs_i n_y,i = load, as multibody codes and
+  /// CONTACT balance it), instead of the normal forces' alone (sum_i fn_i n_z,i = load). The
+  /// tangential forces depend on fn, and a model's step cannot be repeated within a step, so the
+  /// balance takes each patch slot's fs / fn from the slot's previous step (lagged one step; a
+  /// patch new this step, or one whose model gave no force, 0), bounded by mu (Coulomb: a traction
+  /// ratio beyond mu is impossible), as solveWheelLoad's tangential_vertical term
+  /// t = -(fs / fn) n_y. A simulator stepping at a small dt sees the lag as a step's delay on a
+  /// slowly changing ratio; a steady evaluation at one state repeats the step (settle()). Where the
+  /// term leaves the load no balance (a patch whose whole force has no upward component, n_z + t
+  /// <= 0: on a flange of tan(delta) >= 1 / mu in full slip), or the normal problem fails with it,
+  /// the normal forces alone carry the load that step and the wheel's message says so (status
+  /// kOk). Needs `tangential`.
+  /// Off by default: it moves fn by about |fs| tan(delta) (on the benchmark's 1.4 to 3.4 %
+  /// on the tread, 9 to 11 % on the gauge corner), it makes a step's patches depend on the
+  /// previous step's forces, and where it matters most, the flange, the elliptic-patch models
+  /// refuse the patch (a/b beyond Kalker's table: no tangential force, so no term) until they run
+  /// on the true patch (doc/wheelset.md).
+  bool whole_force_balance = false;
 };
 
 enum class WheelStatus {
@@ -91,6 +113,23 @@ enum class WheelStatus {
 };
 /// "ok", "no_load", "no_contact", "invalid_input", "normal_failed": the CLI's status column.
 const char* toString(WheelStatus s);
+
+/// A force on the wheel in track axes (REP 103: x forward, y left, z up) [N] and its moment about
+/// the wheel's centre (WheelResult::centre) [N m].
+///
+/// For one patch, with n = (0, n_y, n_z) its contact normal (ContactCandidate::normal, rail into
+/// wheel), e_x the track's x and e_y = n x e_x = (0, n_z, -n_y) its contact frame's axes (the same
+/// on both wheels), p its contact point (ContactCandidate::point, on the rail) and c the wheel's
+/// centre:
+///   F = fx e_x + fs e_y + fn n,   M = (p - c) x F + mz n.
+/// So fz = fn n_z - fs n_y: with n_y = sin(delta) on the right wheel and -sin(delta) on the left
+/// (delta the contact angle), fz = fn cos(delta) - fs sin(delta) on the right wheel and
+/// fn cos(delta) + fs sin(delta) on the left; on a flange the second term is large. The normal
+/// force alone has no moment about the axle (a wheel's normals cross its axle), so M's component
+/// along the axle is the tangential forces' rolling resistance moment.
+struct TrackWrench {
+  double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0;
+};
 
 /// One contact patch of a wheel.
 struct PatchResult {
@@ -109,6 +148,9 @@ struct PatchResult {
   double fx = 0.0, fs = 0.0, mz = 0.0;
   StepStatus tangential_status = StepStatus::kOk;  ///< the model's step status
   std::string message;                             ///< the model's message or note, "" if none
+  /// fn, fx, fs and mz in track axes about the wheel's centre (TrackWrench): the whole force the
+  /// rail exerts on the wheel at this patch.
+  TrackWrench wrench;
 };
 
 struct WheelResult {
@@ -116,6 +158,15 @@ struct WheelResult {
   WheelStatus status = WheelStatus::kOk;
   std::string message;
   std::vector<PatchResult> patches;  ///< in contact (fn > 0), from the field side to the flange
+  /// The sum of the patches' wrenches: the rail's whole force on the wheel, track axes, and its
+  /// moment about `centre`. Zero for a wheel with no patch (any status but kOk).
+  TrackWrench wrench;
+  /// The wheel's centre [m], track axes: the point of the axle in the plane of the wheel
+  /// profile's nominal rolling circle (the profile file's lateral origin, where its radius is
+  /// nominal_radius; the benchmark's S1002: its taping line, flange_back_distance / 2 + 70 mm
+  /// from the wheelset's centre), at the wheel's loaded height (the searched height lowered by the
+  /// normal problem's vertical approach). Zero for a wheel with no patch.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
 };
 
 struct WheelsetResult {
@@ -136,6 +187,17 @@ class WheelsetContact {
   /// throws on a state and never gives a non-finite number: bad input gives a wheel status and
   /// zero forces.
   WheelsetResult step(const WheelsetState& state, double dt);
+  /// A steady evaluation at one state for whole_force_balance: step(state, dt) repeated until no
+  /// patch's fn changes by more than tolerance times its wheel's load from one step to the next
+  /// and the patches stay the same, at most max_steps steps; the last step's result. A wheel that
+  /// has not settled says so in its message (status kOk). Each repeat's balance takes the previous
+  /// repeat's tangential forces, so it settles on the state's steady balance where the model's
+  /// forces are steady: the steady model at any dt, nss and shen-li at a dt that rolls many patch
+  /// lengths (V dt >> a; at dt = 0 they roll nothing and give no force). The slots' history
+  /// advances by every repeat. Without whole_force_balance the second step settles it.
+  /// tolerance in (0, 0.1), max_steps >= 2, else both wheels kInvalidInput.
+  WheelsetResult settle(const WheelsetState& state, double dt, double tolerance = 1e-4,
+                        int max_steps = 30);
   /// Clears every slot's history: the next step equals that of a fresh object.
   void reset();
 

@@ -700,7 +700,7 @@ NormalPatch solveMergedPatch(const ContactCandidate& c, const std::vector<double
 }
 
 WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double G, double nu,
-                           const NormalOptions& o) {
+                           const NormalOptions& o, const std::vector<double>& tangential_vertical) {
   WheelNormal out;
   auto failed = [&](NormalStatus s, const std::string& why) {
     out.status = s;
@@ -728,9 +728,25 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
       return failed(NormalStatus::kInvalidInput, "a candidate's normal does not point up");
     touch = std::min(touch, c.gap / c.normal.y());
   }
+  const int nc = static_cast<int>(geo.candidates.size());
+  // Each candidate's tangential force's vertical component per unit normal force (the header).
+  std::vector<double> lift(nc, 0.0);
+  if (!tangential_vertical.empty() && static_cast<int>(tangential_vertical.size()) != nc)
+    return failed(NormalStatus::kInvalidInput,
+                  "tangential_vertical must be empty or one value per candidate");
+  for (int i = 0; i < nc; ++i) {
+    const double t = tangential_vertical.empty() ? 0.0 : tangential_vertical[i];
+    lift[i] = t;
+    if (!std::isfinite(t) || !(geo.candidates[i].normal.y() + t > 0.0)) {
+      std::ostringstream m;
+      m << "candidate " << i << ": tangential_vertical = " << t
+        << " with n_z = " << geo.candidates[i].normal.y()
+        << ": its patch's whole force has no upward component, the load no balance";
+      return failed(NormalStatus::kInvalidInput, m.str());
+    }
+  }
   // The vertical approach beyond which the wheel overlaps the rail across the ridge between
   // candidates i and i + 1 (infinite where their gap functions do not meet at a ridge).
-  const int nc = static_cast<int>(geo.candidates.size());
   std::vector<double> ridge(nc - 1);
   for (int i = 0; i + 1 < nc; ++i)
     ridge[i] = ridgeApproach(geo.candidates[i], geo.candidates[i + 1]);
@@ -823,7 +839,7 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
           out.patches[k].message = "merged into candidate " + std::to_string(p) + "'s patch";
         }
       }
-      *fz += patch.fn * c->normal.y();
+      *fz += patch.fn * (c->normal.y() + lift[p]);
       i = last + 1;
     }
     return true;

@@ -1,5 +1,7 @@
 #include "wheel_rail_contact/wheelset/wheelset_contact.hpp"
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -72,11 +74,36 @@ struct Slot {
   std::unique_ptr<ContactModel> model;
   double a_cover = 0.0, b_cover = 0.0;  // the patch the model's fixed mesh or grid covers [m]
   bool present = false;
+  double fs_per_fn = 0.0;  // the last step's fs / fn, within +-mu (whole_force_balance)
 };
+
+// A patch's slot name: its zone, with "_k" for the k-th patch of that zone from the field side.
+std::string slotName(ContactZone zone, int k) {
+  return std::string(zoneName(zone)) + (k > 1 ? "_" + std::to_string(k) : "");
+}
 
 // How far from first touch the search may leave a wheel before it is searched again there [m]: a
 // tenth of a 10 kN wheel's elastic approach.
 constexpr double kTouchTolerance = 1e-5;
+
+// The patch's forces in track axes about the wheel's centre c (TrackWrench's formula).
+TrackWrench trackWrench(const PatchResult& p, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d n =
+      Eigen::Vector3d(0.0, p.geometry.normal.x(), p.geometry.normal.y()).normalized();
+  const Eigen::Vector3d ex = Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d f = p.fx * ex + p.fs * n.cross(ex) + p.normal.fn * n;
+  const Eigen::Vector3d m = (p.geometry.point - c).cross(f) + p.mz * n;
+  return {f.x(), f.y(), f.z(), m.x(), m.y(), m.z()};
+}
+
+void add(TrackWrench* sum, const TrackWrench& w) {
+  sum->fx += w.fx;
+  sum->fy += w.fy;
+  sum->fz += w.fz;
+  sum->mx += w.mx;
+  sum->my += w.my;
+  sum->mz += w.mz;
+}
 
 // The share of the reference patch a fixed mesh covers: fz_max = 1.5 fz0 (fz_max 0), a ~ fz^(1/3).
 const double kCover = std::cbrt(1.5);
@@ -97,11 +124,15 @@ struct WheelsetContact::Impl {
     double beyond_touch = 0.0, exponent = 1.5;
   };
   std::array<Previous, 2> previous;
+  std::array<double, 2> centre_axial{};  // each wheel's centre along the axle [m] (WheelResult)
 
   Impl(const WheelsetTrackData& t, const ContactParameters& p, const WheelsetContactOptions& o)
       : track(t), parameters(p), options(o), search(t, o.search) {
     validate(parameters);
     makeContactModel(parameters);  // throws now for a model this build does not provide
+    if (options.whole_force_balance && !options.tangential)
+      throw std::invalid_argument(
+          "whole_force_balance: needs the tangential forces (WheelsetContactOptions::tangential)");
     if (options.contact_table) {
       if (!sameTrack(options.contact_table->contactSearch().data(), search.data()))
         throw std::invalid_argument(
@@ -110,6 +141,16 @@ struct WheelsetContact::Impl {
       table = std::move(options.contact_table);  // one reference per object: `table`
     } else if (options.use_contact_table) {
       table = std::make_shared<const ContactTable>(search, options.table);
+    }
+    // The wheel profile file's lateral origin placed on the axle as the search places the
+    // profile: sigma (y_p - flange back) - sigma flange_back_distance / 2 (contact_search.cpp).
+    const WheelsetTrackData& d = search.data();
+    for (int k = 0; k < 2; ++k) {
+      const double sigma = k == 0 ? -1.0 : 1.0;
+      const Profile& w = k == 0 && d.wheel_left ? *d.wheel_left : *d.wheel_right;
+      const double back = w.fromFile(Eigen::Vector2d(d.flange_back_position, 0.0)).x();
+      centre_axial[k] = sigma * (w.fromFile(Eigen::Vector2d::Zero()).x() - back) -
+                        sigma * 0.5 * d.flange_back_distance;
     }
   }
 
@@ -129,7 +170,10 @@ struct WheelsetContact::Impl {
   // starts from rest when it comes back.
   void resetAbsent(std::map<std::string, Slot>& wheel) {
     for (auto& kv : wheel) {
-      if (!kv.second.present) kv.second.model.reset();
+      if (!kv.second.present) {
+        kv.second.model.reset();
+        kv.second.fs_per_fn = 0.0;
+      }
       kv.second.present = false;
     }
   }
@@ -169,6 +213,7 @@ struct WheelsetContact::Impl {
       r.status = status;
       r.message = std::move(message);
       r.patches.clear();
+      r.centre.setZero();
       if (clear) {
         resetAbsent(wheel);  // no patch present: every slot of the wheel
         prev.zones.clear();
@@ -200,7 +245,22 @@ struct WheelsetContact::Impl {
       no.start_beyond_touch = prev.beyond_touch;
       no.start_exponent = prev.exponent;
     }
-    const WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, no);
+    // whole_force_balance: each candidate's tangential force's vertical component per unit fn
+    // from its slot's previous step (the slot it will take if every candidate carries load).
+    std::vector<double> lift;
+    if (options.whole_force_balance && options.tangential) {
+      std::map<ContactZone, int> count;
+      for (const ContactCandidate& c : g.candidates) {
+        const auto it = wheel.find(slotName(c.zone, ++count[c.zone]));
+        lift.push_back(it == wheel.end() ? 0.0 : -it->second.fs_per_fn * c.normal.x());
+      }
+    }
+    WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, no, lift);
+    if (!lift.empty() && n.status != NormalStatus::kOk && n.status != NormalStatus::kNoContact) {
+      r.message = "the tangential forces' vertical components leave the load no balance (" +
+                  n.message + "): the normal forces alone carry it this step";
+      n = solveWheelLoad(g, load, parameters.G, parameters.nu, no);
+    }
     prev.zones.clear();
     if (n.status == NormalStatus::kOk && std::isfinite(n.vertical_approach - n.touch_approach) &&
         n.vertical_approach > n.touch_approach && std::isfinite(n.load_exponent)) {
@@ -214,6 +274,12 @@ struct WheelsetContact::Impl {
       return finish(WheelStatus::kNormalFailed,
                     n.message.empty() ? "the normal problem found no solution" : n.message, true);
 
+    // The wheel's centre at its loaded height: the searched pose lowered by the vertical approach.
+    const Eigen::Matrix3d R = (Eigen::AngleAxisd(pose.yaw, Eigen::Vector3d::UnitZ()) *
+                               Eigen::AngleAxisd(pose.roll, Eigen::Vector3d::UnitX()))
+                                  .toRotationMatrix();
+    r.centre = Eigen::Vector3d(0.0, pose.y, track.nominal_radius + pose.z - n.vertical_approach) +
+               centre_axial[w] * R.col(1);
     std::map<ContactZone, int> rank;
     for (size_t i = 0; i < g.candidates.size(); ++i) {
       const NormalPatch& np = n.patches[i];
@@ -222,7 +288,7 @@ struct WheelsetContact::Impl {
       p.geometry = g.candidates[i];
       p.zone = p.geometry.zone;
       const int k = ++rank[p.zone];
-      p.slot = std::string(zoneName(p.zone)) + (k > 1 ? "_" + std::to_string(k) : "");
+      p.slot = slotName(p.zone, k);
       p.normal = np;
       p.creepages = patchCreepages(side, pose, s.motion, p.geometry, track);
 
@@ -233,6 +299,7 @@ struct WheelsetContact::Impl {
       }
       Slot& slot = wheel[p.slot];
       slot.present = true;
+      slot.fs_per_fn = 0.0;  // until the model gives a force
       if (p.creepages.status == CreepageStatus::kInvalidInput) {
         // No creepages, no tangential forces; the slot is kept as a refused step keeps a model.
         p.tangential_status = StepStatus::kRejected;
@@ -270,6 +337,8 @@ struct WheelsetContact::Impl {
       p.mz = out.mz;
       p.tangential_status = out.status;
       p.message = out.message;
+      if (out.status == StepStatus::kOk && std::isfinite(out.fy / np.fn))
+        slot.fs_per_fn = std::max(-parameters.mu, std::min(parameters.mu, out.fy / np.fn));
       if (outgrown && out.status == StepStatus::kOk)
         p.message =
             "the patch outgrew the exact model's grid: restarted from rest on a grid for it";
@@ -278,6 +347,10 @@ struct WheelsetContact::Impl {
     resetAbsent(wheel);
     if (r.patches.empty()) return finish(WheelStatus::kNoContact, "no patch carries load", false);
     r.status = WheelStatus::kOk;
+    for (PatchResult& p : r.patches) {
+      p.wrench = trackWrench(p, r.centre);
+      add(&r.wrench, p.wrench);
+    }
     return r;
   }
 };
@@ -296,6 +369,44 @@ WheelsetResult WheelsetContact::step(const WheelsetState& state, double dt) {
   r.left = impl_->stepWheel(WheelSide::kLeft, state, dt);
   r.right = impl_->stepWheel(WheelSide::kRight, state, dt);
   return r;
+}
+
+WheelsetResult WheelsetContact::settle(const WheelsetState& state, double dt, double tolerance,
+                                       int max_steps) {
+  if (!(tolerance > 0.0 && tolerance < 0.1) || max_steps < 2) {
+    WheelsetResult r;
+    r.left.side = WheelSide::kLeft;
+    for (WheelResult* w : {&r.left, &r.right}) {
+      w->status = WheelStatus::kInvalidInput;
+      w->message = "settle: tolerance must be in (0, 0.1), max_steps >= 2";
+    }
+    return r;
+  }
+  // Settled: the same patches as the step before, each fn within tolerance of the load.
+  const auto settled = [tolerance](const WheelResult& a, const WheelResult& b, double load) {
+    if (a.status != b.status || a.patches.size() != b.patches.size()) return false;
+    for (size_t i = 0; i < a.patches.size(); ++i)
+      if (a.patches[i].slot != b.patches[i].slot ||
+          !(std::abs(a.patches[i].normal.fn - b.patches[i].normal.fn) <= tolerance * load))
+        return false;
+    return true;
+  };
+  WheelsetResult before = step(state, dt);
+  for (int k = 1; k < max_steps; ++k) {
+    WheelsetResult r = step(state, dt);
+    const bool left = settled(r.left, before.left, state.fz_left);
+    const bool right = settled(r.right, before.right, state.fz_right);
+    if (left && right) return r;
+    if (k + 1 == max_steps) {
+      for (WheelResult* w : {left ? nullptr : &r.left, right ? nullptr : &r.right})
+        if (w && w->status == WheelStatus::kOk)
+          w->message += std::string(w->message.empty() ? "" : "; ") + "not settled after " +
+                        std::to_string(max_steps) + " steps";
+      return r;
+    }
+    before = std::move(r);
+  }
+  return before;
 }
 
 void WheelsetContact::reset() {
