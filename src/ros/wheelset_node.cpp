@@ -15,9 +15,10 @@ namespace wheel_rail_contact {
 
 namespace {
 
-const char* const kNodeKeys[] = {
-    "wheelsets",  "wheel_profile",      "rail_profile",      "contact_table", "frame_prefix",
-    "queue_size", "publish_queue_size", "diagnostic_period", "max_dt",        "time_jump_reset"};
+const char* const kNodeKeys[] = {"wheelsets",     "wheel_profile",       "rail_profile",
+                                 "contact_table", "whole_force_balance", "frame_prefix",
+                                 "queue_size",    "publish_queue_size",  "diagnostic_period",
+                                 "max_dt",        "time_jump_reset"};
 
 std::string text(double v) {
   char t[64];
@@ -46,11 +47,23 @@ uint8_t patchStatus(const PatchResult& p) {
   return static_cast<uint8_t>(p.tangential_status);  // StepStatus's order is the message's
 }
 
+void fillWrench(const TrackWrench& w, geometry_msgs::Wrench* m) {
+  m->force.x = w.fx;
+  m->force.y = w.fy;
+  m->force.z = w.fz;
+  m->torque.x = w.mx;
+  m->torque.y = w.my;
+  m->torque.z = w.mz;
+}
+
 void fillWheel(const WheelAnswer& a, WheelContactState* m) {
   m->status = static_cast<uint8_t>(a.status);
   m->message = a.message;
   m->held = a.held;
-  m->wrench = geometry_msgs::Wrench();
+  fillWrench(a.result.wrench, &m->wrench);
+  m->centre.x = a.result.centre.x();
+  m->centre.y = a.result.centre.y();
+  m->centre.z = a.result.centre.z();
   m->patches.resize(a.result.patches.size());
   for (size_t k = 0; k < a.result.patches.size(); ++k) {
     const PatchResult& p = a.result.patches[k];
@@ -76,7 +89,7 @@ void fillWheel(const WheelAnswer& a, WheelContactState* m) {
     s.fx = p.fx;
     s.fs = p.fs;
     s.mz = p.mz;
-    s.wrench = geometry_msgs::Wrench();
+    fillWrench(p.wrench, &s.wrench);
     s.status = patchStatus(p);
     s.message = p.message;
   }
@@ -185,6 +198,12 @@ bool WheelsetNode::readParameters() {
       if (v.getType() != XmlRpc::XmlRpcValue::TypeBoolean)
         throw std::invalid_argument("contact_table: expected true or false, got " + v.toXml());
       config.options.use_contact_table = static_cast<bool>(v);
+    }
+    if (pnh_.getParam("whole_force_balance", v)) {
+      if (v.getType() != XmlRpc::XmlRpcValue::TypeBoolean)
+        throw std::invalid_argument("whole_force_balance: expected true or false, got " +
+                                    v.toXml());
+      config.options.whole_force_balance = static_cast<bool>(v);
     }
     if (pnh_.getParam("max_dt", v)) config.max_dt = toNumber("max_dt", parameterText("max_dt", v));
     if (pnh_.getParam("time_jump_reset", v))

@@ -146,6 +146,8 @@ void expectSameAnswer(const WheelsetContactState& a, const WheelsetContactState&
     }
     EXPECT_EQ(x->wrench.force.x, y->wrench.force.x);
     EXPECT_EQ(x->wrench.force.y, y->wrench.force.y);
+    EXPECT_EQ(x->wrench.force.z, y->wrench.force.z);
+    EXPECT_EQ(x->wrench.torque.x, y->wrench.torque.x);
     EXPECT_EQ(x->wrench.torque.z, y->wrench.torque.z);
   }
 }
@@ -220,6 +222,22 @@ TEST(WheelsetNode, EqualsContactCliWheelsetAndTheTopicEqualsTheService) {
           continue;
         }
         ASSERT_EQ(wheel->status, WheelContactState::STATUS_OK) << wheel->message;
+        // The wheel's wrench: the sum of its patches'.
+        geometry_msgs::Wrench sum;
+        for (const PatchContactState& p : wheel->patches) {
+          sum.force.x += p.wrench.force.x;
+          sum.force.y += p.wrench.force.y;
+          sum.force.z += p.wrench.force.z;
+          sum.torque.x += p.wrench.torque.x;
+          sum.torque.y += p.wrench.torque.y;
+          sum.torque.z += p.wrench.torque.z;
+        }
+        expectNear(wheel->wrench.force.x, sum.force.x, 5e4, "force.x");
+        expectNear(wheel->wrench.force.y, sum.force.y, 5e4, "force.y");
+        expectNear(wheel->wrench.force.z, sum.force.z, 5e4, "force.z");
+        expectNear(wheel->wrench.torque.x, sum.torque.x, 5e4, "torque.x");
+        expectNear(wheel->wrench.torque.y, sum.torque.y, 5e4, "torque.y");
+        expectNear(wheel->wrench.torque.z, sum.torque.z, 5e4, "torque.z");
         ASSERT_EQ(wheel->patches.size(), rows.size()) << "wheelset " << w << " tick " << k;
         for (size_t i = 0; i < rows.size(); ++i) {
           const PatchContactState& p = wheel->patches[i];
@@ -241,6 +259,9 @@ TEST(WheelsetNode, EqualsContactCliWheelsetAndTheTopicEqualsTheService) {
           expectNear(p.mz, v[11], 100.0, "mz");
           expectNear(p.a, v[12], 1e-2, "a");
           expectNear(p.b, v[13], 1e-2, "b");
+          // The patch's force in track axes: its x is fx (the contact frame's x is the track's).
+          expectNear(p.wrench.force.x, p.fx, 5e4, "wrench.force.x");
+          EXPECT_GT(p.wrench.force.z, 0.0);
           EXPECT_EQ(rows[i]->status, "ok");
           EXPECT_EQ(p.status, PatchContactState::STATUS_OK);
         }

@@ -59,7 +59,13 @@ void expectSame(const WheelResult& a, const WheelResult& b) {
     EXPECT_EQ(p.fs, q.fs);
     EXPECT_EQ(p.mz, q.mz);
     EXPECT_EQ(p.geometry.point, q.geometry.point);
+    EXPECT_EQ(p.wrench.fy, q.wrench.fy);
+    EXPECT_EQ(p.wrench.mx, q.wrench.mx);
   }
+  for (double TrackWrench::*f : {&TrackWrench::fx, &TrackWrench::fy, &TrackWrench::fz,
+                                 &TrackWrench::mx, &TrackWrench::my, &TrackWrench::mz})
+    EXPECT_EQ(a.wrench.*f, b.wrench.*f);
+  EXPECT_EQ(a.centre, b.centre);
 }
 
 }  // namespace
