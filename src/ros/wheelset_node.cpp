@@ -18,7 +18,7 @@ namespace {
 const char* const kNodeKeys[] = {"wheelsets",     "wheel_profile",       "rail_profile",
                                  "contact_table", "whole_force_balance", "frame_prefix",
                                  "queue_size",    "publish_queue_size",  "diagnostic_period",
-                                 "max_dt",        "time_jump_reset"};
+                                 "max_dt",        "time_jump_reset",     "threads"};
 
 std::string text(double v) {
   char t[64];
@@ -219,6 +219,7 @@ bool WheelsetNode::readParameters() {
       return static_cast<int>(d);
     };
     queueSize_ = count("queue_size", 100);
+    config.threads = count("threads", 1);
     publishQueueSize_ = count("publish_queue_size", 100);
     if (pnh_.getParam("diagnostic_period", v))
       diagnosticPeriod_ = toNumber("diagnostic_period", parameterText("diagnostic_period", v));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -55,6 +56,9 @@ WheelsetStepper::WheelsetStepper(WheelsetStepperConfig config) : config_(std::mo
   if (config_.names.empty()) throw std::invalid_argument("wheelsets: the list is empty");
   if (!(config_.max_dt > 0.0) || !std::isfinite(config_.max_dt))
     throw std::invalid_argument("max_dt: must be a finite number > 0 s");
+  if (!(config_.threads >= 1 && config_.threads <= 16))
+    throw std::invalid_argument("threads: must be in [1, 16], got " +
+                                std::to_string(config_.threads));
   if (!(config_.time_jump_reset >= 0.0) || !std::isfinite(config_.time_jump_reset))
     throw std::invalid_argument("time_jump_reset: must be a finite number >= 0 s (0 = off)");
   for (const auto& n : config_.names) {
@@ -156,6 +160,7 @@ void WheelsetStepper::step(int64_t stamp_ns, const std::vector<WheelsetEntry>& i
                            std::vector<WheelsetAnswer>* out) {
   ++counters_.ticks;
   out->clear();
+  pending_.clear();
   std::fill(seen_.begin(), seen_.end(), 0);
   for (const auto& e : in) {
     const int i = find(e.name);
@@ -233,15 +238,20 @@ void WheelsetStepper::step(int64_t stamp_ns, const std::vector<WheelsetEntry>& i
       continue;
     }
     a.dt = dt;
-    const auto t0 = std::chrono::steady_clock::now();
-    WheelsetResult r = w.contact->step(e.state, dt);
-    a.solver_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    ++c.steps;
-    c.solver_time_sum += a.solver_time;
-    c.solver_time_max = std::max(c.solver_time_max, a.solver_time);
-    answerWheel(&w, 0, std::move(r.left), &a.left);
-    answerWheel(&w, 1, std::move(r.right), &a.right);
+    pending_.push_back({out->size(), a.wheelset, &e.state, dt, {}, 0.0});
     out->push_back(std::move(a));
+  }
+  stepPending();
+  for (Pending& p : pending_) {
+    Wheelset& w = wheelsets_[p.wheelset];
+    WheelsetCounters& c = w.counters;
+    WheelsetAnswer& a = (*out)[p.out];
+    a.solver_time = p.time;
+    ++c.steps;
+    c.solver_time_sum += p.time;
+    c.solver_time_max = std::max(c.solver_time_max, p.time);
+    answerWheel(&w, 0, std::move(p.result.left), &a.left);
+    answerWheel(&w, 1, std::move(p.result.right), &a.right);
   }
   for (size_t i = 0; i < wheelsets_.size(); ++i) {
     if (seen_[i] > 0) continue;
@@ -253,6 +263,30 @@ void WheelsetStepper::step(int64_t stamp_ns, const std::vector<WheelsetEntry>& i
     ++w.counters.missing;
     out->push_back(std::move(a));
   }
+}
+
+void WheelsetStepper::stepPending() {
+  const auto run = [this](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      Pending& p = pending_[k];
+      const auto t0 = std::chrono::steady_clock::now();
+      p.result = wheelsets_[p.wheelset].contact->step(*p.state, p.dt);
+      p.time = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+  };
+  const size_t n = pending_.size();
+  const size_t chunks = std::min(n, static_cast<size_t>(config_.threads));
+  if (chunks <= 1) {
+    run(0, n);
+    return;
+  }
+  // Each wheelset once at most among the pending (a repeated name is refused), so no two threads
+  // share a WheelsetContact; the contact table is only read.
+  std::vector<std::future<void>> others;
+  for (size_t t = 1; t < chunks; ++t)
+    others.push_back(std::async(std::launch::async, run, t * n / chunks, (t + 1) * n / chunks));
+  run(0, n / chunks);
+  for (auto& f : others) f.get();
 }
 
 void WheelsetStepper::reset() {

@@ -30,6 +30,9 @@ struct WheelsetStepperConfig {
   /// A stamp this far behind the previous one resets the wheelset [s]; 0 = off (rejected as out
   /// of order instead).
   double time_jump_reset = 0.0;
+  /// The wheelsets of a tick are stepped on this many threads (the caller's and threads - 1 more,
+  /// each a contiguous share of the tick's entries); the answers are the same for any number.
+  int threads = 1;
 };
 
 /// One wheelset's entry of a tick.
@@ -136,6 +139,19 @@ class WheelsetStepper {
   /// The answers of an entry that was not stepped: both wheels held, status kRejected.
   void refuse(Wheelset* w, WheelsetEvent event, std::string message, WheelsetAnswer* a);
   void answerWheel(Wheelset* w, int side, WheelResult result, WheelAnswer* a);
+  /// Steps pending_ (on config_.threads threads), filling each one's result and time.
+  void stepPending();
+
+  /// An entry of this tick to be stepped: its answer's index in the output.
+  struct Pending {
+    size_t out;
+    int wheelset;
+    const WheelsetState* state;
+    double dt;
+    WheelsetResult result;
+    double time;  ///< [s]
+  };
+  std::vector<Pending> pending_;
 
   WheelsetStepperConfig config_;
   std::shared_ptr<const ContactTable> table_;

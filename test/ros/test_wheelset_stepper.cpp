@@ -101,6 +101,31 @@ TEST(WheelsetStepper, EqualsSeparateWheelsetContactsInAnyEntryOrder) {
   EXPECT_EQ(v.counters().ticks, 20u);
 }
 
+TEST(WheelsetStepper, ThreadsGiveTheSameAnswers) {
+  const std::vector<std::string> names{"ws1", "ws2", "ws3", "ws4", "ws5"};
+  WheelsetStepperConfig c = config(names);
+  WheelsetStepper one(c);
+  c.threads = 3;
+  WheelsetStepper three(c);
+  std::vector<WheelsetAnswer> a, b;
+  for (int k = 0; k < 10; ++k) {
+    std::vector<WheelsetEntry> in;
+    for (size_t i = 0; i < names.size(); ++i) in.push_back(entry(names[i], k, i));
+    in.pop_back();  // ws5 missing: answered after the stepped ones, in either case
+    one.step(k * kMs, in, &a);
+    three.step(k * kMs, in, &b);
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t j = 0; j < a.size(); ++j) {
+      EXPECT_EQ(a[j].wheelset, b[j].wheelset);
+      EXPECT_EQ(a[j].event, b[j].event);
+      EXPECT_EQ(a[j].left.status, b[j].left.status);
+      expectSame(a[j].left.result, b[j].left.result);
+      expectSame(a[j].right.result, b[j].right.result);
+    }
+  }
+  EXPECT_EQ(three.counters(0).steps, 10u);
+}
+
 TEST(WheelsetStepper, OneAnswerPerEntryAndPerMissingWheelset) {
   WheelsetStepper v(config({"a", "b", "c"}, "steady"));
   std::vector<WheelsetAnswer> out;
@@ -262,6 +287,9 @@ TEST(WheelsetStepper, ConfigurationErrorsNameTheParameter) {
   c = config({"a"});
   c.time_jump_reset = -1.0;
   EXPECT_EQ(message(c).rfind("time_jump_reset:", 0), 0u);
+  c = config({"a"});
+  c.threads = 0;
+  EXPECT_EQ(message(c).rfind("threads:", 0), 0u);
   c = config({"a"});
   c.track.gauge = 3.0;
   EXPECT_NE(message(c).find("gauge ="), std::string::npos);
