@@ -253,8 +253,13 @@ WheelsetContactOptions wholeForce() {
 TEST(WheelsetBalance, EachStepTakesItsSlotsPreviousTractionRatio) {
   // The first step of a patch has no previous ratio: the normal forces' balance. Each later step
   // balances sum_i fn_i (n_z,i - r_i n_y,i) = load with r_i the slot's previous fs / fn.
+  // At y = 0 the two tread candidates merge into the first one's patch; 0.3 mm to the right into
+  // the second's, which takes the slot "tread" although it is the second tread candidate.
   const double tolerance = NormalOptions{}.load_tolerance;
-  for (const WheelsetState& s : a22States()) {
+  std::vector<WheelsetState> states = a22States();
+  states.push_back(a22(0.0, 0.0, 0.0, -4.34812));
+  states.push_back(a22(0.3, 0.0, 0.0, -4.34812));
+  for (const WheelsetState& s : states) {
     WheelsetContact plain(WheelsetTrackData{}, steady());
     WheelsetContact whole(WheelsetTrackData{}, steady(), wholeForce());
     const WheelsetResult p0 = plain.step(s, 0.0);

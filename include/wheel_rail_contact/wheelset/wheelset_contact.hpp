@@ -126,7 +126,7 @@ const char* toString(WheelStatus s);
 /// (delta the contact angle), fz = fn cos(delta) - fs sin(delta) on the right wheel and
 /// fn cos(delta) + fs sin(delta) on the left; on a flange the second term is large. The normal
 /// force alone has no moment about the axle (a wheel's normals cross its axle), so M's component
-/// along the axle is the tangential forces' rolling resistance moment.
+/// along the axle comes from the tangential forces alone (the traction or braking torque).
 struct TrackWrench {
   double fx = 0, fy = 0, fz = 0, mx = 0, my = 0, mz = 0;
 };

@@ -246,17 +246,34 @@ struct WheelsetContact::Impl {
       no.start_exponent = prev.exponent;
     }
     // whole_force_balance: each candidate's tangential force's vertical component per unit fn
-    // from its slot's previous step (the slot it will take if every candidate carries load).
-    std::vector<double> lift;
-    if (options.whole_force_balance && options.tangential) {
+    // from its slot's previous step. The slot a candidate takes counts only the candidates that
+    // carry load (a merged one does not): first guessed as all, solved again if that was wrong.
+    const auto lift = [&](const WheelNormal* solved) {
+      std::vector<double> t;
       std::map<ContactZone, int> count;
-      for (const ContactCandidate& c : g.candidates) {
+      for (size_t i = 0; i < g.candidates.size(); ++i) {
+        const ContactCandidate& c = g.candidates[i];
+        if (solved && !(solved->patches[i].fn >= kMinLoad)) {
+          t.push_back(0.0);
+          continue;
+        }
         const auto it = wheel.find(slotName(c.zone, ++count[c.zone]));
-        lift.push_back(it == wheel.end() ? 0.0 : -it->second.fs_per_fn * c.normal.x());
+        t.push_back(it == wheel.end() ? 0.0 : -it->second.fs_per_fn * c.normal.x());
       }
+      return t;
+    };
+    const bool whole = options.whole_force_balance && options.tangential;
+    const std::vector<double> guess = whole ? lift(nullptr) : std::vector<double>{};
+    WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, no, guess);
+    if (whole && n.status == NormalStatus::kOk && n.patches.size() == guess.size()) {
+      const std::vector<double> t = lift(&n);
+      for (size_t i = 0; i < t.size(); ++i)
+        if (n.patches[i].fn >= kMinLoad && t[i] != guess[i]) {
+          n = solveWheelLoad(g, load, parameters.G, parameters.nu, no, t);
+          break;
+        }
     }
-    WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, no, lift);
-    if (!lift.empty() && n.status != NormalStatus::kOk && n.status != NormalStatus::kNoContact) {
+    if (whole && n.status != NormalStatus::kOk && n.status != NormalStatus::kNoContact) {
       r.message = "the tangential forces' vertical components leave the load no balance (" +
                   n.message + "): the normal forces alone carry it this step";
       n = solveWheelLoad(g, load, parameters.G, parameters.nu, no);
