@@ -1,0 +1,191 @@
+#!/usr/bin/env python3
+"""Round trip of wheelset_node driven by a Python (rospy) client at a wall-clock rate: one
+WheelsetInput per tick with every wheelset (a sway on the treads at 30 m/s, 60 kN per wheel), sent
+on a fixed schedule. `topic`: published on wheelset_input on schedule whatever the answers do,
+answers collected from wheelset_forces as they come; `service`: one wheelset_step call per tick (a
+late call delays the next). Round trip: from just before the publish or call to the answer's
+arrival (time.perf_counter). Prints one line per run; a stall is a round trip over --stall.
+
+  scripts/wheelset_latency.py --launch --seconds 10 --rate 1000 --runs topic,service
+
+--launch starts `roslaunch wheel_rail_contact wheelset.launch wheelsets:=4` on its own master port
+(and stops it); without it the script uses the running master and --ns. The contact table takes
+about 10 s to build at start-up: the script waits for the service. Exit code 1 if a tick was lost
+or a wheel's answer was not ok. The C++ client is `rosrun wheel_rail_contact wheelset_latency`.
+"""
+import argparse
+import math
+import os
+import subprocess
+import sys
+import threading
+import time
+import xmlrpc.client
+
+
+def parse_args():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    p.add_argument("--ns", default="wheelsets", help="namespace of the wheelset node")
+    p.add_argument("--model", default="nss", help="with --launch: the model")
+    p.add_argument("--seconds", type=float, default=10.0, help="seconds of ticks per run")
+    p.add_argument("--rate", type=float, default=1000.0, help="ticks per second [Hz]")
+    p.add_argument("--runs", default="topic,service", help="comma-separated: topic, service")
+    p.add_argument("--stall", type=float, default=0.02, help="a longer round trip is a stall [s]")
+    p.add_argument("--launch", action="store_true", help="start the wheelset node (own master)")
+    p.add_argument("--port", type=int, default=11470, help="with --launch: master port")
+    return p.parse_args()
+
+
+def percentile(values, q):
+    if not values:
+        return float("nan")
+    s = sorted(values)
+    return s[min(len(s) - 1, max(0, int(math.ceil(q / 100.0 * len(s))) - 1))]
+
+
+def wait_for_link(topic, timeout):
+    """True once a publisher of `topic` lists a live connection to this node (getBusInfo)."""
+    import rosgraph.masterapi
+    import rospy
+    me = rospy.get_name()
+    master = rosgraph.masterapi.Master(me)
+    end = time.monotonic() + timeout
+    while time.monotonic() < end and not rospy.is_shutdown():
+        for node in dict(master.getSystemState()[0]).get(topic, []):
+            rows = xmlrpc.client.ServerProxy(master.lookupNode(node)).getBusInfo(me)[2]
+            if any(r[1] == me and r[2] == "o" and r[4] == topic for r in rows):
+                return True
+        time.sleep(0.01)  # poll the graph again
+    return False
+
+
+class Client:
+    def __init__(self, ns, names):
+        import rospy
+        from wheel_rail_contact.msg import WheelsetForces, WheelsetInput, WheelsetKinematics
+        from wheel_rail_contact.srv import WheelsetStep
+        self.rospy, self.Input, self.Kinematics = rospy, WheelsetInput, WheelsetKinematics
+        self.names = names
+        self.lock = threading.Condition()
+        self.received = {}  # stamp (ns) -> (perf_counter at receipt, WheelsetForces)
+        self.pub = rospy.Publisher(ns + "/wheelset_input", WheelsetInput, queue_size=100000,
+                                   tcp_nodelay=True)
+        self.sub = rospy.Subscriber(ns + "/wheelset_forces", WheelsetForces, self.on_forces,
+                                    queue_size=100000, tcp_nodelay=True)
+        rospy.wait_for_service(ns + "/wheelset_step", timeout=120.0)
+        self.step = rospy.ServiceProxy(ns + "/wheelset_step", WheelsetStep, persistent=True)
+        end = time.monotonic() + 30.0
+        while self.pub.get_num_connections() == 0 and time.monotonic() < end:
+            time.sleep(0.01)
+        if self.pub.get_num_connections() == 0 or not wait_for_link(
+                rospy.resolve_name(ns + "/wheelset_forces"), 30.0):
+            raise RuntimeError("wheelset node not connected")
+
+    def on_forces(self, msg):
+        t = time.perf_counter()
+        with self.lock:
+            self.received[msg.header.stamp.to_nsec()] = (t, msg)
+            self.lock.notify_all()
+
+    def tick(self, k, stamp):
+        msg = self.Input()
+        msg.header.stamp = stamp
+        for i, name in enumerate(self.names):
+            w = 2.0 * math.pi * 1.5 * 1e-3 * k + i
+            s = self.Kinematics(name=name, lateral=3e-3 * math.sin(w), yaw=1e-3 * math.cos(w),
+                                velocity=30.0, pitch_rate=30.0 / 0.46,
+                                lateral_velocity=3e-3 * 2.0 * math.pi * 1.5 * math.cos(w),
+                                yaw_rate=-1e-3 * 2.0 * math.pi * 1.5 * math.sin(w),
+                                load_left=6e4 + 2e3 * math.sin(w),
+                                load_right=6e4 - 2e3 * math.sin(w))
+            msg.wheelsets.append(s)
+        return msg
+
+    def bad(self, forces):
+        n = abs(len(forces.wheelsets) - len(self.names))
+        return n + sum((w.left.status != 0) + (w.right.status != 0) for w in forces.wheelsets)
+
+    def run(self, path, n, rate, t0):
+        """Round trips [s] of the answered ticks, lost ticks, bad answers, late sends, wall time."""
+        rospy = self.rospy
+        with self.lock:
+            self.received.clear()
+        sent, trips, bad, late = {}, [], 0, 0
+        start = time.perf_counter()
+        for k in range(n):
+            ns = t0 + k * int(round(1e9 / rate))
+            stamp = rospy.Time(ns // 10**9, ns % 10**9)
+            msg = self.tick(k, stamp)
+            due = start + k / rate
+            now = time.perf_counter()
+            if now < due:
+                time.sleep(due - now)
+            elif now > due + 1.0 / rate:
+                late += 1
+            t = time.perf_counter()
+            if path == "service":
+                forces = self.step(msg).forces
+                trips.append(time.perf_counter() - t)
+                bad += self.bad(forces)
+                continue
+            sent[ns] = t
+            self.pub.publish(msg)
+        wall = time.perf_counter() - start
+        lost = 0
+        if path == "topic":
+            with self.lock:
+                self.lock.wait_for(lambda: len(self.received) >= n, timeout=2.0)
+                got = dict(self.received)
+            for s, t in sent.items():
+                if s not in got:
+                    lost += 1
+                    continue
+                trips.append(got[s][0] - t)
+                bad += self.bad(got[s][1])
+        return trips, lost, bad, late, wall
+
+
+def main():
+    args = parse_args()
+    launch = None
+    if args.launch:
+        os.environ["ROS_MASTER_URI"] = "http://localhost:%d" % args.port
+        launch = subprocess.Popen(
+            ["roslaunch", "-p", str(args.port), "wheel_rail_contact", "wheelset.launch",
+             "wheelsets:=4", "model:=" + args.model, "ns:=" + args.ns],
+            stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
+    try:
+        import rosgraph
+        import rospy
+        end = time.monotonic() + 30.0
+        while not rosgraph.is_master_online() and time.monotonic() < end:
+            time.sleep(0.1)
+        rospy.init_node("wheelset_latency_py", anonymous=True, disable_signals=True)
+        ns = "/" + args.ns.strip("/")
+        node = ns + "/wheelset_node"
+        end = time.monotonic() + 30.0
+        while not rospy.has_param(node + "/wheelsets") and time.monotonic() < end:
+            time.sleep(0.1)
+        client = Client(ns, rospy.get_param(node + "/wheelsets"))
+        n = int(round(args.seconds * args.rate))
+        ok = True
+        for run in args.runs.split(","):
+            t0 = time.time_ns()  # stamps from the wall clock: each run continues the time line
+            trips, lost, bad, late, wall = client.run(run, n, args.rate, t0)
+            stalls = sum(1 for t in trips if t > args.stall)
+            print("python %-7s %d wheelsets, %d ticks at %.0f Hz in %.2f s wall: round trip p50 "
+                  "%.3f ms, p99 %.3f ms, max %.3f ms; lost %d, not ok %d, stalls > %.0f ms %d, "
+                  "late sends %d (load average %.1f)" % (
+                      run, len(client.names), n, args.rate, wall, 1e3 * percentile(trips, 50),
+                      1e3 * percentile(trips, 99), 1e3 * max(trips) if trips else float("nan"),
+                      lost, bad, 1e3 * args.stall, stalls, late, os.getloadavg()[0]), flush=True)
+            ok = ok and lost == 0 and bad == 0
+        return 0 if ok else 1
+    finally:
+        if launch:
+            launch.terminate()
+            launch.wait(timeout=30)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
