@@ -10,6 +10,8 @@
 //   GeometryNormal: WheelsetContact::step with tangential = false: the search and the normal
 //     problem (solveWheelLoad); ..._Cold with warm_start = false.
 //   Step: the whole WheelsetContact::step with the model nss (creepages, tangential forces).
+//   ModelMade: what a patch's appearance adds to its step: WheelsetContact makes the patch's nss
+//     model (makeContactModel at the patch's a, b and fn; here the 0.5 mm state's tread patch).
 // Each with the direct search (Search) and with a contact table (Table) covering the states.
 // Run:
 //   build/devel/lib/wheel_rail_contact/bench_wheelset_contact --benchmark_repetitions=5
@@ -23,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/wheelset/wheelset_contact.hpp"
 
 using namespace wheel_rail_contact;
@@ -156,6 +159,22 @@ void Normal_Table(benchmark::State& bs) {
   bs.SetLabel(std::to_string(static_cast<double>(trials) / std::max(steps, 1L)) + " trials");
 }
 
+void ModelMade(benchmark::State& bs) {
+  WheelsetContactOptions o;
+  o.contact_table = table();
+  o.tangential = false;
+  WheelsetContact c(WheelsetTrackData{}, ContactParameters{}, o);
+  const NormalPatch np = c.step(state(0, 0), 0.0).right.patches.at(0).normal;
+  ContactParameters p;  // as WheelsetContact makes a patch's model
+  p.model = "nss";
+  p.a0 = np.a;
+  p.b0 = np.b;
+  p.fz0 = np.fn;
+  p.fz_max = 0.0;
+  makeContactModel(p);  // the shipped tables read once per process, as any first model does
+  for (auto _ : bs) benchmark::DoNotOptimize(makeContactModel(p));
+}
+
 }  // namespace
 
 // Argument: the state, 0 (y = 0.5 mm), 1 (5 mm), 2 (6.5 mm).
@@ -167,4 +186,5 @@ BENCHMARK(GeometryNormal_Table)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond)
 BENCHMARK(GeometryNormal_Table_Cold)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(Step_Search)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(Step_Table)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(ModelMade)->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();

@@ -708,6 +708,62 @@ TEST(CalibrationTable, VectorisedStepIsTheScalarStepWithinRoundOff) {
   EXPECT_LT(p.step(lanes, p.normalised(0.6 * h, 0.8 * h, h)).L.L1 / kalker.L1, 1e-302);
 }
 
+TEST(CalibrationTable, RePickingFillsTheCorrectionAsStepsNeedItWithTheWholeGridsValues) {
+  // at(a_over_b, &c) leaves the correction's grid points to c's steps (computed as a step first
+  // reaches them); at(a_over_b) computes them all. The values are the same expressions: the steps
+  // must agree bit for bit, whatever the a/b picked before (rows crossed, a table of other knots
+  // between), on either path, and after the table c was picked from is gone.
+  auto identical = [](const CalibratedStep& x, const CalibratedStep& y) {
+    return x.L.L1 == y.L.L1 && x.L.L2 == y.L.L2 && x.L.L3 == y.L.L3 && x.L.L3x == y.L.L3x &&
+           x.L.lateralCoupling == y.L.lateralCoupling && x.L.etaSlope == y.L.etaSlope &&
+           x.L.etaGain == y.L.etaGain && x.boundShape == y.boundShape;
+  };
+  std::mt19937 rng(46);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto creepage = [&](double scale) {
+    const double u = unit(rng);
+    return u < 0.1 ? 0.0 : (u < 0.55 ? -1.0 : 1.0) * scale * std::pow(10.0, -4.0 * unit(rng));
+  };
+  const CalibrationTable mesh20 = CalibrationTable::shipped().forMesh(20);
+  const CalibrationTable other = CalibrationTable::load(writeTable(kTwoRows));
+  int compared = 0, differ = 0;
+  for (bool lanes : {true, false}) {
+    PatchCalibration picked;
+    // a/b within one row pair, across rows, back, beyond the table's ends; 0 (c) is the other
+    // table.
+    for (double ab : {0.7, 0.71, 0.705, 1.3, 0.3, 0.0, 0.7, 4.9, 7.0, 0.15, 1.0}) {
+      const bool fromOther = ab == 0.0;
+      (fromOther ? other : mesh20).at(fromOther ? 1.0 : ab, &picked);
+      PatchCalibration whole = (fromOther ? other : mesh20).at(fromOther ? 1.0 : ab);
+      picked.setVectorised(lanes);
+      whole.setVectorised(lanes);
+      const double g = fromOther ? 1.0 : ab;
+      const double a = 6e-3 * std::sqrt(g), b = 6e-3 / std::sqrt(g), G = 8.2e10, muFz = 2.4e4;
+      const CreepCoefficients k = kalkerCoefficients(g, 0.28);
+      for (int n = 0; n < 300; ++n) {
+        const Creepages c{creepage(0.05), creepage(0.05), creepage(20.0)};
+        const double opposed = n % 3 == 0 ? unit(rng) : PatchCalibration::opposedBranch(c);
+        ++compared;
+        if (!identical(picked.step(a, b, G, k, muFz, c, opposed),
+                       whole.step(a, b, G, k, muFz, c, opposed)))
+          ++differ;
+      }
+    }
+  }
+  EXPECT_EQ(differ, 0) << "of " << compared;
+  // Picked from a table that is then destroyed (mesh 7: rows of its own, blended from 5 and 10).
+  PatchCalibration orphan;
+  CalibrationTable::shipped().forMesh(7).at(0.6, &orphan);
+  const PatchCalibration whole = CalibrationTable::shipped().forMesh(7).at(0.6);
+  const double a = 6e-3 * std::sqrt(0.6), b = 6e-3 / std::sqrt(0.6);
+  const CreepCoefficients k = kalkerCoefficients(0.6, 0.28);
+  for (int n = 0; n < 200; ++n) {
+    const Creepages c{creepage(0.05), creepage(0.05), creepage(20.0)};
+    EXPECT_TRUE(
+        identical(orphan.step(a, b, 8.2e10, k, 2.4e4, c), whole.step(a, b, 8.2e10, k, 2.4e4, c)));
+  }
+}
+
 TEST(CalibrationTable, TheLanesExpIsStdExpWithinTwoUlpsAndFallsBackOutsideItsRange) {
   if (!stripLanesAvailable()) GTEST_SKIP() << "this CPU has no lanes: only the scalar reference";
   // The lanes' table exp (within 1 ulp of exp) against std::exp (within 1 ulp too): at most 2 ulps

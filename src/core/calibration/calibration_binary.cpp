@@ -228,12 +228,13 @@ std::vector<CalibrationTable::Row> CalibrationTable::readMesh(std::string_view b
     row.corrT = t;
     row.corrEps = corrEps;
     in.need(nCorr);
-    row.corr = in.values(static_cast<std::uint32_t>(nCorr));
-    for (std::size_t i = 0; i < row.corr.size(); ++i) {
-      if (!(row.corr[i] > 0.0 && row.corr[i] <= kMultiplierInfo[0].max))
+    const std::vector<double> corr = in.values(static_cast<std::uint32_t>(nCorr));
+    for (std::size_t i = 0; i < corr.size(); ++i) {
+      if (!(corr[i] > 0.0 && corr[i] <= kMultiplierInfo[0].max))
         in.fail("a correction's multiplier must be > 0");
-      if (i % nE == 0 && row.corr[i] != 1.0) in.fail("a correction's multiplier is 1 at e = 0");
+      if (i % nE == 0 && corr[i] != 1.0) in.fail("a correction's multiplier is 1 at e = 0");
     }
+    row.corr = std::make_shared<const std::vector<double>>(corr);
   }
   if (!in.done()) in.fail("the block is longer than its grids say");
   return rows;
@@ -327,7 +328,7 @@ void CalibrationTable::writeBinary(std::ostream& out) const {
     w.values(first.corrEps);
     for (const Row& r : rows) {
       for (int k = 0; k < kKinds; ++k) w.values(r.ratio[k]);
-      w.values(r.corr);
+      w.values(*r.corr);
     }
     blocks.push_back(std::move(w.out));
   }
@@ -380,7 +381,7 @@ void CalibrationTable::writeCsv(std::ostream& out, int nx) const {
                                             "," + (o == 0 ? "1" : "-1");
               for (std::size_t k = 0; k < nE; ++k)
                 out << ab << ',' << kMultiplierInfo[p].name << ',' << decimal(r.corrEps[k]) << ','
-                    << decimal(r.corr[(((p * 2 + o) * nS + i) * nT + j) * nE + k]) << mesh
+                    << decimal((*r.corr)[(((p * 2 + o) * nS + i) * nT + j) * nE + k]) << mesh
                     << direction << '\n';
             }
     }

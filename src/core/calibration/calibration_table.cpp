@@ -141,6 +141,7 @@ inline PatchCalibration::CorrectionCell PatchCalibration::correctionCell(double 
 inline void PatchCalibration::lookUpCorrection(double s3, double t, double e, double opposed,
                                                int first, int last, double* lm) const {
   const CorrectionCell c = correctionCell(s3, t, e);
+  fillCell(c, opposed);
   auto multiplier = [&](const double* l0, int p) {
     return inCell(l0, c.alongT, c.alongS, c.we, c.wt, c.ws, p);
   };
@@ -257,6 +258,7 @@ CalibratedStep PatchCalibration::step(double a, double b, double G, const CreepC
     // The first four multipliers and their exps in the lanes (correction_lanes.hpp), the fifth
     // (of L3x alone, its exp below) as the scalar path.
     const CorrectionCell cc = correctionCell(share[2], e2[0] / rest, e);
+    fillCell(cc, opposed);
     const double base[4] = {logRho, logRho, logRho, logShape};
     double r[4];
     calibration::correctedExpsInLanes(cc.lo, cc.alongT, cc.alongS, cc.branch, cc.we, cc.wt, cc.ws,
@@ -473,7 +475,7 @@ CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& pa
     if (rows.empty() || rows.back().logAB != logAB) {
       if (!rows.empty() && !(logAB > rows.back().logAB))
         fail(path, n, "a_over_b must increase from one block to the next");
-      rows.push_back(Row{ab, logAB, {}, {}, {}, {}, {}, {}});
+      rows.push_back(Row{ab, logAB, {}, {}, {}, {}, {}});  // corr: its default, empty
     }
     if (multiplier >= 0) {
       if (!given(kSpinShare) || !given(kXiShare) || !given(kSign))
@@ -554,7 +556,8 @@ CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& pa
       if (row.corrT.size() < 2 || row.corrT.front() != 0.0 || row.corrT.back() != 1.0)
         fail(path, n, "the combined correction's xi shares must run from 0 to 1" + mesh);
       const std::size_t nS = row.corrS3.size(), nT = row.corrT.size(), nE = row.corrEps.size();
-      row.corr.assign(calibration::kMultipliers * 2 * nS * nT * nE, 1.0);
+      auto multipliers =
+          std::make_shared<std::vector<double>>(calibration::kMultipliers * 2 * nS * nT * nE, 1.0);
       for (int p = 0; p < calibration::kMultipliers; ++p)
         for (int o = 0; o < 2; ++o)
           for (std::size_t i = 0; i < nS; ++i)
@@ -567,8 +570,9 @@ CalibrationTable CalibrationTable::parse(std::istream& in, const std::string& pa
                      "spin share and xi share; c3x in every one or none)" +
                          mesh);
               std::copy(it->second.second.begin(), it->second.second.end(),
-                        row.corr.begin() + (((p * 2 + o) * nS + i) * nT + j) * nE);
+                        multipliers->begin() + (((p * 2 + o) * nS + i) * nT + j) * nE);
             }
+      row.corr = std::move(multipliers);
     }
   }
   sortByNodes(&t.meshes_);
@@ -580,7 +584,7 @@ bool CalibrationTable::sameKnots(const std::vector<Row>& x, const std::vector<Ro
   for (std::size_t i = 0; i < x.size(); ++i) {
     const Row &p = x[i], &q = y[i];
     if (p.logAB != q.logAB || p.corrS3 != q.corrS3 || p.corrT != q.corrT ||
-        p.corrEps != q.corrEps || p.corr.size() != q.corr.size())
+        p.corrEps != q.corrEps || p.corr->size() != q.corr->size())
       return false;
     for (int k = 0; k < calibration::kKinds; ++k)
       if (p.eps[k] != q.eps[k] || p.ratio[k].size() != q.ratio[k].size()) return false;
@@ -614,7 +618,9 @@ CalibrationTable CalibrationTable::forMesh(int nx) const {
         row.ratio[k][j] = calibration::kKindInfo[k].heldAsIs
                               ? row.ratio[k][j] + w * (h.ratio[k][j] - row.ratio[k][j])
                               : blend(row.ratio[k][j], h.ratio[k][j]);
-    for (std::size_t j = 0; j < row.corr.size(); ++j) row.corr[j] = blend(row.corr[j], h.corr[j]);
+    auto corr = std::make_shared<std::vector<double>>(*row.corr);
+    for (std::size_t j = 0; j < corr->size(); ++j) (*corr)[j] = blend((*corr)[j], (*h.corr)[j]);
+    row.corr = std::move(corr);
   }
   t.meshes_.push_back(std::move(m));
   return t;
@@ -627,6 +633,7 @@ std::vector<int> CalibrationTable::meshes() const {
 PatchCalibration CalibrationTable::at(double a_over_b) const {
   PatchCalibration c;
   at(a_over_b, &c);
+  c.fillCorrection();
   return c;
 }
 
@@ -646,44 +653,75 @@ void CalibrationTable::at(double a_over_b, PatchCalibration* c) const {
   const Row& hi = rows[std::min(i + 1, rows.size() - 1)];
   const double t =
       (&lo == &hi || !(x > lo.logAB)) ? 0.0 : std::min(1.0, (x - lo.logAB) / (hi.logAB - lo.logAB));
+  // The knots and what follows from them alone (the cells' widths, where searches start) stay
+  // as they are where c holds this table's already (a model re-picking its a/b).
+  bool knotsHeld = c->corrS3_ == lo.corrS3 && c->corrT_ == lo.corrT && c->corrEps_ == lo.corrEps;
+  for (int k = 0; k < calibration::kKinds && knotsHeld; ++k) knotsHeld = c->eps_[k] == lo.eps[k];
   for (int k = 0; k < calibration::kKinds; ++k) {
-    c->eps_[k] = lo.eps[k];  // every row has the same knots: the storage c holds is reused
     c->logRatio_[k].resize(lo.ratio[k].size());
     for (std::size_t j = 0; j < lo.ratio[k].size(); ++j) {
       const double v = lo.ratio[k][j] + t * (hi.ratio[k][j] - lo.ratio[k][j]);
       c->logRatio_[k][j] = calibration::kKindInfo[k].heldAsIs ? v : std::log(v);
     }
-    reciprocalWidths(c->eps_[k], &c->perWidth_[k]);
   }
-  c->sharedKnots_ = true;
-  for (int k = 1; k < calibration::kKinds; ++k)
-    if (!c->eps_[k].empty() && c->eps_[k] != c->eps_[0]) c->sharedKnots_ = false;
-  c->corrS3_ = lo.corrS3;
-  c->corrT_ = lo.corrT;
-  c->corrEps_ = lo.corrEps;
   const std::size_t nS = lo.corrS3.size(), nT = lo.corrT.size(), nE = lo.corrEps.size();
-  // Spin-share cells with the implicit ends 0 and 1: knots 0, corrS3..., 1.
-  c->corrS3PerWidth_.resize(nS == 0 ? 0 : nS + 1);
-  for (std::size_t q = 0; q < c->corrS3PerWidth_.size(); ++q)
-    c->corrS3PerWidth_[q] =
-        1.0 / ((q == nS ? 1.0 : lo.corrS3[q]) - (q == 0 ? 0.0 : lo.corrS3[q - 1]));
-  reciprocalWidths(c->corrT_, &c->corrTPerWidth_);
-  reciprocalWidths(c->corrEps_, &c->corrEpsPerWidth_);
-  c->setSearchStarts();
-  c->vectorised_ = stripLanesAvailable();
-  // Row's layout ((((p * 2 + opposed) * nS + q) * nT + j) * nE + k) into PatchCalibration's
-  // (grid point by grid point, the end rows 0).
   constexpr int P = calibration::kMultipliers;
-  c->corrLog_.assign(nS == 0 ? 0 : 2 * (nS + 2) * nT * nE * P, 0.0);
-  for (int p = 0; p < P; ++p)
-    for (std::size_t o = 0; o < (nS == 0 ? 0 : 2); ++o)
-      for (std::size_t q = 0; q < nS; ++q)
-        for (std::size_t j = 0; j < nT; ++j)
-          for (std::size_t k = 0; k < nE; ++k) {
-            const std::size_t from = (((p * 2 + o) * nS + q) * nT + j) * nE + k;
-            c->corrLog_[(((o * (nS + 2) + q + 1) * nT + j) * nE + k) * P + p] =
-                std::log(lo.corr[from] + t * (hi.corr[from] - lo.corr[from]));
-          }
+  if (!knotsHeld) {
+    for (int k = 0; k < calibration::kKinds; ++k) {
+      c->eps_[k] = lo.eps[k];  // every row has the same knots: the storage c holds is reused
+      reciprocalWidths(c->eps_[k], &c->perWidth_[k]);
+    }
+    c->sharedKnots_ = true;
+    for (int k = 1; k < calibration::kKinds; ++k)
+      if (!c->eps_[k].empty() && c->eps_[k] != c->eps_[0]) c->sharedKnots_ = false;
+    c->corrS3_ = lo.corrS3;
+    c->corrT_ = lo.corrT;
+    c->corrEps_ = lo.corrEps;
+    // Spin-share cells with the implicit ends 0 and 1: knots 0, corrS3..., 1.
+    c->corrS3PerWidth_.resize(nS == 0 ? 0 : nS + 1);
+    for (std::size_t q = 0; q < c->corrS3PerWidth_.size(); ++q)
+      c->corrS3PerWidth_[q] =
+          1.0 / ((q == nS ? 1.0 : lo.corrS3[q]) - (q == 0 ? 0.0 : lo.corrS3[q - 1]));
+    reciprocalWidths(c->corrT_, &c->corrTPerWidth_);
+    reciprocalWidths(c->corrEps_, &c->corrEpsPerWidth_);
+    c->setSearchStarts();
+    // Grid point by grid point (the end rows 0, never filled), none filled yet.
+    c->corrLog_.assign(nS == 0 ? 0 : 2 * (nS + 2) * nT * nE * P, 0.0);
+    c->corrFilledAt_.assign(c->corrLog_.size() / P, 0);
+    c->corrPick_ = 0;
+  }
+  c->vectorised_ = stripLanesAvailable();
+  // A new pick: every grid point's values are stale until fillGridPoint computes them.
+  if (++c->corrPick_ == 0) {
+    std::fill(c->corrFilledAt_.begin(), c->corrFilledAt_.end(), 0);
+    c->corrPick_ = 1;
+  }
+  c->corrLo_ = lo.corr;
+  c->corrHi_ = hi.corr;
+  c->corrWeight_ = t;
+}
+
+void PatchCalibration::fillGridPoint(std::size_t g) const {
+  // g = ((opposed * (nS + 2) + i) * nT + j) * nE + k; rows i = 0 and nS + 1 are the ends (0).
+  const std::size_t nS = corrS3_.size(), nT = corrT_.size(), nE = corrEps_.size();
+  const std::size_t k = g % nE, j = (g / nE) % nT, i = (g / (nE * nT)) % (nS + 2),
+                    o = g / (nE * nT * (nS + 2));
+  corrFilledAt_[g] = corrPick_;
+  if (i == 0 || i == nS + 1) return;
+  // From the table's layout ((((p * 2 + o) * nS + q) * nT + j) * nE + k), q = i - 1.
+  constexpr int P = calibration::kMultipliers;
+  const std::vector<double>& lo = *corrLo_;
+  const std::vector<double>& hi = *corrHi_;
+  const double t = corrWeight_;
+  for (int p = 0; p < P; ++p) {
+    const std::size_t from = (((p * 2 + o) * nS + i - 1) * nT + j) * nE + k;
+    corrLog_[g * P + p] = std::log(lo[from] + t * (hi[from] - lo[from]));
+  }
+}
+
+void PatchCalibration::fillCorrection() const {
+  for (std::size_t g = 0; g < corrFilledAt_.size(); ++g)
+    if (corrFilledAt_[g] != corrPick_) fillGridPoint(g);
 }
 
 }  // namespace wheel_rail_contact

@@ -362,6 +362,40 @@ class PatchCalibration {
   }
   // Sets the four SearchStarts from the knots (CalibrationTable::at).
   void setSearchStarts();
+  // The correction's grid points as step() needs them: corrLog_ at a grid point (index into
+  // corrLog_ over kMultipliers) is ln of the two a/b rows' multipliers interpolated at weight
+  // corrWeight_ (the upper row's), computed the first time a step's cell reaches it after
+  // CalibrationTable::at picked this a/b: a model re-picking a/b every step computes the few
+  // grid points its creepages reach instead of the whole grid, with the same values.
+  // corrLo_, corrHi_: the rows' multipliers in the table's layout (shared with the table, so
+  // that the calibration may outlive it).
+  std::shared_ptr<const std::vector<double>> corrLo_, corrHi_;
+  double corrWeight_ = 0.0;
+  // Per grid point the pick (corrPick_) its values in corrLog_ are for; the end rows (spin shares
+  // 0 and 1) hold 0 whatever the pick.
+  mutable std::vector<std::uint32_t> corrFilledAt_;
+  std::uint32_t corrPick_ = 1;
+  // The grid point g's multipliers into corrLog_ for this pick.
+  void fillGridPoint(std::size_t g) const;
+  // Every grid point of cell c's corners that step() reads at the eta phi < 0 branch's weight
+  // `opposed` (one branch or both), filled for this pick.
+  void fillCell(const CorrectionCell& c, double opposed) const {
+    constexpr std::size_t P = calibration::kMultipliers;
+    const std::size_t g0 = static_cast<std::size_t>(c.lo - corrLog_.data()) / P;
+    const std::size_t dT = c.alongT / P, dS = c.alongS / P, dB = c.branch / P;
+    // As lookUpCorrection reads them: opposed <= 0 the first branch, >= 1 the second, else both.
+    const std::size_t firstBranch = opposed >= 1.0 ? 1 : 0, endBranch = opposed <= 0.0 ? 1 : 2;
+    for (std::size_t b = firstBranch; b < endBranch; ++b)
+      for (std::size_t s = 0; s < 2; ++s)
+        for (std::size_t t = 0; t < 2; ++t)
+          for (std::size_t e = 0; e < 2; ++e) {
+            const std::size_t g = g0 + b * dB + s * dS + t * dT + e;
+            if (corrFilledAt_[g] != corrPick_) fillGridPoint(g);
+          }
+  }
+  // Every grid point filled (CalibrationTable::at(a_over_b): a calibration that step() then only
+  // reads).
+  void fillCorrection() const;
   static double at(const std::vector<double>& r, KnotCell c) {
     return c.i == r.size() ? r.back() : r[c.i - 1] + c.t * (r[c.i] - r[c.i - 1]);
   }
@@ -371,7 +405,8 @@ class PatchCalibration {
   // nS + 1 are the implicit ends s3 = 0 and 1 (ln multiplier 0), row i the knot corrS3_[i - 1].
   // The reciprocal widths of the spin-share cells (nS + 1, the ends included), the xi-share cells
   // and the e cells (at a cell's upper index) spare the lookup its divisions.
-  std::vector<double> corrS3_, corrT_, corrEps_, corrLog_;
+  std::vector<double> corrS3_, corrT_, corrEps_;
+  mutable std::vector<double> corrLog_;  // filled as step() reaches its grid points (fillCell)
   std::vector<double> corrS3PerWidth_, corrTPerWidth_, corrEpsPerWidth_;
 };
 
@@ -413,7 +448,9 @@ class CalibrationTable {
   /// first (std::logic_error otherwise).
   PatchCalibration at(double a_over_b) const;
   /// The same into `c`, reusing the storage it holds (a model re-picking at a new a/b each step
-  /// allocates nothing).
+  /// allocates nothing), the combined correction's grid points computed as c's steps first reach
+  /// them (the same values as at(a_over_b)'s): c's steps write into c, so c must not be stepped
+  /// from two threads at once (at(a_over_b) gives one whose steps only read).
   void at(double a_over_b, PatchCalibration* c) const;
   bool empty() const { return meshes_.empty(); }
 
@@ -422,7 +459,11 @@ class CalibrationTable {
     double aOverB, logAB;
     // Per kind (calibration::Kind): knots and values (ratios, or held as is).
     std::vector<double> eps[calibration::kKinds], ratio[calibration::kKinds];
-    std::vector<double> corrS3, corrT, corrEps, corr;  // as PatchCalibration's, ratios
+    std::vector<double> corrS3, corrT, corrEps;  // as PatchCalibration's
+    // The correction's ratios, multiplier p, branch o (1: eta phi < 0), spin share q, xi share j,
+    // e knot k at ((((p * 2 + o) * nS + q) * nT + j) * nE + k); shared with the calibrations
+    // picked from the row (PatchCalibration::corrLo_), which read it as their steps need it.
+    std::shared_ptr<const std::vector<double>> corr = std::make_shared<const std::vector<double>>();
   };
   struct Mesh {
     int nx = 0;             // 0: any

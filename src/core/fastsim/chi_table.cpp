@@ -38,8 +38,13 @@ bool stable(const SecondOrderChi& c) {
 }  // namespace
 
 ChiTable ChiTable::shipped() {
-  std::istringstream in{std::string(shippedTable("chi_table"))};
-  return parse(in, "(shipped) chi_table.csv");
+  // Parsed once per process, copied from then on: a model made as a patch appears does not parse
+  // the text again.
+  static const ChiTable table = [] {
+    std::istringstream in{std::string(shippedTable("chi_table"))};
+    return parse(in, "(shipped) chi_table.csv");
+  }();
+  return table;
 }
 
 ChiTable ChiTable::uniform(const ChiParameters& chi) {

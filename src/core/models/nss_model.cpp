@@ -16,13 +16,15 @@ NssModel::NssModel(const ContactParameters& p, const ChiTable& chi,
       ref_{p.a0, p.b0, p.fz0},
       kalker_(kalkerCoefficients(p.a0 / p.b0, p.nu)),
       calibrationTable_(calibration.forMesh(p.nx)),  // identified per mesh, as chi
-      calibration_(calibrationTable_.at(p.a0 / p.b0)),
       adaptive_(p.mesh == "adaptive"),
       dynamic_(p.model == "nss"),
       forceWeightedFilters_(!calibration.empty()),
       chiTable_(dynamic_ ? chi.forMesh(p.nx) : ChiTable::uniform({})),  // chi is fitted per mesh
       ab0_(p.a0 / p.b0),
       ab_(ab0_) {
+  // Its combined correction filled as the steps reach it: a model made as a patch appears need
+  // not compute the whole grid.
+  calibrationTable_.at(ab0_, &calibration_);
   // Linear interpolation between two stable second-order rows need not be stable (the Routh
   // condition is not convex in chi): refuse an a/b where it is not.
   if (!pickChi(ab0_, chi_, secondKind_))

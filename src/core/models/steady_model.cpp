@@ -12,8 +12,10 @@ SteadyModel::SteadyModel(const ContactParameters& p, Mesh mesh, const Calibratio
       ab0_(p.a0 / p.b0),
       ab_(ab0_),
       calibrationTable_(calibration.forMesh(p.nx)),  // identified per mesh
-      calibration_(calibrationTable_.at(ab0_)),
       fitted_(mesh == Mesh::kFittedToPatch) {
+  // Its combined correction filled as the steps reach it: a model made as a patch appears need
+  // not compute the whole grid.
+  calibrationTable_.at(ab0_, &calibration_);
   const HertzEllipse sized = ref_.at(fitted_ ? p.fz0 : effectiveFzMax(p));
   mesh_ = PatchMesh(p.nx, p.ny, sized.a, sized.b);
   field_.resize(mesh_.size());

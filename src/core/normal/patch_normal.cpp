@@ -21,6 +21,7 @@ constexpr double kPi = 3.14159265358979323846;
 /// curvature A(eta) = cos(delta) / (2 r) of h along x.
 struct PatchGeometry {
   std::vector<double> eta, h;
+  std::vector<double> A;  ///< curvature along x at each sample, cos(delta) / (2 r) (>= 0)
   const ContactCandidate* c = nullptr;
   int imin = 0;
   double eta0 = 0.0, h0 = 0.0;  ///< the minimum, refined by a parabola through three samples
@@ -42,10 +43,7 @@ struct PatchGeometry {
     return h[i] + t * (h[i + 1] - h[i]);
   }
   /// Curvature along x at sample i: cos(delta) / (2 r).
-  double curvatureAt(int i) const {
-    const GapSample& s = c->gap_function[i];
-    return std::max(std::cos(s.contact_angle), 0.0) / (2.0 * s.rolling_radius);
-  }
+  double curvatureAt(int i) const { return A[i]; }
   double curvature(double e) const {
     double t;
     const int i = interval(e, &t);
@@ -63,6 +61,7 @@ bool buildGeometry(const ContactCandidate& c, PatchGeometry* g, std::string* why
   g->c = &c;
   g->eta.resize(n);
   g->h.resize(n);
+  g->A.resize(n);
   for (int i = 0; i < n; ++i) {
     const GapSample& s = f[i];
     if (!std::isfinite(s.eta) || !std::isfinite(s.gap) || !(s.rolling_radius > 0.0) ||
@@ -75,6 +74,7 @@ bool buildGeometry(const ContactCandidate& c, PatchGeometry* g, std::string* why
     }
     g->eta[i] = s.eta;
     g->h[i] = s.gap - c.gap;
+    g->A[i] = std::max(std::cos(s.contact_angle), 0.0) / (2.0 * s.rolling_radius);
   }
   g->imin = static_cast<int>(std::min_element(g->h.begin(), g->h.end()) - g->h.begin());
   g->eta0 = g->eta[g->imin];
@@ -190,6 +190,49 @@ double stripLine(double L, double y) {
   return 2.0 * std::sqrt(r2) * (K - E);
 }
 
+/// stripLine(L[i], y[i]) into out[i], i < n, four at a time: completeEllipticIntegrals' mean
+/// iterated on four strips side by side (each stopping where that function stops), so that their
+/// square roots overlap instead of waiting on each other; the same operations, the same values.
+void stripLines(const double* L, const double* y, int n, double* out) {
+  constexpr int kW = 4;
+  int i = 0;
+  for (; i + kW <= n; i += kW) {
+    double an[kW], bn[kW], cn2[kW], sum[kW], pow2[kW], r2[kW];
+    bool ok = true;
+    for (int l = 0; l < kW; ++l) {
+      r2[l] = L[i + l] * L[i + l] + y[i + l] * y[i + l];
+      const double m = L[i + l] * L[i + l] / r2[l];
+      ok = ok && L[i + l] > 0.0 && m >= 0.0 && m < 1.0;
+      an[l] = 1.0;
+      bn[l] = std::sqrt(1.0 - m);
+      cn2[l] = m;
+      sum[l] = 0.5 * m;
+      pow2[l] = 0.5;
+    }
+    if (!ok) break;  // the rest one by one (a strip out of contact, or m out of range)
+    for (int it = 0; it < 64; ++it) {
+      bool any = false;
+      for (int l = 0; l < kW; ++l) {
+        if (!(cn2[l] > 1e-32)) continue;
+        any = true;
+        const double a_next = 0.5 * (an[l] + bn[l]);
+        const double c_next = 0.5 * (an[l] - bn[l]);
+        bn[l] = std::sqrt(an[l] * bn[l]);
+        an[l] = a_next;
+        cn2[l] = c_next * c_next;
+        pow2[l] *= 2.0;
+        sum[l] += pow2[l] * cn2[l];
+      }
+      if (!any) break;
+    }
+    for (int l = 0; l < kW; ++l) {
+      const double K = M_PI / (2.0 * an[l]), E = K * (1.0 - sum[l]);
+      out[i + l] = 2.0 * std::sqrt(r2[l]) * (K - E);
+    }
+  }
+  for (; i < n; ++i) out[i] = stripLine(L[i], y[i]);
+}
+
 void zeroForces(NormalPatch* p) {
   p->fn = p->pmax = p->a = p->b = p->area = 0.0;
   p->strips.clear();
@@ -236,12 +279,26 @@ class StripPenetration {
     ex_ = A0 * hz.a * hz.a;  // eps d0 at the centre
     ey_ = B * bb_ * bb_;     // and at bb
   }
-  double operator()(double e) const {
-    const double u = (e - ymid_) / bb_;
-    return std::max(0.0, ex_ - (ex_ - ey_) * u * u) - (g_.gap(e) - g_.h0);
+  double operator()(double e) const { return of(e, g_.gap(e)); }
+  /// The same for e strictly inside the sample interval [k, k + 1], where gap(e) is that
+  /// interval's line: without gap's search for the interval.
+  double inInterval(double e, int k) const {
+    const double x0 = g_.eta[k], x1 = g_.eta[k + 1];
+    if (!(e > x0 && e < x1)) return (*this)(e);
+    const double t = std::clamp((e - x0) / (x1 - x0), 0.0, 1.0);
+    return of(e, g_.h[k] + t * (g_.h[k + 1] - g_.h[k]));
+  }
+  /// The sample interval holding e (as gap's), for inInterval.
+  int interval(double e) const {
+    double t;
+    return g_.interval(e, &t);
   }
 
  private:
+  double of(double e, double gap) const {
+    const double u = (e - ymid_) / bb_;
+    return std::max(0.0, ex_ - (ex_ - ey_) * u * u) - (gap - g_.h0);
+  }
   const PatchGeometry& g_;
   double ymid_, bb_ = 0.0, ex_ = 0.0, ey_ = 0.0;
 };
@@ -250,8 +307,11 @@ class StripPenetration {
 /// in the last interval.
 double penetrationEdge(const StripPenetration& f, double inner, double outer) {
   double p_in = f(inner), p_out = f(outer);
+  // The midpoints lie between inner and outer, mostly in the first one's sample interval
+  // (inInterval is f itself, and f where a midpoint is not strictly inside it).
+  const int k = f.interval(0.5 * (inner + outer));
   for (int it = 0; it < 16; ++it) {
-    const double mid = 0.5 * (inner + outer), p = f(mid);
+    const double mid = 0.5 * (inner + outer), p = f.inInterval(mid, k);
     if (p > 0.0) {
       inner = mid;
       p_in = p;
@@ -263,11 +323,21 @@ double penetrationEdge(const StripPenetration& f, double inner, double outer) {
   return inner + (outer - inner) * p_in / (p_in - p_out);
 }
 
-}  // namespace
+/// A candidate's PatchGeometry, built once for the trials of a load iteration (the candidate does
+/// not change between them).
+struct BuiltGeometry {
+  bool built = false, ok = false;
+  PatchGeometry g;
+  std::string why;  ///< buildGeometry's, where not ok
+};
 
-NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double G, double nu,
-                             const NormalOptions& o) {
-  {
+/// solvePatchNormal on the geometry in *cache (built there on first use), or built here where
+/// cache is null.
+NormalPatch solvePatch(const ContactCandidate& c, BuiltGeometry* cache, double approach, double G,
+                       double nu, const NormalOptions& o) {
+  if (!std::isfinite(approach) || !(G > 0.0) || !std::isfinite(G) || !(nu >= 0.0 && nu < 0.5) ||
+      o.strips < 3 || o.strips > 1000 || !(o.hertz_tolerance >= 0.0) ||
+      !std::isfinite(o.hertz_tolerance)) {
     std::ostringstream msg;
     if (!std::isfinite(approach)) msg << "approach = " << approach << " is not finite; ";
     if (!(G > 0.0) || !std::isfinite(G)) msg << "G = " << G << " must be finite and > 0; ";
@@ -277,9 +347,14 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
       msg << "NormalOptions::hertz_tolerance must be finite and >= 0; ";
     if (msg.tellp() > 0) return fail(NormalStatus::kInvalidInput, msg.str(), approach);
   }
-  PatchGeometry g;
-  std::string why;
-  if (!buildGeometry(c, &g, &why)) return fail(NormalStatus::kNoGapFunction, why, approach);
+  BuiltGeometry here;
+  BuiltGeometry& built = cache ? *cache : here;
+  if (!built.built) {
+    built.built = true;
+    built.ok = buildGeometry(c, &built.g, &built.why);
+  }
+  if (!built.ok) return fail(NormalStatus::kNoGapFunction, built.why, approach);
+  const PatchGeometry& g = built.g;
 
   NormalPatch start;
   start.approach = approach;
@@ -418,8 +493,21 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
     for (int j = 0; j < n; ++j) L[j] = halfLength(lo + (j + 0.5) * w);
     // Displacement at (0, eta0) per unit amplitude P: over each strip the integral of
     // sqrt(L^2 - x^2) / r, exact in eta (J differences) near eta0, midpoint further out.
-    double influence = 0.0;
+    // The far strips' lines first, side by side (stripLines), summed in the strips' order.
+    std::vector<double> farL, farY, farLine;
+    farL.reserve(n);
+    farY.reserve(n);
     for (int j = 0; j < n; ++j) {
+      const double y1 = lo + j * w - g.eta0, y2 = y1 + w;
+      if (!(y2 > -3.0 * w && y1 < 3.0 * w)) {
+        farL.push_back(L[j]);
+        farY.push_back(0.5 * (y1 + y2));
+      }
+    }
+    farLine.resize(farL.size());
+    stripLines(farL.data(), farY.data(), static_cast<int>(farL.size()), farLine.data());
+    double influence = 0.0;
+    for (int j = 0, far = 0; j < n; ++j) {
       const double y1 = lo + j * w - g.eta0, y2 = y1 + w;
       if (y2 > -3.0 * w && y1 < 3.0 * w) {
         if (y1 < 0.0 && y2 > 0.0)
@@ -428,7 +516,7 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
           influence += std::abs(centralStrip(L[j], std::max(std::abs(y1), std::abs(y2))) -
                                 centralStrip(L[j], std::min(std::abs(y1), std::abs(y2))));
       } else {
-        influence += w * stripLine(L[j], 0.5 * (y1 + y2));
+        influence += w * farLine[far++];
       }
     }
     if (!(influence > 0.0)) {
@@ -497,6 +585,13 @@ NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double 
   sp.method = ws < 0.5 ? NormalMethod::kHertz : NormalMethod::kNonHertzian;
   sp.strip_weight = ws;
   return sp;
+}
+
+}  // namespace
+
+NormalPatch solvePatchNormal(const ContactCandidate& c, double approach, double G, double nu,
+                             const NormalOptions& o) {
+  return solvePatch(c, nullptr, approach, G, nu, o);
 }
 
 namespace {
@@ -755,6 +850,7 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
     std::vector<double> ridges;
   };
   std::map<std::pair<int, int>, Merged> merged;  // by (first, last), built once
+  std::vector<BuiltGeometry> geometry(nc);       // each candidate's, built once
   // Vertical force at a vertical approach; false on a patch's failure (its status in *bad).
   NormalStatus bad = NormalStatus::kOk;
   std::string bad_why;
@@ -797,7 +893,7 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
         c = &it->second.candidate;
         patch = solveMergedPatch(*c, it->second.ridges, dv * c->normal.y() - c->gap, G, nu, o);
       } else {
-        patch = solvePatchNormal(*c, dv * c->normal.y() - c->gap, G, nu, o);
+        patch = solvePatch(*c, &geometry[p], dv * c->normal.y() - c->gap, G, nu, o);
       }
       if (patch.status == NormalStatus::kBeyondGapFunction) {
         const int k = ridgeReached(i, last);

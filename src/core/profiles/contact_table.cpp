@@ -50,6 +50,16 @@ struct TableCandidate {
     s.contact_angle = v * (p.angle + p.angle_dz * dZ) + u * (q.angle + q.angle_dz * dZ);
     return s;
   }
+  /// gapFunction(eta, dZ).gap alone (the same arithmetic).
+  double gapAt(double eta, double dZ) const {
+    double u = (eta - eta0) * inv_deta;
+    const int last = static_cast<int>(rows.size()) - 1;
+    int j = static_cast<int>(std::floor(u));
+    j = std::min(std::max(j, 0), last - 1);
+    u -= j;
+    const Row &p = rows[j], &q = rows[j + 1];
+    return (1.0 - u) * (p.gap + p.gap_dz * dZ) + u * (q.gap + q.gap_dz * dZ);
+  }
   double etaEnd() const { return eta0 + deta * (static_cast<int>(rows.size()) - 1); }
 };
 
@@ -595,7 +605,12 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
         }
         return v;
       };
-      auto G = [&](double eta) { return sampleAt(eta).gap; };
+      // sampleAt(eta).gap, without the radius and angle the edges' search does not need.
+      auto G = [&](double eta) {
+        double sum = offset;
+        for (int q = 0; q < nt; ++q) sum += terms[q].w * terms[q].t->gapAt(eta, terms[q].dZ);
+        return sum;
+      };
       if (nt > 0 && lo <= 0.0 && hi >= 0.0 && hi > lo) {
         offset = c.gap - G(0.0);
         // The search's level and march (contact_search.cpp): steps growing from 0.1 mm by half
