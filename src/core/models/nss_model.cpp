@@ -126,7 +126,100 @@ void NssModel::dropSecondState() {
   secondOrder_ = handingOn_ = false;
 }
 
+void NssModel::sizeBuffers(int n) {
+  if (field_.tx.size() == n) return;
+  state_.resize(n);
+  remapped_.resize(n);
+  field_.resize(n);
+  scratch_.resize(n);
+}
+
+void NssModel::leaveStrips(const HertzEllipse& h, bool carry) {
+  if (adaptive_) mesh_.scale(h.a, h.b);
+  if (carry && lastA_ > 0.0) {
+    remapAtFixedPoints(stripMesh_, stripOrigin_, state_, mesh_, stripOrigin_, &remapped_);
+    std::swap(state_, remapped_);
+  }
+  sizeBuffers(mesh_.size());  // state_ is sized already when carried: the rest follow
+  if (!carry || !(lastA_ > 0.0)) state_.clear();
+  // The history now sits on other nodes: the fixed mesh's trailing nodes keep what the carrying
+  // gave them (coverTrailingNodes copies nothing this once).
+  std::fill(firstBefore_.begin(), firstBefore_.end(), 0);
+  onStrips_ = false;
+}
+
+StepOutput NssModel::stepOnStrips(const StepInput& in, const HertzEllipse& h, bool steady) {
+  reshaped_ = false;  // the carrying below is at fixed physical coordinates already
+  const double origin = in.shape->origin;
+  nextStrips_.setStrips(p_.nx, *in.shape, h.a, h.b);
+  const char* note = "";
+  if (!steady && lastA_ > 0.0) {
+    const PatchMesh& from = onStrips_ ? stripMesh_ : mesh_;
+    // An ellipse's history has no position on the profile: taken as centred on this reference.
+    const double fromOrigin = onStrips_ ? stripOrigin_ : origin;
+    const double carried =
+        remapAtFixedPoints(from, fromOrigin, state_, nextStrips_, origin, &remapped_);
+    std::swap(state_, remapped_);
+    if (carried == 0.0)
+      note =
+          "the patch moved clear of its previous position on the profile: no history to carry, "
+          "it starts from rest";
+  } else {
+    state_.resize(nextStrips_.size());
+  }
+  std::swap(stripMesh_, nextStrips_);
+  onStrips_ = true;
+  stripOrigin_ = origin;
+  remapped_.resize(stripMesh_.size());
+  if (field_.tx.size() != stripMesh_.size()) {
+    field_.resize(stripMesh_.size());
+    scratch_.resize(stripMesh_.size());
+  }
+  CreepForces f;
+  const Creepages c{in.xi, in.eta, in.phi};
+  if (steady) {
+    followBranch(in, -1.0, h.a);
+    const CalibratedStep cal = calibrated(h, in);
+    boundOn(stripMesh_, h, in, cal.boundShape);
+    updateWeights(c, h.a, h.b);
+    lastSpeed_ = in.V;
+    lastA_ = h.a;
+    f = steadyFastSim(stripMesh_, cal.L, c, &field_);
+    state_.tx() = field_.tx.transpose();
+    state_.ty() = field_.ty.transpose();
+    state_.sx().setZero();
+    state_.sy().setZero();
+    if (secondOrder_) dropSecondState();
+  } else {
+    followBranch(in, in.dt > 0.0 ? in.V * in.dt : 0.0, h.a);
+    const CalibratedStep cal = calibrated(h, in);
+    boundOn(stripMesh_, h, in, cal.boundShape);
+    if (!(in.dt > 0.0 && in.V * in.dt > 1e-9 * h.a)) {
+      f = holdTraction(stripMesh_, &state_, &field_);
+    } else {
+      keepRatePerTravel(in.V);
+      chooseFilters(c, h.a, h.b, in.V, in.dt);
+      const double r = historyScale(h.a);
+      lastA_ = h.a;
+      f = transientFastSim(stripMesh_, cal.L, c, in.V, in.dt, zx_, zy_, r, &state_, &field_,
+                           handingOn_);
+      if (handingOn_) dropSecondState();
+    }
+  }
+  StepOutput out = finish(f, in, h, false);
+  if (*note)
+    out.message = note;
+  else if (aOverBHeld(in))
+    out.message = kAOverBHeldMessage;
+  last_ = out;
+  return out;
+}
+
 void NssModel::reset() {
+  if (onStrips_) {
+    sizeBuffers(mesh_.size());
+    onStrips_ = false;
+  }
   state_.clear();
   dropSecondState();
   field_.tx.setZero();
@@ -333,8 +426,8 @@ bool NssModel::screen(const StepInput& given, StepInput* in, HertzEllipse* h, St
   // stays where it is: carry it into the other direction's frame rather than clear it (a braked
   // wheel that reverses keeps its grip).
   *in = frame_.face(given, [this] {
-    mirrorAlongX(mesh_, &state_);
-    mirrorAlongX(mesh_, &field_);
+    mirrorAlongX(mesh(), &state_);
+    mirrorAlongX(mesh(), &field_);
   });
   *h = stepPatch(*in, ref_);
   return true;
@@ -344,7 +437,7 @@ StepOutput NssModel::finish(const CreepForces& f, const StepInput& in, const Her
                             bool grew) {
   StepOutput out = stepOutput(f, in.fz, h.a, h.b);
   frame_.toContact(&out);
-  if (!adaptive_) {
+  if (!adaptive_ && !in.shape) {
     if (grew)
       out.message = in.a != 0.0
                         ? "the step's patch exceeds the fixed mesh (sized for fz_max at a0, b0): "
@@ -368,6 +461,8 @@ StepOutput NssModel::steadyStep(const StepInput& given) {
   StepInput in;
   HertzEllipse h;
   if (!screen(given, &in, &h, &out)) return out;
+  if (in.shape) return stepOnStrips(in, h, true);
+  if (onStrips_) leaveStrips(h, false);
   reshaped_ = false;
   if (meshMustFollow(h)) mesh_.scale(h.a, h.b);  // no carry: the history is overwritten below
   const bool grew = outgrowsMesh(h);
@@ -397,7 +492,7 @@ StepOutput NssModel::steadyAlongside(const StepInput& given) {
   scratch_.bound = field_.bound;
   scratch_.entry = field_.entry;
   const Creepages c{in.xi, in.eta, in.phi};
-  const CreepForces f = steadyFastSim(mesh_, calibrated(h, in).L, c, &scratch_);
+  const CreepForces f = steadyFastSim(mesh(), calibrated(h, in).L, c, &scratch_);
   StepOutput out = stepOutput(f, in.fz, h.a, h.b);
   frame_.toContact(&out);
   return out;
@@ -408,6 +503,11 @@ StepOutput NssModel::step(const StepInput& given) {
   StepInput in;
   HertzEllipse h;
   if (!screen(given, &in, &h, &out)) return out;
+  if (in.shape) return stepOnStrips(in, h, false);
+  if (onStrips_) {
+    leaveStrips(h, true);
+    reshaped_ = false;  // carried at fixed physical coordinates already
+  }
   if (reshaped_ && adaptive_ && lastA_ > 0.0) reshapeHistory(h);
   reshaped_ = false;
   const bool grew = outgrowsMesh(h);
