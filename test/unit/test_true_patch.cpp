@@ -3,11 +3,14 @@
 // finite on any strips, the history carried as the patch changes shape and moves.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "../a22_states.hpp"
+#include "core/exact/halfspace_solver.hpp"
 #include "core/fastsim/transient_fastsim.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/fastsim/patch_shape.hpp"
@@ -239,4 +242,65 @@ TEST(TruePatch, RemapAtFixedPointsOntoItselfIsTheIdentity) {
     ASSERT_NEAR(out.ty()(k), st.ty()(k), 1e-12);
   }
   EXPECT_EQ(remapAtFixedPoints(m, 0.1, st, m, 0.2, &out), 0.0);  // 100 mm away: nothing
+}
+
+// Manchester, both wheels, every patch: nss (as it runs by default, calibrated) on our
+// normal problem's strips, run to its steady limit at the case's creepages, against the exact
+// half-space solver's steady tangential solution on the exact normal solution (a 24 x 18 grid
+// over each patch; mz about the candidate's point). Within 3 % of mu Fn (exact) in fx and fs on
+// every patch (measured 1.35 % on this grid) but the right wheel's at y = 0.5 mm, where our strips
+// miss the tread's plateau (doc/normal_problem.md) and the error is 21 % (doc/true_patch.md).
+TEST(TruePatch, ManchesterA22SteadyLimitAgainstExact) {
+  const ContactSearch search{WheelsetTrackData{}};
+  A22Options o;
+  o.exact_mx = 24;
+  o.exact_my = 18;
+  const double mu = 0.3;
+  int patches = 0;
+  for (const A22State& s : a22States()) {
+    const A22Wheel w = runA22Wheel(search, s, o);
+    ASSERT_TRUE(w.message.empty()) << w.message;
+    if (s.side == WheelSide::kRight && s.y_mm == 0.5) continue;  // the plateau (above)
+    for (const A22Patch& p : w.patches) {
+      if (!(p.ours.fn > 0.0) || p.ours.merged_into >= 0) continue;
+      ASSERT_TRUE(p.exact.solved) << p.exact.message;
+      // The eta frame (toward the track centre) on both wheels: on the left wheel the contact
+      // frame's creepages mirrored.
+      const double m = s.side == WheelSide::kLeft ? -1.0 : 1.0;
+      const double xi = p.creepages.xi, eta = m * p.creepages.eta, phi = m * p.creepages.phi;
+      HalfspaceSolver exact(p.exact.grid, o.G, o.nu);
+      exact.setPressure(p.exact.p);
+      const double e = p.exact.eta_offset;  // the grid's centre from the candidate's point
+      const HalfspaceSolution& x =
+          exact.solve(RollingMode::kSteady, Creepages{xi - phi * e, eta, phi}, mu);
+      ContactParameters q;
+      q.model = "nss";
+      q.mesh = "adaptive";
+      q.mu = mu;
+      q.b0 = p.ours.b;
+      q.a0 = std::min(std::max(p.ours.a / p.ours.b, 0.1 * (1 + 1e-12)), 10.0 * (1 - 1e-12)) * q.b0;
+      q.fz0 = p.ours.fn;
+      auto nss = makeContactModel(q);
+      const PatchShape shape = patchShapeOf(p.ours);
+      StepInput in;
+      in.V = 2.0;
+      in.dt = 0.1 * p.ours.a / in.V;
+      in.xi = xi;
+      in.eta = eta;
+      in.phi = phi;
+      in.fz = p.ours.fn;
+      in.a = p.ours.a;
+      in.b = p.ours.b;
+      in.shape = &shape;
+      StepOutput out;
+      for (int k = 0; k < 400; ++k) out = nss->step(in);
+      ASSERT_EQ(out.status, StepStatus::kOk) << out.message;
+      const double scale = mu * p.exact.fn;
+      const double dfx = std::abs(out.fx - x.fx) / scale, dfs = std::abs(out.fy - x.fy) / scale;
+      EXPECT_LT(dfx, 0.03) << (s.side == WheelSide::kLeft ? "left" : "right") << " " << s.y_mm;
+      EXPECT_LT(dfs, 0.03) << (s.side == WheelSide::kLeft ? "left" : "right") << " " << s.y_mm;
+      ++patches;
+    }
+  }
+  EXPECT_GE(patches, 40);
 }

@@ -160,7 +160,9 @@ StepOutput NssModel::stepOnStrips(const StepInput& in, const HertzEllipse& h, bo
     const double carried =
         remapAtFixedPoints(from, fromOrigin, state_, nextStrips_, origin, &remapped_);
     std::swap(state_, remapped_);
-    if (carried == 0.0)
+    // Said only where the history mattered: a step that rolls farther than the patch's length
+    // has carried every loaded particle out of the patch anyway.
+    if (carried == 0.0 && in.V * in.dt < 2.0 * h.a)
       note =
           "the patch moved clear of its previous position on the profile: no history to carry, "
           "it starts from rest";
