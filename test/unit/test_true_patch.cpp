@@ -161,7 +161,7 @@ TEST(TruePatch, BadShapesAreRejected) {
 // A slender patch (a/b 20, a flange's) is taken with the coefficients at the table's end, said.
 TEST(TruePatch, SlenderPatchBeyondKalkersTableIsTakenAndSaid) {
   PatchShape s = ellipseShape(10e-3, 0.5e-3, 1.5e4, 16);
-  for (const char* model : {"steady", "nss"}) {
+  for (const char* model : {"steady", "shen-li", "nss", "auto"}) {
     auto m = makeContactModel(params(model, "adaptive", FastSimVariant::kClassic));
     StepInput in = input(1, 10e-3, 0.5e-3, 1.5e4);
     in.shape = &s;
@@ -303,4 +303,49 @@ TEST(TruePatch, ManchesterA22SteadyLimitAgainstExact) {
     }
   }
   EXPECT_GE(patches, 40);
+}
+
+// A patch that jumps clear of where it was (PatchShape::origin 50 mm on) starts from rest: its
+// force builds up as material enters, rising step by step to the steady limit, never above it,
+// and nss's stays within 6 % of mu fz of the exact transient solution from rest for the same
+// motion (measured 3.9 %; shen-li, without the dynamic flexibility, leads it by up to 17 %, as on
+// any patch from rest). On an ellipse, where the exact model solves the same patch.
+TEST(TruePatch, JumpStartsFromRestWithoutSpikeAgainstExact) {
+  const double a = 6e-3, b = 4e-3, fz = 8e4, mu = 0.3;
+  const PatchShape here = ellipseShape(a, b, fz, 20, 0.0), there = ellipseShape(a, b, fz, 20, 0.05);
+  for (const char* model : {"nss", "shen-li"})
+    for (FastSimVariant v : {FastSimVariant::kCalibrated, FastSimVariant::kClassic}) {
+      ContactParameters p = params(model, "adaptive", v);
+      p.nx = p.ny = 20;
+      ContactParameters q = p;
+      q.model = "exact";
+      q.mesh = "fixed";
+      auto m = makeContactModel(p), exact = makeContactModel(q);
+      StepInput in = input(1, a, b, fz);
+      in.dt = 0.05 * a / in.V;
+      in.xi = 1e-3;
+      in.eta = 5e-4;
+      in.phi = 0.3;
+      in.shape = &here;
+      StepOutput limit;
+      for (int k = 0; k < 300; ++k) limit = m->step(in);
+      const double steady = std::hypot(limit.fx, limit.fy);
+      in.shape = &there;
+      StepInput e = in;
+      e.shape = nullptr;
+      e.dt = 0.0;
+      exact->step(e);  // from rest, no travel yet
+      e.dt = in.dt;
+      double previous = 0.0;
+      for (int k = 0; k < 80; ++k) {
+        const StepOutput o = m->step(in), x = exact->step(e);
+        const double f = std::hypot(o.fx, o.fy);
+        ASSERT_GE(f, previous) << model << " step " << k;
+        ASSERT_LE(f, steady * 1.001) << model << " step " << k;
+        if (std::string(model) == "nss") {
+          ASSERT_LE(f - std::hypot(x.fx, x.fy), 0.06 * mu * fz) << toString(v) << " step " << k;
+        }
+        previous = f;
+      }
+    }
 }
