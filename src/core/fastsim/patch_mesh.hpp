@@ -1,4 +1,5 @@
-/// Strip mesh of an elliptic contact patch, Kalker's FastSim layout, reused by every FastSim model.
+/// Strip mesh of a contact patch, Kalker's FastSim layout, reused by every FastSim model: an
+/// ellipse's, or a non-Hertzian patch's own strips (setStrips).
 /// Units: lengths m, areas m^2. Coordinates: x rolling (material enters at x = +a), y lateral.
 #pragma once
 
