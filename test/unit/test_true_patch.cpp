@@ -135,12 +135,15 @@ TEST(TruePatch, StripsOfTwoLumpsStayWithinFriction) {
 
 // Refused shapes: kRejected with zero forces and a message, never NaN; a shape without a, b too.
 TEST(TruePatch, BadShapesAreRejected) {
-  std::vector<PatchShape> bad(5, twoLumps());
+  std::vector<PatchShape> bad(8, twoLumps());
   bad[0].strips[3].x_lead = std::nan("");
   bad[1].strips[4].eta = bad[1].strips[3].eta;  // overlapping
   bad[2].strips[2].x_trail = 0.0;               // off-centre
   bad[3].strips.clear();
   for (PatchStrip& s : bad[4].strips) s.pmax = 0.0;  // no pressure
+  bad[5].strips[1].pmax = 1e300;  // found by fuzzing: the bound's scale overflowed to NaN
+  bad[6].strips[1].width = 1e-300;
+  for (PatchStrip& s : bad[7].strips) s.x_lead = -(s.x_trail = -1e-10);  // none in contact
   for (const char* model : {"steady", "nss", "exact"}) {
     const std::string mesh = std::string(model) == "exact" ? "fixed" : "adaptive";
     auto m = makeContactModel(params(model, mesh, FastSimVariant::kClassic));

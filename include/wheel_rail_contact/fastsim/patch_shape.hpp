@@ -51,11 +51,22 @@ PatchShape patchShapeOf(const NormalPatch& normal, double origin = 0.0);
 /// Strips whose leading and trailing edges are symmetric about x = 0 within this fraction of the
 /// strip's length (the normal problem's always are: the rail is straight along x).
 constexpr double kStripSymmetryTolerance = 1e-9;
+/// Smallest strip width, and half-length of a strip in contact [m]; largest peak pressure [Pa]:
+/// beyond them no wheel-rail contact, and the bound's arithmetic would overflow.
+constexpr double kMinStripSize = 1e-9;
+constexpr double kMaxStripPressure = 1e12;
+
+/// Whether a strip is in contact: half-length (x_lead - x_trail) / 2 >= kMinStripSize and
+/// pmax > 0. The models leave the others out.
+inline bool inContact(const PatchStrip& s) {
+  return 0.5 * (s.x_lead - s.x_trail) >= kMinStripSize && s.pmax > 0.0;
+}
 
 /// "" if `shape` is one the models take: finite values, strips in order of eta without overlap
-/// (beyond 1e-9 of a width), widths > 0, pmax >= 0, x_lead >= x_trail, edges symmetric about
-/// x = 0 (kStripSymmetryTolerance: an off-centre strip is not supported), at most 1024 strips, at
-/// least one strip with length and pressure. Else why (static text).
+/// (beyond 1e-9 of a width), widths in [kMinStripSize, 1] m, pmax in [0, kMaxStripPressure],
+/// x_lead >= x_trail, edges symmetric about x = 0 (kStripSymmetryTolerance: an off-centre strip is
+/// not supported), |eta| and x_lead at most 1 m, at most 1024 strips, at least one strip in
+/// contact. Else why (static text).
 const char* checkPatchShape(const PatchShape& shape);
 
 }  // namespace wheel_rail_contact

@@ -24,8 +24,8 @@ void PatchMesh::setStrips(int nx, const PatchShape& shape, double a, double b, S
   if (nx < 2) throw std::invalid_argument("nx must be >= 2");
   if (!(a > 0.0) || !(b > 0.0)) throw std::invalid_argument("patch semi-axes must be > 0");
   int ny = 0;
-  for (const PatchStrip& s : shape.strips) ny += s.x_lead > s.x_trail && s.pmax > 0.0;
-  if (ny == 0) throw std::invalid_argument("the patch has no strip with length and pressure");
+  for (const PatchStrip& s : shape.strips) ny += inContact(s);
+  if (ny == 0) throw std::invalid_argument("the patch has no strip in contact");
   nx_ = nx;
   ny_ = ny;
   onStrips_ = true;
@@ -36,7 +36,7 @@ void PatchMesh::setStrips(int nx, const PatchShape& shape, double a, double b, S
   double largest = 0.0;
   int j = 0;
   for (const PatchStrip& s : shape.strips) {
-    if (!(s.x_lead > s.x_trail && s.pmax > 0.0)) continue;
+    if (!inContact(s)) continue;
     const double half = 0.5 * (s.x_lead - s.x_trail);
     yNorm_(j) = s.eta / b;
     halfNorm_(j) = half / a;

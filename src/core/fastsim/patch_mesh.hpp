@@ -32,10 +32,11 @@ class PatchMesh {
   /// The strips of `shape` (checkPatchShape fine) with nx nodes each, normalised by (a, b) > 0 (the
   /// equivalent ellipse's semi-axes): strip j at y_j = eta, of width w and half-length
   /// a_j = (x_lead - x_trail) / 2, its nodes at x_ij = a_j - (i + 1/2) dx_j as on an ellipse.
-  /// Strips with no length or no pressure are left out. The pressure shape is
-  /// c_j (a_j^2 - x^2) / a^2 per `bound`, c_j scaled to at most 1; on Hertz's ellipse (Kalker's
-  /// strips) it is the ellipse's 1 - x^2/a^2 - y^2/b^2. Reuses the storage of a mesh with as many
-  /// nodes. Throws std::invalid_argument if nx < 2, a or b <= 0 or no strip is left.
+  /// Strips not in contact (inContact: shorter than 1e-9 m or without pressure) are left out. The
+  /// pressure shape is c_j (a_j^2 - x^2) / a^2 per `bound`, c_j scaled to at most 1; on Hertz's
+  /// ellipse (Kalker's strips) it is the ellipse's 1 - x^2/a^2 - y^2/b^2. Reuses the storage of a
+  /// mesh with as many nodes. Throws std::invalid_argument if nx < 2, a or b <= 0 or no strip is
+  /// left.
   void setStrips(int nx, const PatchShape& shape, double a, double b,
                  StripBound bound = StripBound::kCommonCurvature);
   /// Whether the mesh holds a patch's strips (setStrips) rather than an ellipse's.

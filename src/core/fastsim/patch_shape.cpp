@@ -24,8 +24,9 @@ const char* checkPatchShape(const PatchShape& shape) {
     if (!std::isfinite(s.eta) || !std::isfinite(s.width) || !std::isfinite(s.x_lead) ||
         !std::isfinite(s.x_trail) || !std::isfinite(s.pmax))
       return "shape: a strip's value is not finite";
-    if (!(s.width > 0.0)) return "shape: a strip's width is not > 0";
-    if (!(s.pmax >= 0.0)) return "shape: a strip's pmax is negative";
+    if (!(s.width >= kMinStripSize)) return "shape: a strip's width is below 1e-9 m";
+    if (!(s.pmax >= 0.0 && s.pmax <= kMaxStripPressure))
+      return "shape: a strip's pmax is negative or above 1e12 Pa";
     if (!(s.x_lead >= s.x_trail)) return "shape: a strip's leading edge lies behind its trailing";
     if (std::abs(s.x_lead + s.x_trail) >
         kStripSymmetryTolerance * std::max(s.x_lead - s.x_trail, 1e-300))
@@ -37,9 +38,9 @@ const char* checkPatchShape(const PatchShape& shape) {
       if (s.eta - 0.5 * s.width < p.eta + 0.5 * p.width - 1e-9 * (s.width + p.width))
         return "shape: strips out of order of eta or overlapping";
     }
-    loaded = loaded || (s.x_lead > s.x_trail && s.pmax > 0.0);
+    loaded = loaded || inContact(s);
   }
-  if (!loaded) return "shape: no strip with length and pressure";
+  if (!loaded) return "shape: no strip in contact (half-length >= 1e-9 m and pmax > 0)";
   return "";
 }
 

@@ -100,15 +100,16 @@ StepOutput ExactModel::step(const StepInput& withShape) {
   // pointer is not kept.
   StepInput given = withShape;
   given.shape = nullptr;
-  if (withShape.shape && (*checkStepInput(withShape) || *checkStepInput(given))) {
-    screenStep(*checkStepInput(withShape) ? withShape : given, &out);
-    return out;
-  }
-  if (screenStep(given, &out)) {
+  if (screenStep(withShape, &out)) {
     if (out.status == StepStatus::kNoLoad) {
       reset();
       last_ = out;
     }
+    return out;
+  }
+  if (withShape.shape && *checkStepInput(given)) {  // the ellipse's a/b beyond Kalker's table
+    out.status = StepStatus::kRejected;
+    out.message = checkStepInput(given);
     return out;
   }
   if (given.a == 0.0 && given.fz > fzMax_ * (1.0 + 1e-12)) {
