@@ -194,3 +194,22 @@ TEST(ManchesterA22Creep, TheNormalProblemsShareOfTheErrorIsSmallButOnThePlateau)
   EXPECT_EQ(plateau, 1);
   EXPECT_EQ(checked, 42);
 }
+
+TEST(ManchesterA22Creep, DISABLED_NssSteadyLimitWithinFivePercentOfMuFnOfExactOnEveryCase) {
+  // The target on every loaded patch of every case of both wheels: nss's steady limit
+  // through WheelsetContact within 5 % of mu fn of exact on fx and fs (the spin moment is shown in
+  // doc/manchester.md, not asserted: mu fn has no length). Disabled while WheelsetContact runs the
+  // models on the patch's equivalent ellipse: y = 0 (both wheels), the right wheel at 0.5 mm and
+  // the flange fail there (measured in the commit that adds this test and in doc/manchester.md);
+  // enabled once the models run on the true patch.
+  int checked = 0;
+  for (const Case& c : cases())
+    for (const A22Creep& k : c.patches) {
+      const A22ModelForces& nss = forces(k, "nss");
+      EXPECT_EQ(nss.status, StepStatus::kOk) << label(c, k) << ": " << nss.message;
+      EXPECT_LE(error(k, nss.fx, k.exact.fx), 0.05) << label(c, k);
+      EXPECT_LE(error(k, nss.fs, k.exact.fs), 0.05) << label(c, k);
+      ++checked;
+    }
+  EXPECT_EQ(checked, 43);
+}
