@@ -181,8 +181,8 @@ if creep:
     print()
     print("| wheel | y (mm) | zone | fn (kN) | a/b | exact fx / fs (N), mz (N m) | "
           "nss fx / fs / mz error (%) | steady fx / fs error (%) | shen-li fx / fs error (%) | "
-          "CONTACT fx / fs (N), mz (N m) |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+          "exact on our pressure fx / fs (%) | CONTACT fx / fs (N), mz (N m) |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for r in creep:
         def err(m, c):
             return f"{num(r, m + '_err_' + c + '_pct'):+.1f}"
@@ -190,6 +190,10 @@ if creep:
         status = r["nss_status"]
         nss = (f"{err('nss', 'fx')} / {err('nss', 'fs')} / {err('nss', 'mz')}"
                + ("" if status == "ok" else f" ({status})"))
+        mufn = 0.3 * num(r, "fn_N")
+        normal_share = "/".join(
+            f" {100 * (num(r, 'exact_on_ours_' + c) - num(r, 'exact_' + c)) / mufn:+.1f} "
+            for c in ("fx_N", "fs_N")).strip()
         ref = not math.isnan(num(r, "contact_fn_N"))
         contact = (f"{num(r, 'contact_fx_N'):.0f} / {num(r, 'contact_fs_N'):.0f}, "
                    f"{num(r, 'contact_mz_Nm'):.2f}") if ref else "-"
@@ -197,7 +201,7 @@ if creep:
               f"{num(r, 'a_mm') / num(r, 'b_mm'):.2f} | {num(r, 'exact_fx_N'):.0f} / "
               f"{num(r, 'exact_fs_N'):.0f}, {num(r, 'exact_mz_Nm'):.2f} | {nss} | "
               f"{err('steady', 'fx')} / {err('steady', 'fs')} | "
-              f"{err('shen_li', 'fx')} / {err('shen_li', 'fs')} | {contact} |")
+              f"{err('shen_li', 'fx')} / {err('shen_li', 'fs')} | {normal_share} | {contact} |")
 
     fig, axes = plt.subplots(4, 2, figsize=(13, 14), sharex=True)
     rows_of = (("fx_N", "fx [N]"), ("fs_N", "fs [N]"), ("mz_Nm", "mz [N m]"))

@@ -118,7 +118,8 @@ void runCreep(const Options& o, const ContactSearch& search, const std::vector<A
   co.models = o.creep_models;
   std::ofstream out = tools::writeFile(o.creep_out);
   out << "wheel,case,y_mm,patch,zone,fn_N,a_mm,b_mm,xi,eta,phi_per_m,exact_fx_N,exact_fs_N,"
-         "exact_mz_Nm,exact_adhesion,exact_converged";
+         "exact_mz_Nm,exact_adhesion,exact_converged,exact_on_ours_fx_N,exact_on_ours_fs_N,"
+         "exact_on_ours_mz_Nm";
   for (std::string m : co.models) {
     std::replace(m.begin(), m.end(), '-', '_');
     for (const char* c : {"_fx_N", "_fs_N", "_mz_Nm", "_err_fx_pct", "_err_fs_pct", "_err_mz_pct",
@@ -138,6 +139,9 @@ void runCreep(const Options& o, const ContactSearch& search, const std::vector<A
                     sideName(s.side), s.number, s.y_mm, k.index, zoneName(k.zone), k.fn, k.a * 1e3,
                     k.b * 1e3, k.creepages.xi, k.creepages.eta, k.creepages.phi, k.exact.fx,
                     k.exact.fs, k.exact.mz, k.exact.adhesion_fraction, k.exact.converged ? 1 : 0);
+      out << line;
+      std::snprintf(line, sizeof line, ",%.2f,%.2f,%.4f", k.exact_on_ours.fx, k.exact_on_ours.fs,
+                    k.exact_on_ours.mz);
       out << line;
       const double scale = co.mu * k.fn, lever = std::sqrt(k.a * k.b);
       for (size_t i = 0; i < k.models.size(); ++i) {

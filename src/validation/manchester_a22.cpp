@@ -286,6 +286,7 @@ std::vector<A22Creep> runA22Creep(const A22Wheel& w, const A22Options& o, const 
   const auto sameCandidate = [](const ContactCandidate& a, const ContactCandidate& b) {
     return a.zone == b.zone && (a.rail_file - b.rail_file).norm() < 1e-4;
   };
+  std::vector<std::vector<NormalStrip>> strips(out.size());  // WheelsetContact's, per patch
   for (const std::string& model : c.models) {
     ContactParameters par;
     par.model = model;
@@ -333,6 +334,7 @@ std::vector<A22Creep> runA22Creep(const A22Wheel& w, const A22Options& o, const 
           k.a = p.normal.a;
           k.b = p.normal.b;
           k.creepages = {p.creepages.xi, p.creepages.eta, p.creepages.phi};
+          strips[&k - out.data()] = p.normal.strips;
         }
       }
       k.models.push_back(f);
@@ -347,6 +349,26 @@ std::vector<A22Creep> runA22Creep(const A22Wheel& w, const A22Options& o, const 
       e.solution.p = p.exact.p;
       e.fn = p.exact.fn;
       k.exact = ExactPatchTangential(e, s.side, o.G, o.nu, k.fn).steady(k.creepages, c.mu);
+      // Our pressure on the same grid: each strip's semi-ellipse at the element centres.
+      const HalfspaceGrid& g = e.grid;
+      Eigen::VectorXd ours = Eigen::VectorXd::Zero(g.size());
+      for (const NormalStrip& st : strips[&k - out.data()]) {
+        const double xm = 0.5 * (st.x_lead + st.x_trail), half = 0.5 * (st.x_lead - st.x_trail);
+        if (!(half > 0.0)) continue;
+        for (int iy = 0; iy < g.my; ++iy) {
+          const double eta = e.eta_offset + g.yc(iy);
+          if (std::abs(eta - st.eta) > 0.5 * st.width) continue;
+          for (int ix = 0; ix < g.mx; ++ix) {
+            const double u = (g.xc(ix) - xm) / half;
+            if (std::abs(u) < 1.0) ours[g.index(ix, iy)] = st.pmax * std::sqrt(1.0 - u * u);
+          }
+        }
+      }
+      e.solution.p = ours;
+      e.fn = ours.sum() * g.dx * g.dy;
+      if (e.fn > 0.0)
+        k.exact_on_ours =
+            ExactPatchTangential(e, s.side, o.G, o.nu, k.fn).steady(k.creepages, c.mu);
     }
   }
   // Each of CONTACT's patches of this wheel and case beside our patch nearest on the rail.

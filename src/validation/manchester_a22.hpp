@@ -153,6 +153,10 @@ struct A22Creep {
   double fn = 0.0, a = 0.0, b = 0.0;  ///< WheelsetContact's normal force and equivalent ellipse
   Creepages creepages;                ///< WheelsetContact's, at the candidate's contact point
   ExactTangential exact;
+  /// The exact tangential solution on our normal pressure instead (WheelsetContact's strips, each
+  /// a semi-ellipse along x, laid on the same grid and scaled to fn): its distance from `exact` is
+  /// the normal problem's share of a model's error, which no tangential model on our patch removes.
+  ExactTangential exact_on_ours;
   std::vector<A22ModelForces> models;
   const A22Reference* contact = nullptr;  ///< CONTACT's patch beside this one, if any
 };

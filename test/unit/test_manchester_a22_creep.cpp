@@ -167,3 +167,32 @@ TEST(ManchesterA22Creep, NssSteadyLimitWithinFivePercentOfMuFnOfExactOnEveryCase
   EXPECT_EQ(plateau, 1);
   EXPECT_EQ(checked, 42);
 }
+
+TEST(ManchesterA22Creep, TheNormalProblemsShareOfTheErrorIsSmallButOnThePlateau) {
+  // The exact tangential solution on our normal pressure (WheelsetContact's strips) against the one
+  // on the exact pressure, same fn and creepages: the part of a model's error that comes from the
+  // normal problem, which no tangential model on our patch removes. Measured on this grid: at most
+  // 1.0 % of mu fn on fx and fs, 2.7 % at y = 0 (the merged patch's two lumps); on the tread's
+  // plateau (right wheel, 0.5 mm, where our strips stop 8 mm short of the exact patch) 20.9 % on
+  // fx and 9.1 % on fs, asserted within a band so that a change either way shows: the 5 % target
+  // there needs a better normal problem, not only the true patch.
+  int checked = 0, plateau = 0;
+  for (const Case& c : cases())
+    for (const A22Creep& k : c.patches) {
+      const double ex = error(k, k.exact_on_ours.fx, k.exact.fx),
+                   es = error(k, k.exact_on_ours.fs, k.exact.fs);
+      if (c.state.side == WheelSide::kRight && c.state.y_mm == 0.5) {
+        EXPECT_GT(ex, 0.15) << label(c, k);
+        EXPECT_LT(ex, 0.27) << label(c, k);
+        EXPECT_GT(es, 0.05) << label(c, k);
+        EXPECT_LT(es, 0.13) << label(c, k);
+        ++plateau;
+        continue;
+      }
+      EXPECT_LE(ex, c.state.y_mm == 0.0 ? 0.035 : 0.015) << label(c, k);
+      EXPECT_LE(es, 0.015) << label(c, k);
+      ++checked;
+    }
+  EXPECT_EQ(plateau, 1);
+  EXPECT_EQ(checked, 42);
+}
