@@ -10,6 +10,8 @@
 
 namespace wheel_rail_contact {
 
+struct PatchShape;  // fastsim/patch_shape.hpp
+
 struct StepInput {
   double dt = 0.0;   ///< time since the previous step [s] (ignored by the steady model)
   double V = 0.0;    ///< signed rolling speed [m/s]; V < 0 rolls backwards (material enters at -a)
@@ -28,6 +30,14 @@ struct StepInput {
   double a = 0.0;   ///< patch semi-axis along x (rolling) [m]; given together with b
   double b = 0.0;   ///< patch semi-axis along y (lateral) [m]; given together with a
   double mu = 0.0;  ///< Coulomb friction coefficient [-]
+  /// Optional non-Hertzian patch (fastsim/patch_shape.hpp), given with its equivalent ellipse a, b
+  /// (the flexibilities' and chi's); nullptr: the ellipse a, b is the patch. The FastSim models
+  /// (steady, shen-li, nss, auto) march the shape's strips, the traction bound from its pressure;
+  /// the pointer is read during step() only. With a shape, a/b may lie outside [0.1, 10]: Kalker's
+  /// coefficients and chi are then taken at the table's nearer end (the output's message says so).
+  /// The exact model runs on the ellipse a, b and says so. A shape that checkPatchShape refuses
+  /// gives kRejected.
+  const PatchShape* shape = nullptr;
 };
 
 enum class StepStatus {
@@ -79,7 +89,8 @@ constexpr double kMaxInputMagnitude = 1e12;
 constexpr double kMinLoad = 1e-6;
 
 /// Checks shared by every model: finite fields, dt >= 0, magnitudes at most kMaxInputMagnitude,
-/// per-step a, b, mu absent (0) or in range, a and b together.
+/// per-step a, b, mu absent (0) or in range, a and b together; a shape only with a and b, and one
+/// that checkPatchShape takes (its a/b then unbounded).
 /// Returns "" if fine, else why (static text).
 const char* checkStepInput(const StepInput& in);
 

@@ -7,6 +7,7 @@
 #include "core/models/exact_model.hpp"
 #include "core/models/nss_model.hpp"
 #include "core/models/steady_model.hpp"
+#include "wheel_rail_contact/fastsim/patch_shape.hpp"
 #include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 namespace wheel_rail_contact {
@@ -37,8 +38,13 @@ const char* checkStepGeometry(const StepInput& in) {
     if (!(in.a >= 1e-6 && in.a <= 1.0)) return "a must be in [1e-6, 1] m (or 0: not given)";
     if (!(in.b >= 1e-6 && in.b <= 1.0)) return "b must be in [1e-6, 1] m (or 0: not given)";
     const double ab = in.a / in.b;
-    if (!(ab >= kKalkerMinAOverB && ab <= kKalkerMaxAOverB))
+    if (!in.shape && !(ab >= kKalkerMinAOverB && ab <= kKalkerMaxAOverB))
       return "a/b must be in [0.1, 10] (Kalker's table)";
+  }
+  if (in.shape) {
+    if (in.a == 0.0) return "a shape needs its equivalent ellipse a, b";
+    const char* why = checkPatchShape(*in.shape);
+    if (*why) return why;
   }
   if (in.mu != 0.0 && !(in.mu >= 1e-6 && in.mu <= 1e3))
     return "mu must be in [1e-6, 1000] (or 0: not given)";
@@ -60,7 +66,7 @@ const char* checkStepInput(const StepInput& in) {
   for (double v : {in.dt, in.V, in.xi, in.eta, in.phi, in.fz})
     if (std::abs(v) > kMaxInputMagnitude) return "an input exceeds 1e12 in magnitude (SI units)";
   // Absent per-step geometry and friction cost this one branch (NaN != 0 takes it too).
-  if (in.a != 0.0 || in.b != 0.0 || in.mu != 0.0) return checkStepGeometry(in);
+  if (in.a != 0.0 || in.b != 0.0 || in.mu != 0.0 || in.shape) return checkStepGeometry(in);
   return "";
 }
 

@@ -1,7 +1,9 @@
 // libFuzzer target: makeContactModel(ContactParameters) then a sequence of step() / reset() on the
 // models steady, shen-li, nss (fixed and adaptive mesh) and exact (tiny grid), parameters and
 // inputs decoded from the fuzz bytes with a bias to extremes (NaN, Inf, 1e+-300, sign flips,
-// dt <= 0, fz <= 0, meshes 0..61), per-step a, b, mu among them. Findings: a crash or sanitizer
+// dt <= 0, fz <= 0, meshes 0..61), per-step a, b, mu among them, and now and then a patch shape
+// (StepInput::shape: Kalker's strips of an ellipse at a moving origin, a strip's field or the
+// origin perturbed, or strips of raw values). Findings: a crash or sanitizer
 // report; an exception other than std::invalid_argument from makeContactModel, or any exception
 // from step()/reset(); an output breaking contact_model.hpp's contract (fuzz_checks.hpp); traction
 // above mu p at a node (steady, shen-li, nss) or a total force above mu fz; reset() not giving a
@@ -23,6 +25,7 @@
 #include "core/models/steady_model.hpp"
 #include "fuzz_checks.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
+#include "wheel_rail_contact/fastsim/patch_shape.hpp"
 
 using namespace wheel_rail_contact;
 using namespace wheel_rail_contact::fuzz;
@@ -122,8 +125,36 @@ ContactParameters decodeParameters(Decoder& d) {
   return p;
 }
 
+// A patch shape into *shape: mostly Kalker's strips of an ellipse (semi-axes near 6 and 4 mm, up to
+// 30 strips) at an origin that drifts or jumps, one strip's field now and then replaced by an
+// extreme value; or a few strips of raw values.
+void decodeShape(Decoder& d, PatchShape* shape) {
+  shape->strips.clear();
+  if (d.pick(4) == 0) {
+    for (int j = d.pick(5); j > 0; --j)
+      shape->strips.push_back(
+          PatchStrip{d.value(1e-3), d.value(4e-4), d.value(5e-3), d.value(-5e-3), d.value(1e9)});
+    shape->origin = d.value(1e-2);
+    return;
+  }
+  const double a = std::ldexp(6e-3, d.pick(9) - 4), b = std::ldexp(4e-3, d.pick(9) - 4);
+  const int n = 1 + d.pick(30);
+  const double p0 = 1e9 * std::ldexp(1.0, d.pick(9) - 4);
+  for (int j = 0; j < n; ++j) {
+    const double yn = -1.0 + (2.0 * j + 1.0) / n, r = std::sqrt(1.0 - yn * yn);
+    shape->strips.push_back(PatchStrip{b * yn, 2.0 * b / n, a * r, -a * r, p0 * r});
+  }
+  if (d.pick(4) == 3) {
+    PatchStrip& s = shape->strips[d.pick(n)];
+    double* fields[] = {&s.eta, &s.width, &s.x_lead, &s.x_trail, &s.pmax};
+    *fields[d.pick(5)] = d.value(1e-3);
+  }
+  if (d.flag()) shape->origin += d.flag() ? d.value(1e-4) : d.value(1e-2);
+}
+
 // Each field of the next input changes with the fuzzer's say-so, else repeats: runs of steps.
-StepInput decodeInput(Decoder& d, StepInput in) {
+// `shape`: the run's shape, decoded into when the input takes one.
+StepInput decodeInput(Decoder& d, StepInput in, PatchShape* shape) {
   if (d.flag()) in.dt = d.value(1e-3);
   if (d.flag()) in.V = d.value(20.0);
   if (d.flag()) in.xi = d.value(2e-3);
@@ -136,6 +167,16 @@ StepInput decodeInput(Decoder& d, StepInput in) {
     in.b = d.pick(8) == 7 ? 0.0 : d.value(4e-3);
   }
   if (d.pick(4) == 3) in.mu = d.flag() ? 0.0 : d.value(0.3);
+  if (d.pick(4) == 3) {  // a shape, given with its equivalent ellipse (else refused), or none
+    in.shape = d.pick(4) == 3 ? nullptr : shape;
+    if (in.shape) {
+      decodeShape(d, shape);
+      if (in.a == 0.0 || d.flag()) {
+        in.a = d.value(6e-3);
+        in.b = d.value(4e-3);
+      }
+    }
+  }
   return in;
 }
 
@@ -224,6 +265,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                  p.fz_max);
   const int steps = d.pick((exact ? kMaxExactSteps : kMaxSteps) + 1);
   StepInput in{1e-3, 20.0, 2e-3, 0.0, 0.0, 8e4};
+  PatchShape shape;    // the run's shape: StepInput::shape points here while a step takes one
   double maxFz = 0.0;  // largest load since the history was last cleared (exact's forces lag)
   double maxMu = 0.0;  // largest friction coefficient since then (p.mu or the steps' own)
   for (int k = 0; k < steps; ++k) {
@@ -232,7 +274,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       model->reset();
       maxFz = maxMu = 0.0;
     }
-    in = decodeInput(d, in);
+    in = decodeInput(d, in, &shape);
     const StepOutput out = safeStep(*model, in, where);
     if (trace)
       std::fprintf(stderr, "%s\n  in:  %s\n  out: %s\n", where.c_str(), describe(in).c_str(),

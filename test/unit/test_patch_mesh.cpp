@@ -10,7 +10,7 @@ using namespace wheel_rail_contact;
 TEST(PatchMesh, StripLayoutCoversTheEllipse) {
   const PatchMesh m(10, 8, 6e-3, 4e-3);
   EXPECT_EQ(m.size(), 80);
-  EXPECT_NEAR(m.stripWidth(), 1e-3, 1e-15);
+  EXPECT_NEAR(m.stripWidth(0), 1e-3, 1e-15);
   EXPECT_NEAR(m.stripY(0), -3.5e-3, 1e-15);
   for (int j = 0; j < m.ny(); ++j) {
     const double aj = m.stripHalfLength(j), y = m.stripY(j);

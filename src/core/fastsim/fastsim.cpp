@@ -119,7 +119,10 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
   Eigen::ArrayXd* const bound = &field->bound;
   std::vector<StripEntry>& entry = field->entry;
   entry.resize(mesh.ny());
-  if (a == mesh.a() && b == mesh.b()) {  // the patch fills the mesh: precomputed shape
+  // The patch fills the mesh (or the mesh is the patch's own strips): precomputed shape.
+  if (mesh.onStrips() || (a == mesh.a() && b == mesh.b())) {
+    a = mesh.a();
+    b = mesh.b();
     const double k = mu * fz / (mesh.shapeIntegral() * a * b);
     if constexpr (kFlat) {
       // The node sums are the mesh's shape sums S1, S2 times k and k^2, and 1 / p0 = pi / (2 I k)
@@ -127,7 +130,10 @@ void writeBound(const PatchMesh& mesh, double a, double b, double fz, double mu,
       // R = (3 pi / 8) S2 / (I S1), free of the step's load and size; then q (ca - cb q) with
       // q = k shape, folded: shape (lo - hi shape). (As Flattening; the mesh keeps 1 / I and
       // S2 / S1, so the step divides once.)
-      const double perI = (3.0 * M_PI / 8.0) * mesh.inverseShapeIntegral(), alpha = 1.0 + 0.5 * s;
+      // On strips the parabolas' peak is the shape's largest value, not the ellipse's 2 I / pi.
+      const double perI = mesh.onStrips() ? 0.75 / mesh.shapePeak()
+                                          : (3.0 * M_PI / 8.0) * mesh.inverseShapeIntegral(),
+                   alpha = 1.0 + 0.5 * s;
       const double after = alpha - s * perI * mesh.shapeSquareRatio();
       double lo = k, hi = 0.0;
       if (after > 0.0) {

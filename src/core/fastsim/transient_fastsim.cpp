@@ -330,4 +330,64 @@ void remapState(const PatchMesh& from, const TransientState& in, const PatchMesh
   }
 }
 
+double remapAtFixedPoints(const PatchMesh& from, double fromOrigin, const TransientState& in,
+                          const PatchMesh& to, double toOrigin, TransientState* out) {
+  const int nx = to.nx(), oldNx = from.nx(), oldNy = from.ny();
+  out->resize(to.size());
+  // Old strip q spans [lo_q, hi_q] about its centre Y_q: touching neighbours interpolate between
+  // centres, a free edge takes the strip's value falling to zero at the edge.
+  auto centre = [&](int q) { return fromOrigin + from.stripY(q); };
+  auto halfWidth = [&](int q) { return 0.5 * from.stripWidth(q); };
+  auto touches = [&](int q) {  // strip q and q + 1 share an edge
+    const double gap = (centre(q + 1) - halfWidth(q + 1)) - (centre(q) + halfWidth(q));
+    return gap <= 1e-6 * (halfWidth(q) + halfWidth(q + 1));
+  };
+  int reached = 0;
+  for (int j = 0; j < to.ny(); ++j) {
+    const double Y = toOrigin + to.stripY(j);
+    int strips[2] = {0, 0};
+    double weights[2] = {0.0, 0.0};
+    int n = 0;
+    // The last old strip whose centre lies at or below Y (-1: none).
+    int q = -1;
+    for (int k = 0; k < oldNy && centre(k) <= Y; ++k) q = k;
+    auto edgeWeight = [&](int k) {
+      return std::max(0.0, 1.0 - std::abs(Y - centre(k)) / halfWidth(k));
+    };
+    if (q >= 0 && q + 1 < oldNy && touches(q)) {
+      const double t = (Y - centre(q)) / (centre(q + 1) - centre(q));
+      strips[0] = q;
+      weights[0] = 1.0 - t;
+      strips[1] = q + 1;
+      weights[1] = t;
+      n = 2;
+    } else {
+      if (q >= 0 && edgeWeight(q) > 0.0) {
+        strips[n] = q;
+        weights[n++] = edgeWeight(q);
+      }
+      if (q + 1 < oldNy && edgeWeight(q + 1) > 0.0) {
+        strips[n] = q + 1;
+        weights[n++] = edgeWeight(q + 1);
+      }
+    }
+    bool any = false;
+    for (int m = 0; m < n; ++m) {
+      const int jj = strips[m], base = from.index(0, jj);
+      const double w = weights[m], A = from.stripHalfLength(jj), dx = from.stripStep(jj);
+      for (int i = 0; i < nx; ++i) {
+        const StripInterpolation at((A - to.nodeX(i, j)) / dx - 0.5, oldNx);
+        const double w0 = w * at.w0, w1 = w * at.w1;
+        if (w0 == 0.0 && w1 == 0.0) continue;
+        const int k = to.index(i, j), k0 = base + at.i0, k1 = base + std::min(at.i0 + 1, oldNx - 1);
+        TransientStorage::column(out, k) += w0 * TransientStorage::materializedColumn(in, k0) +
+                                            w1 * TransientStorage::materializedColumn(in, k1);
+        any = true;
+      }
+    }
+    if (any) ++reached;  // counted by strip: a strip reached carries history along its length
+  }
+  return to.ny() > 0 ? double(reached) / to.ny() : 0.0;
+}
+
 }  // namespace wheel_rail_contact

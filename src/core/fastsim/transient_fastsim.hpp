@@ -175,4 +175,17 @@ CreepForces holdTraction(const PatchMesh& mesh, TransientState* state, TractionF
 void remapState(const PatchMesh& from, const TransientState& in, const PatchMesh& to,
                 TransientState* out);
 
+/// Eq. 19 for meshes of any strips (an ellipse's or a patch's, PatchMesh::setStrips), the patch
+/// free to move laterally: carries the history of `from` to `to` at fixed physical coordinates
+/// (x along the rolling direction from the patch's centre, Y = origin + y across it, y = stripY,
+/// origin the reference point's lateral position in a coordinate attached to the rail's profile:
+/// PatchShape::origin). Across strips linear between the centres of two old strips that touch
+/// (their edges within 1e-6 of their widths), falling to zero at an old strip's outer edge where no
+/// strip touches it (the patch's lateral edges, a gap between two lumps); along each strip linear,
+/// falling to zero half an element beyond the old strip's end nodes (as remapState). Sizes *out for
+/// `to`. Returns the share of `to`'s strips that received any history (0: the patches do not
+/// overlap, the history is lost).
+double remapAtFixedPoints(const PatchMesh& from, double fromOrigin, const TransientState& in,
+                          const PatchMesh& to, double toOrigin, TransientState* out);
+
 }  // namespace wheel_rail_contact

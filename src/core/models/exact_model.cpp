@@ -92,14 +92,24 @@ StepOutput ExactModel::contactFrame(StepOutput out) const {
   return out;
 }
 
-StepOutput ExactModel::step(const StepInput& given) {
+StepOutput ExactModel::step(const StepInput& withShape) {
   StepOutput out;
   subSteps_ = 0;
-  if (screenStep(given, &out)) {
+  // A shape's patch is solved on its equivalent ellipse (the true patch's exact solution is the
+  // validation's, not a model's), a/b within Kalker's range as for any per-step ellipse; the
+  // pointer is not kept.
+  StepInput given = withShape;
+  given.shape = nullptr;
+  if (screenStep(withShape, &out)) {
     if (out.status == StepStatus::kNoLoad) {
       reset();
       last_ = out;
     }
+    return out;
+  }
+  if (withShape.shape && *checkStepInput(given)) {  // the ellipse's a/b beyond Kalker's table
+    out.status = StepStatus::kRejected;
+    out.message = checkStepInput(given);
     return out;
   }
   if (given.a == 0.0 && given.fz > fzMax_ * (1.0 + 1e-12)) {
@@ -178,7 +188,9 @@ StepOutput ExactModel::step(const StepInput& given) {
   out.fz = in.fz;
   out.a = h.a;
   out.b = h.b;
-  last_ = out;        // in the march's frame
+  last_ = out;  // in the march's frame
+  if (withShape.shape && out.status == StepStatus::kOk && !*out.message)
+    out.message = "exact model: solved on the shape's equivalent ellipse a, b";
   if (in.V == 0.0) {  // the first step at rest
     out.status = StepStatus::kStandstill;
     out.message = "V = 0: no travel, forces held";

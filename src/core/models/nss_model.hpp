@@ -5,6 +5,16 @@
 /// marches the mirror image, the history mirrored at each reversal (rolling_direction.hpp). Units
 /// as in contact_model.hpp.
 ///
+/// A step with a shape (StepInput::shape) marches the shape's strips whichever mesh was chosen: the
+/// strips are the patch's own (the normal problem's), nx nodes each. Their history is carried from
+/// step to step at fixed physical coordinates, laterally in a frame that follows half the
+/// reference point's move on the rail's profile (remapAtFixedPoints, kCarriedShare in the source:
+/// a patch that changes shape or moves keeps the traction of the material still in contact;
+/// where the new patch covers no part of the old one on the profile the history is lost and the
+/// step says so). A step without a shape after one with a shape
+/// carries the history back onto the ellipse's mesh alike. The buffers are re-sized when the
+/// node count changes (the only steps that allocate).
+///
 /// The fixed mesh never clips a patch: a step whose patch (a load above fz_max, or its own a, b)
 /// is longer or wider than the mesh grows the mesh to m times the patch along each axis that needs
 /// it, m = (fz_max / fz0)^(1/3) (at least 1; the margin the mesh has over the patch at fz0), and
@@ -48,7 +58,8 @@ class NssModel : public ContactModel {
   /// history untouched: what "auto" blends towards when it hands back to steady FastSim.
   StepOutput steadyAlongside(const StepInput& in);
 
-  const PatchMesh& mesh() const { return mesh_; }
+  /// The mesh the history is on: the ellipse's (fixed or adaptive), or the last shape's strips.
+  const PatchMesh& mesh() const { return onStrips_ ? stripMesh_ : mesh_; }
   /// The traction on mesh(), in the march's frame: mirrored (x -> -x, tx negated) while V < 0.
   const TractionField& traction() const { return field_; }
 
@@ -71,6 +82,19 @@ class NssModel : public ContactModel {
   StepOutput finish(const CreepForces& f, const StepInput& in, const HertzEllipse& h, bool grew);
   void chooseFilters(const Creepages& c, double a, double b, double V, double dt);
   StepOutput hold(StepStatus status, const char* why) const;
+
+  /// A step on a shape's strips (StepInput::shape): the history carried from the previous mesh
+  /// (ellipse or strips) at fixed physical coordinates, the patch free to move on the profile
+  /// (remapAtFixedPoints); `steady`: steadyStep's, the history overwritten.
+  StepOutput stepOnStrips(const StepInput& in, const HertzEllipse& h, bool steady);
+  /// Back from a shape's strips onto the ellipse's mesh (fixed, or adaptive at h), the history
+  /// carried at fixed physical coordinates unless `carry` is false.
+  void leaveStrips(const HertzEllipse& h, bool carry);
+  /// The per-node buffers sized for `n` nodes (allocates only when n changes).
+  void sizeBuffers(int n);
+  PatchMesh stripMesh_, nextStrips_;  // the shape's strips: this step's, and the next one's
+  bool onStrips_ = false;             // the history lives on stripMesh_ (else on mesh_)
+  double stripOrigin_ = 0.0;          // stripMesh_'s PatchShape::origin
 
   ContactParameters p_;
   ReferencePatch ref_;

@@ -17,6 +17,8 @@ SteadyModel::SteadyModel(const ContactParameters& p, Mesh mesh, const Calibratio
   // not compute the whole grid.
   calibrationTable_.at(ab0_, &calibration_);
   const HertzEllipse sized = ref_.at(fitted_ ? p.fz0 : effectiveFzMax(p));
+  sizedA_ = sized.a;
+  sizedB_ = sized.b;
   mesh_ = PatchMesh(p.nx, p.ny, sized.a, sized.b);
   field_.resize(mesh_.size());
 }
@@ -43,13 +45,20 @@ StepOutput SteadyModel::step(const StepInput& in) {
     calibrationTable_.at(ab, &calibration_);
     ab_ = ab;
   }
-  if (fitted_) mesh_.scale(h.a, h.b);
+  if (fwd.shape) {
+    mesh_.setStrips(p_.nx, *fwd.shape, h.a, h.b);
+  } else if (mesh_.onStrips()) {  // back from a shape's strips to the ellipse's mesh
+    mesh_ = PatchMesh(p_.nx, p_.ny, sizedA_, sizedB_);
+  }
+  if (field_.tx.size() != mesh_.size()) field_.resize(mesh_.size());
+  if (fitted_ && !fwd.shape) mesh_.scale(h.a, h.b);
   const Creepages c{fwd.xi, fwd.eta, fwd.phi};
   const double mu = stepMu(fwd, p_.mu);
   const CalibratedStep cal = calibration_.step(h.a, h.b, p_.G, c_, mu * fwd.fz, c);
   flattenedBound(mesh_, h.a, h.b, fwd.fz, mu, cal.boundShape, &field_);
   const CreepForces f = steadyFastSim(mesh_, cal.L, c, &field_);
   out = stepOutput(f, fwd.fz, h.a, h.b);
+  if (aOverBHeld(fwd)) out.message = kAOverBHeldMessage;
   if (backwards) mirrorForces(&out);
   last_ = out;
   return out;

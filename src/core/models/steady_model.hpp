@@ -1,5 +1,6 @@
 /// Steady FastSim as a ContactModel: no memory, the patch follows the Hertz scaling of the load,
-/// or the step's own a, b (and mu) where given.
+/// or the step's own a, b (and mu) where given, or marches a shape's strips (StepInput::shape; the
+/// mesh is then the strips', whichever Mesh was chosen).
 /// V < 0 marches the mirror image (rolling_direction.hpp). Units as in contact_model.hpp.
 #pragma once
 
@@ -39,8 +40,9 @@ class SteadyModel : public ContactModel {
   PatchCalibration calibration_;  // calibrationTable_ at a/b ab_
   PatchMesh mesh_;
   TractionField field_;
-  bool fitted_;      // mesh_ follows the patch
-  StepOutput last_;  // held at standstill
+  bool fitted_;             // mesh_ follows the patch
+  double sizedA_, sizedB_;  // the ellipse mesh's size at construction (back from a shape's strips)
+  StepOutput last_;         // held at standstill
 };
 
 }  // namespace wheel_rail_contact

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "wheel_rail_contact/fastsim/patch_shape.hpp"
 #include "wheel_rail_contact/geometry/kalker_coefficients.hpp"
 
 namespace wheel_rail_contact {
@@ -73,6 +74,7 @@ bool sameTrack(const WheelsetTrackData& a, const WheelsetTrackData& b) {
 struct Slot {
   std::unique_ptr<ContactModel> model;
   double a_cover = 0.0, b_cover = 0.0;  // the patch the model's fixed mesh or grid covers [m]
+  PatchShape shape;  // the patch's strips, kept for the step (its storage reused)
   bool present = false;
   double fs_per_fn = 0.0;  // the last step's fs / fn, within +-mu (whole_force_balance)
 };
@@ -125,6 +127,10 @@ struct WheelsetContact::Impl {
   };
   std::array<Previous, 2> previous;
   std::array<double, 2> centre_axial{};  // each wheel's centre along the axle [m] (WheelResult)
+  // Per side, +1 or -1: the rail profile's arc length grows toward the track centre (as a patch's
+  // eta does) or away from it; 0: not found, the contact point's lateral track coordinate toward
+  // the centre is the patch's origin instead (PatchShape::origin).
+  std::array<double, 2> arcSign = {0.0, 0.0};
 
   Impl(const WheelsetTrackData& t, const ContactParameters& p, const WheelsetContactOptions& o)
       : track(t), parameters(p), options(o), search(t, o.search) {
@@ -152,6 +158,34 @@ struct WheelsetContact::Impl {
       centre_axial[k] = sigma * (w.fromFile(Eigen::Vector2d::Zero()).x() - back) -
                         sigma * 0.5 * d.flange_back_distance;
     }
+    for (WheelSide side : {WheelSide::kLeft, WheelSide::kRight})
+      arcSign[side == WheelSide::kLeft ? 0 : 1] = railArcSign(side);
+  }
+
+  // Whether the rail profile's arc length s_rail grows toward the track centre on `side`: the
+  // contact point of the centred wheelset shifted 1 mm either way moves along the rail both in s
+  // and in y; +1, -1, or 0 where the search finds no single tread candidate to tell.
+  double railArcSign(WheelSide side) const {
+    double s[2], y[2];
+    for (int k = 0; k < 2; ++k) {
+      WheelsetPose pose;
+      pose.y = k == 0 ? -1e-3 : 1e-3;
+      const WheelContactGeometry g = search.search(side, pose);
+      if (g.status != ContactSearchStatus::kOk || g.closest < 0) return 0.0;
+      s[k] = g.candidates[g.closest].s_rail;
+      y[k] = g.candidates[g.closest].point.y();
+    }
+    const double toCentre = (y[1] - y[0]) * (side == WheelSide::kLeft ? -1.0 : 1.0);
+    const double ds = s[1] - s[0];
+    if (!(std::abs(ds) > 1e-7) || !(std::abs(toCentre) > 1e-7)) return 0.0;
+    return ds * toCentre > 0.0 ? 1.0 : -1.0;
+  }
+
+  // The patch's reference point on the rail's profile, growing with eta (PatchShape::origin).
+  double profileOrigin(WheelSide side, const ContactCandidate& c) const {
+    const int w = side == WheelSide::kLeft ? 0 : 1;
+    if (arcSign[w] != 0.0) return arcSign[w] * c.s_rail;
+    return c.point.y() * (side == WheelSide::kLeft ? -1.0 : 1.0);
   }
 
   // The geometry at first touch; the table finds the touching height within one lookup.
@@ -185,15 +219,22 @@ struct WheelsetContact::Impl {
   // step gives a, b): it is set to the patch's, so that a fixed mesh (fz_max 0: 1.5 fn) fits the
   // patch instead of a reference patch of another scale. Null, with the reason, if the patch is
   // outside the model's ranges (a/b beyond Kalker's table).
-  std::unique_ptr<ContactModel> modelFor(const NormalPatch& np, std::string* why) const {
+  // `onStrips`: the patch reaches the model as its strips (StepInput::shape), whose a/b may lie
+  // beyond Kalker's table: the reference patch is then held at the table's end (a FastSim model
+  // takes its coefficients there, with a note); the exact model, on the ellipse, refuses it.
+  std::unique_ptr<ContactModel> modelFor(const NormalPatch& np, bool onStrips,
+                                         std::string* why) const {
+    const bool inTable = np.a >= kKalkerMinAOverB * np.b && np.a <= kKalkerMaxAOverB * np.b;
     // As checkStepInput would refuse the step: said in the patch's own terms, not as a0/b0.
-    if (!(np.a >= kKalkerMinAOverB * np.b && np.a <= kKalkerMaxAOverB * np.b)) {
+    if (!inTable && (!onStrips || parameters.model == "exact")) {
       *why = "the patch's a/b = " + std::to_string(np.a / np.b) +
              " is outside Kalker's table [0.1, 10], which the elliptic-patch models take";
       return nullptr;
     }
     ContactParameters q = parameters;
-    q.a0 = np.a;
+    // Held just inside the table's ends: a0 / b0 rounds back onto them.
+    q.a0 = std::min(std::max(np.a, kKalkerMinAOverB * (1.0 + 1e-12) * np.b),
+                    kKalkerMaxAOverB * (1.0 - 1e-12) * np.b);
     q.b0 = np.b;
     q.fz0 = np.fn;
     q.fz_max = 0.0;
@@ -353,8 +394,15 @@ struct WheelsetContact::Impl {
       // patch that outgrows it restarts from rest on a grid for the patch, saying so.
       const bool outgrown =
           slot.model && parameters.model == "exact" && (np.a > slot.a_cover || np.b > slot.b_cover);
+      // A non-Hertzian or blended patch reaches the model as its strips; a Hertz one as its
+      // ellipse (the normal problem's rule: no more model than the patch needs), unless its a/b
+      // lies beyond Kalker's table, which the ellipse's models refuse: then as its strips (Kalker's
+      // strips of the ellipse), the coefficients held at the table's end.
+      const bool inTable = np.a >= kKalkerMinAOverB * np.b && np.a <= kKalkerMaxAOverB * np.b;
+      const bool onStrips =
+          np.method == NormalMethod::kNonHertzian || np.strip_weight > 0.0 || !inTable;
       if (!slot.model || outgrown) {  // appears: from rest
-        slot.model = modelFor(np, &p.message);
+        slot.model = modelFor(np, onStrips, &p.message);
         slot.a_cover = kCover * np.a;
         slot.b_cover = kCover * np.b;
       }
@@ -373,6 +421,18 @@ struct WheelsetContact::Impl {
       in.fz = np.fn;
       in.a = np.a;
       in.b = np.b;
+      if (onStrips) {
+        // The strips' eta runs toward the track centre; the contact frame's y (the creepages',
+        // the models') is the same on both wheels (y = z x x): toward the centre on the right
+        // wheel, away from it on the left, whose strips are mirrored.
+        slot.shape = patchShapeOf(np, profileOrigin(side, p.geometry));
+        if (side == WheelSide::kLeft) {
+          slot.shape.origin = -slot.shape.origin;
+          for (PatchStrip& st : slot.shape.strips) st.eta = -st.eta;
+          std::reverse(slot.shape.strips.begin(), slot.shape.strips.end());
+        }
+        in.shape = &slot.shape;
+      }
       const StepOutput out = slot.model->step(in);
       p.fx = out.fx;
       p.fs = out.fy;
