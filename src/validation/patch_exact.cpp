@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace wheel_rail_contact {
 
@@ -101,6 +102,56 @@ std::vector<double> exactWheelLoad(const WheelContactGeometry& geo, double load,
     r1 = residual(d1);
   }
   return fn;
+}
+
+ExactPatchTangential::ExactPatchTangential(const ExactPatch& patch, WheelSide side, double G,
+                                           double nu, double fn, SolverControl control) {
+  const HalfspaceGrid& g = patch.grid;
+  if (g.size() == 0 || patch.solution.p.size() != g.size() || !(patch.fn > 0.0))
+    throw std::invalid_argument("exact tangential: the patch carries no load");
+  const bool left = side == WheelSide::kLeft;
+  // The left wheel's contact y is -eta: its pressure mirrored across the grid's rows.
+  Eigen::VectorXd p(g.size());
+  for (int ix = 0; ix < g.mx; ++ix)
+    for (int iy = 0; iy < g.my; ++iy)
+      p[g.index(ix, left ? g.my - 1 - iy : iy)] = patch.solution.p[g.index(ix, iy)];
+  if (fn > 0.0) p *= fn / patch.fn;
+  y0_ = left ? -patch.eta_offset : patch.eta_offset;
+  solver_ = std::make_unique<HalfspaceSolver>(g, G, nu, control);
+  solver_->setPressure(p);
+}
+
+ExactTangential ExactPatchTangential::solve(RollingMode mode, const Creepages& w, double mu) {
+  const HalfspaceSolution& s = solver_->solve(mode, {w.xi - w.phi * y0_, w.eta, w.phi}, mu);
+  ExactTangential t;
+  t.fx = s.fx;
+  t.fs = s.fy;
+  t.mz = s.mz - y0_ * s.fx;
+  t.adhesion_fraction = s.adhesionFraction;
+  t.converged = s.converged;
+  t.iterations = s.iterations;
+  return t;
+}
+
+ExactTangential ExactPatchTangential::steady(const Creepages& w, double mu) {
+  return solve(RollingMode::kSteady, w, mu);
+}
+
+ExactTangential ExactPatchTangential::step(const Creepages& w, double mu) {
+  return solve(RollingMode::kTransient, w, mu);
+}
+
+void ExactPatchTangential::clearHistory() {
+  solver_->clearHistory();
+}
+
+double ExactPatchTangential::dx() const {
+  return solver_->grid().dx;
+}
+
+ExactTangential exactPatchTangential(const ExactPatch& patch, WheelSide side, double G, double nu,
+                                     const Creepages& w, double mu, double fn) {
+  return ExactPatchTangential(patch, side, G, nu, fn).steady(w, mu);
 }
 
 }  // namespace wheel_rail_contact
