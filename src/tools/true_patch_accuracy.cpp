@@ -78,7 +78,9 @@ Forces modelOn(const std::string& model, FastSimVariant v, const PatchShape& sha
   p.nu = nu;
   p.mu = o.mu;
   p.b0 = b;
-  p.a0 = heldAOverB(a, b) * b;
+  p.a0 = std::min(std::max(a / b, kKalkerMinAOverB * (1.0 + 1e-12)),
+                  kKalkerMaxAOverB * (1.0 - 1e-12)) *
+         b;  // just inside the table: a0 / b0 rounds back onto it
   p.fz0 = fn;
   auto m = makeContactModel(p);
   StepInput in;
@@ -98,9 +100,11 @@ Forces modelOn(const std::string& model, FastSimVariant v, const PatchShape& sha
 }
 
 // The exact solution's strips: each grid column's loaded extent (symmetric about x = 0, as the
-// gap is) and peak pressure, eta from the candidate's point.
-PatchShape exactStrips(const A22Exact& e) {
+// gap is) and peak pressure, eta from the candidate's point; *a, *b its equivalent ellipse (b half
+// the lateral extent, pi a b the area), as the normal problem gives ours.
+PatchShape exactStrips(const A22Exact& e, double* a, double* b) {
   PatchShape s;
+  double area = 0.0;
   const HalfspaceGrid& g = e.grid;
   for (int iy = 0; iy < g.my; ++iy) {
     double L = 0.0, pmax = 0.0;
@@ -112,7 +116,12 @@ PatchShape exactStrips(const A22Exact& e) {
       }
     }
     if (L > 0.0) s.strips.push_back(PatchStrip{e.eta_offset + g.yc(iy), g.dy, L, -L, pmax});
+    area += 2.0 * L * g.dy;
   }
+  *b = s.strips.empty()
+           ? 0.0
+           : 0.5 * (s.strips.back().eta - s.strips.front().eta + s.strips.back().width);
+  *a = *b > 0.0 ? area / (M_PI * *b) : 0.0;
   return s;
 }
 
@@ -125,14 +134,15 @@ int run(const Options& o) {
   std::ofstream out = tools::writeFile(o.out);
   out << "wheel,y_mm,patch,zone,method,a_over_b,fn_N,exact_fn_N,xi,eta,phi_per_m,exact_fx_N,"
          "exact_fs_N,exact_mz_Nm,ellipse_dfx,ellipse_dfs,strips_dfx,strips_dfs,strips_dmz,"
-         "strip_force_dfx,strip_force_dfs,calibrated_dfx,calibrated_dfs,nss_dfx,nss_dfs,"
-         "exact_strips_dfx,exact_strips_dfs,message\n";
+         "strip_force_dfx,strip_force_dfs,calibrated_dfx,calibrated_dfs,nss_classic_dfx,"
+         "nss_classic_dfs,exact_strips_dfx,exact_strips_dfs,nss_dfx,nss_dfs,nss_dmz,"
+         "exact_strips_calibrated_dfx,exact_strips_calibrated_dfs,message\n";
   std::printf(
       "%-5s %5s %2s %6s %5s %8s %8s | %6s %6s | %6s %6s | %6s %6s | %6s %6s | %6s %6s | "
-      "%6s %6s\n",
+      "%6s %6s | %6s %6s\n",
       "wheel", "y", "p", "method", "a/b", "Fx", "Fs", "ell.x", "ell.s", "str.x", "str.s", "frc.x",
-      "frc.s", "cal.x", "cal.s", "nss.x", "nss.s", "exs.x", "exs.s");
-  double worst[7][2] = {};
+      "frc.s", "cal.x", "cal.s", "nsc.x", "nsc.s", "exs.x", "exs.s", "nss.x", "nss.s");
+  double worst[8][2] = {};
   for (const A22State& s : states) {
     const A22Wheel w = runA22Wheel(search, s, ao);
     if (!w.message.empty()) continue;
@@ -151,7 +161,8 @@ int run(const Options& o) {
       const Forces ex{x.fx, x.fy, x.mz - e * x.fx};
       const double scale = o.mu * p.exact.fn, a = p.ours.a, b = p.ours.b, fn = p.ours.fn;
       const PatchShape ours = patchShapeOf(p.ours);
-      const PatchShape exs = exactStrips(p.exact);
+      double ea = 0.0, eb = 0.0;
+      const PatchShape exs = exactStrips(p.exact, &ea, &eb);
       std::string message;
       const Forces fe = steadyOn(nullptr, StripBound::kCommonCurvature,
                                  std::max(a, kKalkerMinAOverB * b), b, fn, c, o, ao.G, ao.nu);
@@ -162,10 +173,15 @@ int run(const Options& o) {
       const Forces fnss = modelOn("nss", FastSimVariant::kClassic, ours, a, b, fn, c, o, ao.G,
                                   ao.nu, 400, &message);
       const Forces fx =
-          steadyOn(&exs, StripBound::kCommonCurvature, a, b, p.exact.fn, c, o, ao.G, ao.nu);
-      const Forces all[6] = {fe, fs, ff, fc, fnss, fx};
-      double d[6][3];
-      for (int k = 0; k < 6; ++k) {
+          steadyOn(&exs, StripBound::kCommonCurvature, ea, eb, p.exact.fn, c, o, ao.G, ao.nu);
+      // nss as it runs by default: the calibrated variant.
+      const Forces fnc = modelOn("nss", FastSimVariant::kCalibrated, ours, a, b, fn, c, o, ao.G,
+                                 ao.nu, 400, &message);
+      const Forces fxc = modelOn("steady", FastSimVariant::kCalibrated, exs, ea, eb, p.exact.fn, c,
+                                 o, ao.G, ao.nu, 1, &message);
+      const Forces all[8] = {fe, fs, ff, fc, fnss, fx, fnc, fxc};
+      double d[8][3];
+      for (int k = 0; k < 8; ++k) {
         d[k][0] = (all[k].fx - ex.fx) / scale;
         d[k][1] = (all[k].fy - ex.fy) / scale;
         d[k][2] = (all[k].mz - ex.mz) / (scale * b);
@@ -175,24 +191,26 @@ int run(const Options& o) {
       const char* side = s.side == WheelSide::kLeft ? "left" : "right";
       const char* method = p.ours.method == NormalMethod::kHertz ? "hertz" : "strips";
       char row[1024];
-      std::snprintf(row, sizeof row,
-                    "%s,%.1f,%d,%d,%s,%.3f,%.1f,%.1f,%.4g,%.4g,%.4g,%.1f,%.1f,%.3f,%.4f,%.4f,%.4f,"
-                    "%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,\"%s\"\n",
-                    side, s.y_mm, p.index, int(p.candidate.zone), method, a / b, fn, p.exact.fn,
-                    c.xi, c.eta, c.phi, ex.fx, ex.fy, ex.mz, d[0][0], d[0][1], d[1][0], d[1][1],
-                    d[1][2], d[2][0], d[2][1], d[3][0], d[3][1], d[4][0], d[4][1], d[5][0], d[5][1],
-                    message.c_str());
+      std::snprintf(
+          row, sizeof row,
+          "%s,%.1f,%d,%d,%s,%.3f,%.1f,%.1f,%.4g,%.4g,%.4g,%.1f,%.1f,%.3f,%.4f,%.4f,%.4f,"
+          "%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,\"%s\"\n",
+          side, s.y_mm, p.index, int(p.candidate.zone), method, a / b, fn, p.exact.fn, c.xi, c.eta,
+          c.phi, ex.fx, ex.fy, ex.mz, d[0][0], d[0][1], d[1][0], d[1][1], d[1][2], d[2][0], d[2][1],
+          d[3][0], d[3][1], d[4][0], d[4][1], d[5][0], d[5][1], d[6][0], d[6][1], d[6][2], d[7][0],
+          d[7][1], message.c_str());
       out << row;
       std::printf(
           "%-5s %5.1f %2d %6s %5.2f %8.0f %8.0f | %6.3f %6.3f | %6.3f %6.3f | %6.3f "
-          "%6.3f | %6.3f %6.3f | %6.3f %6.3f | %6.3f %6.3f\n",
+          "%6.3f | %6.3f %6.3f | %6.3f %6.3f | %6.3f %6.3f | %6.3f %6.3f\n",
           side, s.y_mm, p.index, method, a / b, ex.fx, ex.fy, d[0][0], d[0][1], d[1][0], d[1][1],
-          d[2][0], d[2][1], d[3][0], d[3][1], d[4][0], d[4][1], d[5][0], d[5][1]);
+          d[2][0], d[2][1], d[3][0], d[3][1], d[4][0], d[4][1], d[5][0], d[5][1], d[6][0], d[6][1]);
       std::fflush(stdout);
     }
   }
-  const char* names[6] = {"ellipse", "strips", "strip_force", "calibrated", "nss", "exact_strips"};
-  for (int k = 0; k < 6; ++k)
+  const char* names[8] = {"ellipse",     "strips",       "strip_force", "calibrated",
+                          "nss_classic", "exact_strips", "nss",         "exact_strips_calibrated"};
+  for (int k = 0; k < 8; ++k)
     std::printf("worst |dFx|, |dFs| over mu Fn: %-13s %.3f %.3f\n", names[k], worst[k][0],
                 worst[k][1]);
   return 0;

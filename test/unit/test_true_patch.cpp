@@ -3,11 +3,14 @@
 // finite on any strips, the history carried as the patch changes shape and moves.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "../a22_states.hpp"
+#include "core/exact/halfspace_solver.hpp"
 #include "core/fastsim/transient_fastsim.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/fastsim/patch_shape.hpp"
@@ -158,7 +161,7 @@ TEST(TruePatch, BadShapesAreRejected) {
 // A slender patch (a/b 20, a flange's) is taken with the coefficients at the table's end, said.
 TEST(TruePatch, SlenderPatchBeyondKalkersTableIsTakenAndSaid) {
   PatchShape s = ellipseShape(10e-3, 0.5e-3, 1.5e4, 16);
-  for (const char* model : {"steady", "nss"}) {
+  for (const char* model : {"steady", "shen-li", "nss", "auto"}) {
     auto m = makeContactModel(params(model, "adaptive", FastSimVariant::kClassic));
     StepInput in = input(1, 10e-3, 0.5e-3, 1.5e4);
     in.shape = &s;
@@ -239,4 +242,110 @@ TEST(TruePatch, RemapAtFixedPointsOntoItselfIsTheIdentity) {
     ASSERT_NEAR(out.ty()(k), st.ty()(k), 1e-12);
   }
   EXPECT_EQ(remapAtFixedPoints(m, 0.1, st, m, 0.2, &out), 0.0);  // 100 mm away: nothing
+}
+
+// Manchester, both wheels, every patch: nss (as it runs by default, calibrated) on our
+// normal problem's strips, run to its steady limit at the case's creepages, against the exact
+// half-space solver's steady tangential solution on the exact normal solution (a 24 x 18 grid
+// over each patch; mz about the candidate's point). Within 3 % of mu Fn (exact) in fx and fs on
+// every patch (measured 1.35 % on this grid) but the right wheel's at y = 0.5 mm, where our strips
+// miss the tread's plateau (doc/normal_problem.md) and the error is 21 % (doc/true_patch.md).
+TEST(TruePatch, ManchesterA22SteadyLimitAgainstExact) {
+  const ContactSearch search{WheelsetTrackData{}};
+  A22Options o;
+  o.exact_mx = 24;
+  o.exact_my = 18;
+  const double mu = 0.3;
+  int patches = 0;
+  for (const A22State& s : a22States()) {
+    const A22Wheel w = runA22Wheel(search, s, o);
+    ASSERT_TRUE(w.message.empty()) << w.message;
+    if (s.side == WheelSide::kRight && s.y_mm == 0.5) continue;  // the plateau (above)
+    for (const A22Patch& p : w.patches) {
+      if (!(p.ours.fn > 0.0) || p.ours.merged_into >= 0) continue;
+      ASSERT_TRUE(p.exact.solved) << p.exact.message;
+      // The eta frame (toward the track centre) on both wheels: on the left wheel the contact
+      // frame's creepages mirrored.
+      const double m = s.side == WheelSide::kLeft ? -1.0 : 1.0;
+      const double xi = p.creepages.xi, eta = m * p.creepages.eta, phi = m * p.creepages.phi;
+      HalfspaceSolver exact(p.exact.grid, o.G, o.nu);
+      exact.setPressure(p.exact.p);
+      const double e = p.exact.eta_offset;  // the grid's centre from the candidate's point
+      const HalfspaceSolution& x =
+          exact.solve(RollingMode::kSteady, Creepages{xi - phi * e, eta, phi}, mu);
+      ContactParameters q;
+      q.model = "nss";
+      q.mesh = "adaptive";
+      q.mu = mu;
+      q.b0 = p.ours.b;
+      q.a0 = std::min(std::max(p.ours.a / p.ours.b, 0.1 * (1 + 1e-12)), 10.0 * (1 - 1e-12)) * q.b0;
+      q.fz0 = p.ours.fn;
+      auto nss = makeContactModel(q);
+      const PatchShape shape = patchShapeOf(p.ours);
+      StepInput in;
+      in.V = 2.0;
+      in.dt = 0.1 * p.ours.a / in.V;
+      in.xi = xi;
+      in.eta = eta;
+      in.phi = phi;
+      in.fz = p.ours.fn;
+      in.a = p.ours.a;
+      in.b = p.ours.b;
+      in.shape = &shape;
+      StepOutput out;
+      for (int k = 0; k < 400; ++k) out = nss->step(in);
+      ASSERT_EQ(out.status, StepStatus::kOk) << out.message;
+      const double scale = mu * p.exact.fn;
+      const double dfx = std::abs(out.fx - x.fx) / scale, dfs = std::abs(out.fy - x.fy) / scale;
+      EXPECT_LT(dfx, 0.03) << (s.side == WheelSide::kLeft ? "left" : "right") << " " << s.y_mm;
+      EXPECT_LT(dfs, 0.03) << (s.side == WheelSide::kLeft ? "left" : "right") << " " << s.y_mm;
+      ++patches;
+    }
+  }
+  EXPECT_GE(patches, 40);
+}
+
+// A patch that jumps clear of where it was (PatchShape::origin 50 mm on) starts from rest: its
+// force builds up as material enters, rising step by step to the steady limit, never above it,
+// and nss's stays within 6 % of mu fz of the exact transient solution from rest for the same
+// motion (measured 3.9 %; shen-li, without the dynamic flexibility, leads it by up to 17 %, as on
+// any patch from rest). On an ellipse, where the exact model solves the same patch.
+TEST(TruePatch, JumpStartsFromRestWithoutSpikeAgainstExact) {
+  const double a = 6e-3, b = 4e-3, fz = 8e4, mu = 0.3;
+  const PatchShape here = ellipseShape(a, b, fz, 20, 0.0), there = ellipseShape(a, b, fz, 20, 0.05);
+  for (const char* model : {"nss", "shen-li"})
+    for (FastSimVariant v : {FastSimVariant::kCalibrated, FastSimVariant::kClassic}) {
+      ContactParameters p = params(model, "adaptive", v);
+      p.nx = p.ny = 20;
+      ContactParameters q = p;
+      q.model = "exact";
+      q.mesh = "fixed";
+      auto m = makeContactModel(p), exact = makeContactModel(q);
+      StepInput in = input(1, a, b, fz);
+      in.dt = 0.05 * a / in.V;
+      in.xi = 1e-3;
+      in.eta = 5e-4;
+      in.phi = 0.3;
+      in.shape = &here;
+      StepOutput limit;
+      for (int k = 0; k < 300; ++k) limit = m->step(in);
+      const double steady = std::hypot(limit.fx, limit.fy);
+      in.shape = &there;
+      StepInput e = in;
+      e.shape = nullptr;
+      e.dt = 0.0;
+      exact->step(e);  // from rest, no travel yet
+      e.dt = in.dt;
+      double previous = 0.0;
+      for (int k = 0; k < 80; ++k) {
+        const StepOutput o = m->step(in), x = exact->step(e);
+        const double f = std::hypot(o.fx, o.fy);
+        ASSERT_GE(f, previous) << model << " step " << k;
+        ASSERT_LE(f, steady * 1.001) << model << " step " << k;
+        if (std::string(model) == "nss") {
+          ASSERT_LE(f - std::hypot(x.fx, x.fy), 0.06 * mu * fz) << toString(v) << " step " << k;
+        }
+        previous = f;
+      }
+    }
 }

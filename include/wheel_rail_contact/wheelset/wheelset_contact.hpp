@@ -16,17 +16,28 @@
 ///      with fn > 0;
 ///   3. each patch's creepages xi, eta, phi from the wheelset's motion (patchCreepages);
 ///   4. its tangential forces from the creep-force model of ContactParameters::model (unless
-///      WheelsetContactOptions::tangential is false), run on the
-///      patch's equivalent ellipse (a, b) with its fn and creepages. This is the elliptic-patch
-///      model on the equivalent ellipse, not a tangential solution on the true (non-Hertzian)
-///      patch.
+///      WheelsetContactOptions::tangential is false) with its fn and creepages: on the true patch
+///      (StepInput::shape, the normal problem's strips, fastsim/patch_shape.hpp) where the patch
+///      is non-Hertzian (NormalPatch::method kNonHertzian) or blended (strip_weight > 0), or
+///      its a/b lies beyond Kalker's table [0.1, 10] (a flange's, 17 to 23: its strips are then
+///      Kalker's strips of the ellipse, the coefficients held at the table's end); on the
+///      ellipse (a, b) otherwise, as the normal problem chose (no more model than the patch
+///      needs). The strips' eta runs toward the track centre, the contact frame's y is the same on
+///      both wheels: the left wheel's strips are mirrored. The exact model solves every patch on
+///      its ellipse and refuses an a/b beyond the table (doc/true_patch.md).
 ///
 /// History: one model instance per patch slot, a slot being (wheel, zone, rank among that wheel's
 /// patches of the same zone counted from the field side). A slot whose patch is present is stepped
 /// with the step's dt; a slot whose patch is absent is reset (its model dropped), so a patch that
 /// appears starts from rest (zero traction history) on a new model, stepped with the step's dt as
 /// a model's first step is (the FastSim models roll dt from rest; exact's first step rolls
-/// nothing). nss thereby carries its transient across steps while a patch stays in its zone.
+/// nothing). nss thereby carries its transient across steps while a patch stays in its zone. On
+/// the true patch its history is carried from step to step at fixed physical coordinates, x along
+/// the rolling direction and laterally the rail profile's arc length (PatchShape::origin): a
+/// patch that changes shape or moves on the rail keeps the traction of the material still in
+/// contact, zero where the patch newly reaches; one that moves clear of where it was starts from
+/// rest, with a message (status kOk). A patch that jumps to another zone (tread to gauge corner to
+/// flange) is another slot's: it starts from rest, the old slot's history dropped.
 ///
 /// The model's reference patch (ContactParameters a0, b0, fz0, fz_max) is not used: a and b come
 /// from the normal problem every step, and a slot's model is made when its patch appears with the
@@ -103,9 +114,9 @@ struct PatchResult {
   ContactCandidate geometry;
   PatchCreepages creepages;  ///< xi [-], eta [-], phi [1/m] in the patch's contact frame
   NormalPatch normal;        ///< fn [N], a, b [m], pmax [Pa], method, strips
-  /// Tangential forces on the wheel in the patch's contact frame, from the elliptic-patch model on
-  /// (normal.a, normal.b): fx along the rolling direction, fs lateral in the contact plane [N], mz
-  /// the spin moment about the normal [N m].
+  /// Tangential forces on the wheel in the patch's contact frame, from the model on the true patch
+  /// or its ellipse (step 4 above): fx along the rolling direction, fs lateral in the contact
+  /// plane [N], mz the spin moment about the normal through the candidate's contact point [N m].
   double fx = 0.0, fs = 0.0, mz = 0.0;
   StepStatus tangential_status = StepStatus::kOk;  ///< the model's step status
   std::string message;                             ///< the model's message or note, "" if none

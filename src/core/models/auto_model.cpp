@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/models/steady_model.hpp"
+#include "core/models/step_geometry.hpp"
 #include "wheel_rail_contact/fastsim/fastsim_frequency.hpp"
 
 namespace wheel_rail_contact {
@@ -66,7 +67,7 @@ double SteadinessMonitor::update(const StepInput& in) {
   if (in.a != 0.0) {
     // The step's own patch: the force of the creepages at its a/b and area (per G a0 b0), so a
     // changing geometry counts as a changing input.
-    const CreepCoefficients c = kalkerCoefficients(in.a / in.b, nu_);
+    const CreepCoefficients c = kalkerCoefficients(stepAOverB(in, 1.0), nu_);  // a shape's held
     const double area = in.a * in.b / (sqrtAb_ * sqrtAb_);
     fx = area * dir * c.c11 * in.xi;
     fy = area * (dir * c.c22 * in.eta + c.c23 * in.phi * std::sqrt(in.a * in.b));

@@ -160,7 +160,9 @@ StepOutput NssModel::stepOnStrips(const StepInput& in, const HertzEllipse& h, bo
     const double carried =
         remapAtFixedPoints(from, fromOrigin, state_, nextStrips_, origin, &remapped_);
     std::swap(state_, remapped_);
-    if (carried == 0.0)
+    // Said only where the history mattered: a step that rolls farther than the patch's length
+    // has carried every loaded particle out of the patch anyway.
+    if (carried == 0.0 && in.V * in.dt < 2.0 * h.a)
       note =
           "the patch moved clear of its previous position on the profile: no history to carry, "
           "it starts from rest";
@@ -199,7 +201,13 @@ StepOutput NssModel::stepOnStrips(const StepInput& in, const HertzEllipse& h, bo
     } else {
       keepRatePerTravel(in.V);
       chooseFilters(c, h.a, h.b, in.V, in.dt);
-      const double r = historyScale(h.a);
+      // On strips the history is carried as traction (r = 1), not as the displacement L tau that
+      // historyScale keeps when an ellipse's a changes with the load: a non-Hertzian patch's
+      // equivalent a (its area over pi b) jumps when its outline does (the strips spreading over a
+      // tread's plateau: 2.7 -> 1.6 mm in one step), and carrying L tau through it scaled the
+      // traction by 1.7 at once, a force spike its steady limit does not show. The carrying at
+      // fixed points (above) already follows the strips' own change of length.
+      const double r = 1.0;
       lastA_ = h.a;
       f = transientFastSim(stripMesh_, cal.L, c, in.V, in.dt, zx_, zy_, r, &state_, &field_,
                            handingOn_);

@@ -186,7 +186,9 @@ struct WheelsetContact::Impl {
       return nullptr;
     }
     ContactParameters q = parameters;
-    q.a0 = std::min(std::max(np.a, kKalkerMinAOverB * np.b), kKalkerMaxAOverB * np.b);
+    // Held just inside the table's ends: a0 / b0 rounds back onto them.
+    q.a0 = std::min(std::max(np.a, kKalkerMinAOverB * (1.0 + 1e-12) * np.b),
+                    kKalkerMaxAOverB * (1.0 - 1e-12) * np.b);
     q.b0 = np.b;
     q.fz0 = np.fn;
     q.fz_max = 0.0;
