@@ -10,8 +10,11 @@ Writes to FIGURE_DIR (default doc/figures):
     extent as a bar, the marker's area the normal force) and CONTACT's published reference points;
   manchester_a22_pressure.png: per loaded patch of the right wheel at the mapped displacements, our
     pressure (each strip a semi-ellipse along x between its trailing and leading edge, as the strip
-    method assumes) beside the exact half-space solution, and the peak pressure across the patch.
-Prints the compact table of doc/manchester.md.
+    method assumes) beside the exact half-space solution, and the peak pressure across the patch;
+  manchester_a22_creep.png (from <prefix>_creep.csv, if present): fx, fs, mz per loaded patch
+    against y, both wheels: the exact tangential solution on the same patch, each model through
+    WheelsetContact, CONTACT's published values; and each model's error in % of mu fn.
+Prints the compact tables of doc/manchester.md.
 """
 import csv
 import math
@@ -167,3 +170,69 @@ if patches:
     fig.suptitle("Manchester benchmark A-2.2, right wheel: pressure, our method against the exact "
                  "half-space solver on the same gap", y=0.92)
     fig.savefig(f"{figdir}/manchester_a22_pressure.png", dpi=100, bbox_inches="tight")
+
+# --- creep forces ------------------------------------------------------------------------------
+try:
+    creep = read(prefix + "_creep.csv")
+except FileNotFoundError:
+    creep = []
+MODELS = (("nss", "tab:green", "o"), ("steady", "tab:blue", "s"), ("shen_li", "tab:purple", "^"))
+if creep:
+    print()
+    print("| wheel | y (mm) | zone | fn (kN) | a/b | exact fx / fs (N), mz (N m) | "
+          "nss fx / fs / mz error (%) | steady fx / fs error (%) | shen-li fx / fs error (%) | "
+          "CONTACT fx / fs (N), mz (N m) |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for r in creep:
+        def err(m, c):
+            return f"{num(r, m + '_err_' + c + '_pct'):+.1f}"
+
+        status = r["nss_status"]
+        nss = (f"{err('nss', 'fx')} / {err('nss', 'fs')} / {err('nss', 'mz')}"
+               + ("" if status == "ok" else f" ({status})"))
+        ref = not math.isnan(num(r, "contact_fn_N"))
+        contact = (f"{num(r, 'contact_fx_N'):.0f} / {num(r, 'contact_fs_N'):.0f}, "
+                   f"{num(r, 'contact_mz_Nm'):.2f}") if ref else "-"
+        print(f"| {r['wheel']} | {num(r, 'y_mm'):.1f} | {r['zone']} | {num(r, 'fn_N') / 1e3:.2f} | "
+              f"{num(r, 'a_mm') / num(r, 'b_mm'):.2f} | {num(r, 'exact_fx_N'):.0f} / "
+              f"{num(r, 'exact_fs_N'):.0f}, {num(r, 'exact_mz_Nm'):.2f} | {nss} | "
+              f"{err('steady', 'fx')} / {err('steady', 'fs')} | "
+              f"{err('shen_li', 'fx')} / {err('shen_li', 'fs')} | {contact} |")
+
+    fig, axes = plt.subplots(4, 2, figsize=(13, 14), sharex=True)
+    rows_of = (("fx_N", "fx [N]"), ("fs_N", "fs [N]"), ("mz_Nm", "mz [N m]"))
+    for col, wheel in enumerate(("right", "left")):
+        mine = [r for r in creep if r["wheel"] == wheel]
+        for row, (key, label) in enumerate(rows_of):
+            ax = axes[row][col]
+            for zone, colour in (("tread", "k"), ("corner", "tab:orange"), ("flange", "tab:red")):
+                z = [r for r in mine if r["zone"] == zone]
+                if z:
+                    ax.plot([num(r, "y_mm") for r in z], [num(r, "exact_" + key) for r in z], "-",
+                            color=colour, lw=1.5, label=f"exact, {zone}")
+            for m, colour, marker in MODELS:
+                ax.plot([num(r, "y_mm") for r in mine], [num(r, f"{m}_{key}") for r in mine],
+                        marker, color=colour, ms=4, mfc="none", ls="none",
+                        label=m.replace("_", "-") + " (WheelsetContact)")
+            ref = [r for r in mine if not math.isnan(num(r, "contact_fn_N"))]
+            ax.plot([num(r, "y_mm") for r in ref], [num(r, "contact_" + key) for r in ref], "x",
+                    color="grey", ms=7, label="CONTACT (published, its own fn)")
+            ax.set_ylabel(label)
+            ax.grid(True, alpha=0.3)
+            if row == 0:
+                ax.set_title(f"{wheel} wheel")
+                ax.legend(fontsize=7)
+        ax = axes[3][col]
+        for m, colour, marker in MODELS:
+            e = [max(abs(num(r, f"{m}_err_fx_pct")), abs(num(r, f"{m}_err_fs_pct"))) for r in mine]
+            ax.semilogy([num(r, "y_mm") for r in mine], np.maximum(e, 1e-2), marker, color=colour,
+                        ms=5, mfc="none", label=m.replace("_", "-"))
+        ax.axhline(5.0, color="r", lw=1, ls="--", label="target 5 % (nss)")
+        ax.set_ylabel("max |error| of fx, fs [% of mu fn]")
+        ax.set_xlabel("wheelset lateral displacement y [mm] (benchmark's axes, to the right)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("Manchester benchmark A-2.2: creep forces on each patch (contact frame, on the "
+                 "wheel), models against the exact tangential solution on the same patch", y=0.995)
+    fig.tight_layout()
+    fig.savefig(f"{figdir}/manchester_a22_creep.png", dpi=90)

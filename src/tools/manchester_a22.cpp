@@ -29,6 +29,9 @@ struct Options {
   int exact_mx = 48, exact_my = 32;
   double G = 82e9, nu = 0.28;
   bool contact_table = false;
+  std::string creep_out = "doc/data/manchester_a22_creep.csv";
+  std::vector<std::string> creep_models = {"steady", "nss", "shen-li"};
+  int creep_mx = 32, creep_my = 24;
 };
 
 void addOptions(CLI::App& app, Options* o) {
@@ -50,6 +53,15 @@ void addOptions(CLI::App& app, Options* o) {
                "take the geometry from the contact table (ContactTable, default options) instead "
                "of the direct search, and print the largest differences between the two in our "
                "normal force, peak pressure and contact point");
+  tools::option(app, "--creep-out", &o->creep_out,
+                "the creep forces, one row per case, wheel and loaded patch: each model through "
+                "WheelsetContact (nss, shen-li at the constant state until settled) against the "
+                "exact tangential solution on the same patch; '' none");
+  tools::option(app, "--creep-models", &o->creep_models, "the models of --creep-out");
+  tools::option(app, "--creep-mx", &o->creep_mx,
+                "exact grid of the creep forces: elements along x per patch");
+  tools::option(app, "--creep-my", &o->creep_my,
+                "exact grid of the creep forces: elements across per patch");
   tools::option(app, "--G", &o->G, "shear modulus [Pa]");
   tools::option(app, "--nu", &o->nu, "Poisson's ratio");
 }
@@ -91,6 +103,69 @@ bool onMap(const Options& o, double y_mm) {
   for (double y : o.map_y)
     if (std::abs(y - y_mm) < 1e-9) return true;
   return false;
+}
+
+/// The creep forces of every loaded patch against the exact tangential solution (--creep-out), and
+/// each model's largest error in % of mu fn over the cases.
+void runCreep(const Options& o, const ContactSearch& search, const std::vector<A22State>& states,
+              const std::vector<A22Reference>& refs) {
+  A22Options ao;
+  ao.G = o.G;
+  ao.nu = o.nu;
+  ao.exact_mx = o.creep_mx;
+  ao.exact_my = o.creep_my;
+  A22CreepOptions co;
+  co.models = o.creep_models;
+  std::ofstream out = tools::writeFile(o.creep_out);
+  out << "wheel,case,y_mm,patch,zone,fn_N,a_mm,b_mm,xi,eta,phi_per_m,exact_fx_N,exact_fs_N,"
+         "exact_mz_Nm,exact_adhesion,exact_converged";
+  for (std::string m : co.models) {
+    std::replace(m.begin(), m.end(), '-', '_');
+    for (const char* c : {"_fx_N", "_fs_N", "_mz_Nm", "_err_fx_pct", "_err_fs_pct", "_err_mz_pct",
+                          "_status", "_steps"})
+      out << "," << m << c;
+  }
+  out << ",contact_fn_N,contact_fx_N,contact_fs_N,contact_mz_Nm\n";
+  // Per model: the largest |error| in % of mu fn on fx and fs, and where.
+  std::vector<double> worst(co.models.size(), 0.0);
+  std::vector<std::string> where(co.models.size());
+  for (const A22State& s : states) {
+    const A22Wheel w = runA22Wheel(search, s, ao);
+    for (const A22Creep& k : runA22Creep(w, ao, co, refs)) {
+      char line[512];
+      std::snprintf(line, sizeof line,
+                    "%s,%d,%g,%d,%s,%.1f,%.4f,%.4f,%.4e,%.4e,%.4e,%.2f,%.2f,%.4f,%.3f,%d",
+                    sideName(s.side), s.number, s.y_mm, k.index, zoneName(k.zone), k.fn, k.a * 1e3,
+                    k.b * 1e3, k.creepages.xi, k.creepages.eta, k.creepages.phi, k.exact.fx,
+                    k.exact.fs, k.exact.mz, k.exact.adhesion_fraction, k.exact.converged ? 1 : 0);
+      out << line;
+      const double scale = co.mu * k.fn, lever = std::sqrt(k.a * k.b);
+      for (size_t i = 0; i < k.models.size(); ++i) {
+        const A22ModelForces& f = k.models[i];
+        const double ex = 100.0 * (f.fx - k.exact.fx) / scale,
+                     es = 100.0 * (f.fs - k.exact.fs) / scale,
+                     em = 100.0 * (f.mz - k.exact.mz) / (scale * lever);
+        std::snprintf(line, sizeof line, ",%.2f,%.2f,%.4f,%.2f,%.2f,%.2f,%s,%d", f.fx, f.fs, f.mz,
+                      ex, es, em, f.found ? toString(f.status) : "absent", f.steps);
+        out << line;
+        const double e = std::max(std::abs(ex), std::abs(es));
+        if (e > worst[i]) {
+          worst[i] = e;
+          where[i] = std::string(sideName(s.side)) + " wheel, y " + shown(s.y_mm, "%.1f") +
+                     " mm, " + zoneName(k.zone);
+        }
+      }
+      if (k.contact)
+        std::snprintf(line, sizeof line, ",%.0f,%.1f,%.1f,%.4f\n", k.contact->fn, k.contact->fx,
+                      k.contact->fs, k.contact->mz);
+      else
+        std::snprintf(line, sizeof line, ",,,,\n");
+      out << line;
+    }
+  }
+  for (size_t i = 0; i < co.models.size(); ++i)
+    std::printf("creep forces, %s: largest |error| on fx, fs %.2f %% of mu fn (%s)\n",
+                co.models[i].c_str(), worst[i], where[i].c_str());
 }
 
 int run(const Options& o) {
@@ -237,6 +312,7 @@ int run(const Options& o) {
       std::fprintf(stderr, "%s wheel, case %d: the exact wheel load did not converge\n",
                    sideName(s.side), s.number);
   }
+  if (!o.creep_out.empty()) runCreep(o, search, states, refs);
   if (table)
     std::printf(
         "\ncontact table against the direct search, our loaded patches: fn at most %.3f %% "

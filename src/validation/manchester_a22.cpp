@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -117,6 +118,9 @@ std::vector<A22Reference> readA22Reference(const std::string& path) {
     r.fn = number(f[18], path);
     r.approach = number(f[22], path) * 1e-3;
     r.pmax = number(f[23], path) * 1e6;
+    r.fx = -number(f[19], path);
+    r.fs = number(f[20], path);
+    r.mz = number(f[21], path) * 1e-3;
     out.push_back(r);
   }
   return out;
@@ -253,6 +257,111 @@ A22Wheel runA22Wheel(const ContactTable& table, const A22State& state, const A22
   return runWheel(
       [&table](WheelSide side, const WheelsetPose& pose) { return table.search(side, pose); },
       table.contactSearch().data(), state, o);
+}
+
+std::vector<A22Creep> runA22Creep(const A22Wheel& w, const A22Options& o, const A22CreepOptions& c,
+                                  const std::vector<A22Reference>& refs) {
+  std::vector<A22Creep> out;
+  if (!w.message.empty()) return out;
+  const A22State& s = w.state;
+  WheelsetState state;
+  state.pose = a22Pose(s);
+  state.motion = a22Motion(s);
+  state.fz_left = state.fz_right = s.fz;
+  // The loaded patches of the exact solution (a merged patch at the candidate that took it).
+  for (const A22Patch& p : w.patches)
+    if (p.ours.merged_into < 0 && p.exact.fn > 0.0) {
+      A22Creep k;
+      k.index = p.index;
+      k.zone = p.candidate.zone;
+      out.push_back(k);
+    }
+  const auto patchOf = [&](const A22Creep& k) -> const A22Patch& {
+    for (const A22Patch& p : w.patches)
+      if (p.index == k.index) return p;
+    throw std::logic_error("runA22Creep: no patch");
+  };
+  // WheelsetContact's patch on the same candidate: the same zone, the contact point on the rail
+  // within 0.1 mm (it searches at first touch within 10 um of height, not 1 nm).
+  const auto sameCandidate = [](const ContactCandidate& a, const ContactCandidate& b) {
+    return a.zone == b.zone && (a.rail_file - b.rail_file).norm() < 1e-4;
+  };
+  for (const std::string& model : c.models) {
+    ContactParameters par;
+    par.model = model;
+    par.G = o.G;
+    par.nu = o.nu;
+    par.mu = c.mu;
+    WheelsetContact wc(WheelsetTrackData{}, par);
+    const auto wheelOf = [&](const WheelsetResult& r) -> const WheelResult& {
+      return s.side == WheelSide::kLeft ? r.left : r.right;
+    };
+    WheelsetResult last = wc.step(state, 0.0);
+    int steps = 0;
+    bool settled = false;
+    while (steps < c.max_steps && !settled) {
+      const WheelsetResult next = wc.step(state, c.dt);
+      ++steps;
+      settled = true;
+      const WheelResult &a = wheelOf(last), &b = wheelOf(next);
+      if (a.patches.size() != b.patches.size()) settled = false;
+      for (size_t i = 0; settled && i < b.patches.size(); ++i) {
+        const PatchResult &pa = a.patches[i], &pb = b.patches[i];
+        const double tol = c.settle_tolerance * c.mu * pb.normal.fn;
+        const double lever = std::sqrt(pb.normal.a * pb.normal.b);
+        settled = std::abs(pa.fx - pb.fx) <= tol && std::abs(pa.fs - pb.fs) <= tol &&
+                  std::abs(pa.mz - pb.mz) <= tol * lever;
+      }
+      last = next;
+    }
+    const WheelResult& r = wheelOf(last);
+    for (A22Creep& k : out) {
+      A22ModelForces f;
+      f.model = model;
+      f.steps = steps;
+      f.settled = settled;
+      for (const PatchResult& p : r.patches) {
+        if (!sameCandidate(p.geometry, patchOf(k).candidate)) continue;
+        f.found = true;
+        f.fx = p.fx;
+        f.fs = p.fs;
+        f.mz = p.mz;
+        f.status = p.tangential_status;
+        f.message = p.message;
+        if (k.fn == 0.0) {  // the same normal problem and creepages whichever the model
+          k.fn = p.normal.fn;
+          k.a = p.normal.a;
+          k.b = p.normal.b;
+          k.creepages = {p.creepages.xi, p.creepages.eta, p.creepages.phi};
+        }
+      }
+      k.models.push_back(f);
+    }
+  }
+  for (A22Creep& k : out) {
+    const A22Patch& p = patchOf(k);
+    if (k.fn > 0.0) {
+      ExactPatch e;
+      e.grid = p.exact.grid;
+      e.eta_offset = p.exact.eta_offset;
+      e.solution.p = p.exact.p;
+      e.fn = p.exact.fn;
+      k.exact = ExactPatchTangential(e, s.side, o.G, o.nu, k.fn).steady(k.creepages, c.mu);
+    }
+  }
+  // Each of CONTACT's patches of this wheel and case beside our patch nearest on the rail.
+  for (const A22Reference& ref : refs) {
+    if (ref.side != s.side || ref.number != s.number) continue;
+    A22Creep* best = nullptr;
+    double dist = std::numeric_limits<double>::infinity();
+    for (A22Creep& k : out) {
+      const A22Patch& p = patchOf(k);
+      const double d = std::abs(railFilePointAt(p.candidate, p.ours.eta_centre).x() - ref.y_rail);
+      if (d < dist) dist = d, best = &k;
+    }
+    if (best) best->contact = &ref;
+  }
+  return out;
 }
 
 }  // namespace wheel_rail_contact

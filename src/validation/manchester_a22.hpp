@@ -18,10 +18,12 @@
 #include <vector>
 
 #include "core/exact/halfspace_influence.hpp"
+#include "validation/patch_exact.hpp"
 #include "wheel_rail_contact/normal/patch_normal.hpp"
 #include "wheel_rail_contact/profiles/contact_search.hpp"
 #include "wheel_rail_contact/profiles/contact_table.hpp"
 #include "wheel_rail_contact/wheelset/creepages.hpp"
+#include "wheel_rail_contact/wheelset/wheelset_contact.hpp"
 
 namespace wheel_rail_contact {
 
@@ -50,6 +52,10 @@ struct A22Reference {
   double fn = 0.0, pmax = 0.0;                ///< [N], [Pa]
   double approach = 0.0;                      ///< [m]
   double cksi = 0.0, ceta = 0.0, cphi = 0.0;  ///< CONTACT's creepages, its signs, cphi [1/m]
+  /// CONTACT's creep forces [N] and spin moment [N m] in our signs (PatchResult's): CKSI is -xi,
+  /// CETA eta, CPHI phi, and CONTACT's FX, FS, MN oppose its own creepages as ours do, so
+  /// fx = -FX, fs = FS, mz = MN.
+  double fx = 0.0, fs = 0.0, mz = 0.0;
 };
 
 std::vector<A22Reference> readA22Reference(const std::string& path);
@@ -123,6 +129,49 @@ A22Wheel runA22Wheel(const ContactTable& table, const A22State& state, const A22
 /// function (normal/patch_normal.hpp's geometry; exactPatchNormal, validation/patch_exact.hpp),
 /// with the loaded elements' extent along x too.
 A22Exact solveExactPatch(const ContactCandidate& c, double approach, const A22Options& o);
+
+/// One model's creep forces on one patch through WheelsetContact (PatchResult's frame and signs).
+struct A22ModelForces {
+  std::string model;                    ///< ContactParameters::model
+  bool found = false;                   ///< WheelsetContact gave this patch
+  double fx = 0.0, fs = 0.0, mz = 0.0;  ///< [N], [N m]
+  StepStatus status = StepStatus::kOk;
+  std::string message;
+  /// Steps at the constant state until no force moved by more than
+  /// A22CreepOptions::settle_tolerance mu fn in a step (the model's steady limit); settled false if
+  /// max_steps passed first.
+  int steps = 0;
+  bool settled = false;
+};
+
+/// One loaded patch of one wheel: the models' creep forces through WheelsetContact against the
+/// exact tangential solution on the same patch (the exact normal pressure on the patch's gap at
+/// the wheel load, scaled to WheelsetContact's fn; WheelsetContact's creepages).
+struct A22Creep {
+  int index = 0;  ///< the candidate's index (A22Patch::index)
+  ContactZone zone = ContactZone::kTread;
+  double fn = 0.0, a = 0.0, b = 0.0;  ///< WheelsetContact's normal force and equivalent ellipse
+  Creepages creepages;                ///< WheelsetContact's, at the candidate's contact point
+  ExactTangential exact;
+  std::vector<A22ModelForces> models;
+  const A22Reference* contact = nullptr;  ///< CONTACT's patch beside this one, if any
+};
+
+struct A22CreepOptions {
+  std::vector<std::string> models = {"steady", "nss", "shen-li"};
+  double mu = 0.3;
+  double dt = 1e-3;  ///< [s] per step at the benchmark's 2 m/s: 2 mm of rolling
+  int max_steps = 2000;
+  double settle_tolerance = 1e-7;
+};
+
+/// The creep forces of every loaded patch of a wheel run by runA22Wheel (its exact pressures),
+/// each model's by a fresh WheelsetContact (default track data, the state's load on both wheels)
+/// stepped at the constant state until settled. refs: CONTACT's patches, matched by the contact
+/// point on the rail as manchester_a22 does (none if empty).
+std::vector<A22Creep> runA22Creep(const A22Wheel& wheel, const A22Options& o,
+                                  const A22CreepOptions& c,
+                                  const std::vector<A22Reference>& refs = {});
 
 /// The candidate's point moved eta along its contact plane, in the right rail file's coordinates
 /// (y, z down) [m]: the tangent line, good to curvature * eta^2 / 2.

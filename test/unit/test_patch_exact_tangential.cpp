@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/models/exact_model.hpp"
+#include "validation/manchester_a22.hpp"
 #include "validation/patch_exact.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/geometry/hertz.hpp"
@@ -207,4 +208,47 @@ TEST(PatchExactTangential, FullSlidingGivesMuTimesTheGivenNormalForce) {
 TEST(PatchExactTangential, APatchWithoutLoadIsRefused) {
   EXPECT_THROW(ExactPatchTangential(ExactPatch{}, WheelSide::kRight, kG, kNu),
                std::invalid_argument);
+}
+
+TEST(PatchExactTangential, SteadyAndTransientAgreeOnAGaugeCornerPatch) {
+  // A general gap: the right wheel's gauge-corner patch of Manchester case at 5.5 mm (a/b
+  // about 6, the pressure not Hertz's), its exact pressure at the wheel's 10 kN, with that case's
+  // creepages scaled down. The steady solve (the steady system) and the transient march from rest
+  // (one element a step) are two routes to the same steady state: within 0.1 % of mu fn after 6
+  // grid lengths.
+  const ContactSearch search{WheelsetTrackData{}};
+  A22State s;
+  for (const A22State& t :
+       readA22States(std::string(WRC_SOURCE_DIR) + "/test/data/profiles/a22_cases.csv"))
+    if (t.side == WheelSide::kRight && t.y_mm == 5.5) s = t;
+  ASSERT_EQ(s.y_mm, 5.5);
+  A22Options o;
+  o.exact_mx = 20;
+  o.exact_my = 16;
+  const A22Wheel w = runA22Wheel(search, s, o);
+  const A22Patch* corner = nullptr;
+  for (const A22Patch& p : w.patches)
+    if (p.exact.fn > 0.0) corner = &p;
+  ASSERT_NE(corner, nullptr);
+  ASSERT_EQ(corner->candidate.zone, ContactZone::kGaugeCorner);
+  ExactPatch e;
+  e.grid = corner->exact.grid;
+  e.eta_offset = corner->exact.eta_offset;
+  e.solution.p = corner->exact.p;
+  e.fn = corner->exact.fn;
+  const Creepages w0{corner->creepages.xi, corner->creepages.eta, corner->creepages.phi};
+  // A twentieth of the case's creepages (eta 0.014; adhesion 0.69): partial slip, where the routes
+  // differ most.
+  const Creepages c{0.05 * w0.xi, 0.05 * w0.eta, 0.05 * w0.phi};
+  ExactPatchTangential exact(e, WheelSide::kRight, kG, kNu);
+  const ExactTangential steady = exact.steady(c, kMu);
+  ASSERT_TRUE(steady.converged);
+  EXPECT_GT(steady.adhesion_fraction, 0.05);
+  EXPECT_LT(steady.adhesion_fraction, 0.95);
+  ExactTangential t;
+  for (int k = 0; k < 6 * e.grid.mx; ++k) t = exact.step(c, kMu);
+  const double scale = kMu * e.fn;
+  EXPECT_NEAR(t.fx, steady.fx, 1e-3 * scale);
+  EXPECT_NEAR(t.fs, steady.fs, 1e-3 * scale);
+  EXPECT_NEAR(t.mz, steady.mz, 1e-3 * scale * 1e-3);
 }

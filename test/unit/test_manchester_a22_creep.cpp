@@ -1,0 +1,186 @@
+// The Manchester contact benchmark's case, creep forces: every loaded patch of every case of
+// both wheels, fx, fs and mz from WheelsetContact with each model (steady, nss's and shen-li's
+// steady limits: run at the constant state until settled) against the exact tangential solution on
+// the same patch (validation/manchester_a22.hpp, runA22Creep; doc/manchester.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "validation/manchester_a22.hpp"
+
+using namespace wheel_rail_contact;
+
+namespace {
+
+const std::string kDataDir = std::string(WRC_SOURCE_DIR) + "/test/data/profiles/";
+
+/// The exact grid of these tests: 32 x 24 elements over each patch's interpenetration region.
+/// Against 64 x 48 (manchester_a22 --creep-mx 64 --creep-my 48) the exact fx, fs differ by at most
+/// 0.43 % of mu fn on these patches (24 x 18: 1.7 %), mz by 1.0 % of mu fn sqrt(ab).
+constexpr int kExactMx = 32, kExactMy = 24;
+
+struct Case {
+  A22State state;
+  std::vector<A22Creep> patches;
+};
+
+A22Options exactOptions() {
+  A22Options o;
+  o.exact_mx = kExactMx;
+  o.exact_my = kExactMy;
+  return o;
+}
+
+/// CONTACT's published patches (reference points, never targets).
+const std::vector<A22Reference>& references() {
+  static const std::vector<A22Reference> refs =
+      readA22Reference(kDataDir + "contact_a22_reference.csv");
+  return refs;
+}
+
+/// All 42 wheels, run once for the whole file.
+const std::vector<Case>& cases() {
+  static const std::vector<Case> all = [] {
+    const ContactSearch search{WheelsetTrackData{}};
+    std::vector<Case> out;
+    for (const A22State& s : readA22States(kDataDir + "a22_cases.csv")) {
+      const A22Wheel w = runA22Wheel(search, s, exactOptions());
+      out.push_back({s, runA22Creep(w, exactOptions(), A22CreepOptions{}, references())});
+    }
+    return out;
+  }();
+  return all;
+}
+
+std::string label(const Case& c, const A22Creep& k) {
+  return std::string(c.state.side == WheelSide::kLeft ? "left" : "right") + " wheel, y " +
+         std::to_string(c.state.y_mm) + " mm, patch " + std::to_string(k.index);
+}
+
+const A22ModelForces& forces(const A22Creep& k, const std::string& model) {
+  for (const A22ModelForces& f : k.models)
+    if (f.model == model) return f;
+  ADD_FAILURE() << "no model " << model;
+  return k.models.front();
+}
+
+/// Error of a model's fx or fs in units of mu fn.
+double error(const A22Creep& k, double model, double exact) {
+  return std::abs(model - exact) / (0.3 * k.fn);
+}
+
+}  // namespace
+
+TEST(ManchesterA22Creep, EveryLoadedPatchHasTheModelsAndTheExactSolution) {
+  ASSERT_EQ(cases().size(), 42u);
+  int patches = 0;
+  for (const Case& c : cases()) {
+    EXPECT_GE(c.patches.size(), 1u);
+    for (const A22Creep& k : c.patches) {
+      ++patches;
+      EXPECT_GT(k.fn, 0.0) << label(c, k);
+      EXPECT_TRUE(k.exact.converged) << label(c, k);
+      ASSERT_EQ(k.models.size(), 3u);
+      for (const A22ModelForces& f : k.models) {
+        EXPECT_TRUE(f.found) << label(c, k) << " " << f.model;
+        EXPECT_TRUE(f.settled) << label(c, k) << " " << f.model;
+        for (double v : {f.fx, f.fs, f.mz}) EXPECT_TRUE(std::isfinite(v)) << label(c, k);
+      }
+    }
+  }
+  EXPECT_EQ(patches, 43);  // the gauge corner's jump at 5 mm: tread and corner at once
+}
+
+TEST(ManchesterA22Creep, CentredStateIsMirroredBetweenTheWheels) {
+  // At y = 0 the wheelset is symmetric: the left wheel's patch is the right's mirrored, so the
+  // exact (fx, fs, mz) on the left is (fx, -fs, -mz) on the right; each solved in its own wheel's
+  // contact frame (its y = -eta on the left), within the solver's tolerance.
+  const A22Creep *right = nullptr, *left = nullptr;
+  for (const Case& c : cases())
+    if (c.state.y_mm == 0.0 && c.patches.size() == 1)
+      (c.state.side == WheelSide::kLeft ? left : right) = &c.patches.front();
+  ASSERT_TRUE(right && left);
+  const double scale = 0.3 * right->fn;
+  EXPECT_GT(std::abs(right->exact.fs), 0.05 * scale);
+  EXPECT_NEAR(left->exact.fx, right->exact.fx, 1e-4 * scale);
+  EXPECT_NEAR(left->exact.fs, -right->exact.fs, 1e-4 * scale);
+  EXPECT_NEAR(left->exact.mz, -right->exact.mz, 1e-4 * scale * 1e-2);
+}
+
+TEST(ManchesterA22Creep, ExactHasTheSignsOfContactsPublishedForces) {
+  // A sanity check of the frames and signs (not a target: CONTACT's normal force differs from ours
+  // on the flange, doc/manchester.md): wherever CONTACT's fx or fs exceeds 5 % of its mu FN, our
+  // exact one has its sign.
+  int checked = 0;
+  for (const Case& c : cases())
+    for (const A22Creep& k : c.patches) {
+      if (!k.contact) continue;
+      const double scale = 0.05 * 0.3 * k.contact->fn;
+      if (std::abs(k.contact->fx) > scale) {
+        EXPECT_GT(k.exact.fx * k.contact->fx, 0.0) << label(c, k);
+        ++checked;
+      }
+      if (std::abs(k.contact->fs) > scale) {
+        EXPECT_GT(k.exact.fs * k.contact->fs, 0.0) << label(c, k);
+        ++checked;
+      }
+    }
+  EXPECT_GE(checked, 60);
+}
+
+/// Where WheelsetContact's elliptic-patch models on the patch's equivalent ellipse are known to be
+/// off (doc/manchester.md, "Creep forces"): at y = 0 the merged tread patch (a/b 0.26) spans 16 mm
+/// beside its contact point, and the ellipse, centred on that point, loses the spin's lever; at
+/// 0.5 mm on the right wheel the tread's plateau widens the exact patch to 12 mm beside its point;
+/// on the flange (a/b above 10) the models refuse the patch (zero force).
+bool offTheEllipse(const Case& c, const A22Creep& k) {
+  return c.state.y_mm == 0.0 || (c.state.side == WheelSide::kRight && c.state.y_mm == 0.5) ||
+         k.zone == ContactZone::kFlange;
+}
+
+TEST(ManchesterA22Creep, ModelsWithinFivePercentOfMuFnWhereTheEquivalentEllipseFits) {
+  // nss's steady limit within the 5 % of mu fn on fx and fs, on every patch but those
+  // above; steady and shen-li (classic FastSim, the baselines) within 8 %. Measured on this grid:
+  // nss within 0.7 %, steady and shen-li within 5.5 % (the left wheel at 0.5 mm, in partial slip;
+  // 2.9 % elsewhere). The off cases are counted so that a new one shows.
+  int checked = 0, off = 0;
+  for (const Case& c : cases())
+    for (const A22Creep& k : c.patches) {
+      if (offTheEllipse(c, k)) {
+        ++off;
+        continue;
+      }
+      const A22ModelForces& nss = forces(k, "nss");
+      EXPECT_LE(error(k, nss.fx, k.exact.fx), 0.05) << label(c, k);
+      EXPECT_LE(error(k, nss.fs, k.exact.fs), 0.05) << label(c, k);
+      for (const std::string model : {"steady", "shen-li"}) {
+        const A22ModelForces& f = forces(k, model);
+        EXPECT_LE(error(k, f.fx, k.exact.fx), 0.08) << label(c, k) << " " << model;
+        EXPECT_LE(error(k, f.fs, k.exact.fs), 0.08) << label(c, k) << " " << model;
+      }
+      ++checked;
+    }
+  EXPECT_EQ(off, 11);  // y = 0 on both wheels, 0.5 mm on the right, its eight flange states
+  EXPECT_EQ(checked, 32);
+}
+
+TEST(ManchesterA22Creep, DISABLED_NssSteadyLimitWithinFivePercentOfMuFnOfExactOnEveryCase) {
+  // The target on every loaded patch of every case of both wheels: nss's steady limit
+  // through WheelsetContact within 5 % of mu fn of exact on fx and fs (the spin moment is shown in
+  // doc/manchester.md, not asserted: mu fn has no length). Disabled while WheelsetContact runs the
+  // models on the patch's equivalent ellipse: y = 0 (both wheels), the right wheel at 0.5 mm and
+  // the flange fail there (measured in the commit that adds this test and in doc/manchester.md);
+  // enabled once the models run on the true patch.
+  int checked = 0;
+  for (const Case& c : cases())
+    for (const A22Creep& k : c.patches) {
+      const A22ModelForces& nss = forces(k, "nss");
+      EXPECT_EQ(nss.status, StepStatus::kOk) << label(c, k) << ": " << nss.message;
+      EXPECT_LE(error(k, nss.fx, k.exact.fx), 0.05) << label(c, k);
+      EXPECT_LE(error(k, nss.fs, k.exact.fs), 0.05) << label(c, k);
+      ++checked;
+    }
+  EXPECT_EQ(checked, 43);
+}
