@@ -30,6 +30,7 @@ struct Options {
   double mu = 0.3;
   std::vector<double> lambdas = {1, 1.5, 2, 3, 5, 10, 20, 50, 100};
   bool partial = false;
+  std::string fastsim;  // empty: each model's own variant (calibrated nss, classic baselines)
 };
 
 void addOptions(CLI::App& app, Options* o) {
@@ -43,6 +44,9 @@ void addOptions(CLI::App& app, Options* o) {
   tools::option(app, "--nx", &o->nx, "FastSim mesh nx = ny");
   tools::option(app, "--mu", &o->mu, "friction coefficient");
   tools::option(app, "--lambdas", &o->lambdas, "wavelengths over the equivalent ellipse's a");
+  tools::option(app, "--fastsim", &o->fastsim,
+                "classic or calibrated for every model; empty: each model's own (nss calibrated, "
+                "steady and shen-li classic)");
   tools::flag(app, "--partial", &o->partial,
               "the case's creepages halved as a mean (partial slip), harmonic 10 % of its eta");
 }
@@ -107,6 +111,7 @@ int run(const Options& o) {
           p.model = m;
           p.nx = p.ny = o.nx;
           p.mu = o.mu;
+          if (!o.fastsim.empty()) setParameter(&p, "fastsim", o.fastsim);
           c[m] = row(m, toString(g), runModelHarmonic(patch, scene, p, g));
           if (scene.lambda_over_a < 1.99) continue;
           Worst& w = worst[std::string(m) + " " + toString(g)];
