@@ -33,11 +33,12 @@
 /// a model's first step is (the FastSim models roll dt from rest; exact's first step rolls
 /// nothing). nss thereby carries its transient across steps while a patch stays in its zone. On
 /// the true patch its history is carried from step to step at fixed physical coordinates, x along
-/// the rolling direction and laterally the rail profile's arc length (PatchShape::origin): a
-/// patch that changes shape or moves on the rail keeps the traction of the material still in
-/// contact, zero where the patch newly reaches; one that moves clear of where it was starts from
-/// rest, with a message (status kOk). A patch that jumps to another zone (tread to gauge corner to
-/// flange) is another slot's: it starts from rest, the old slot's history dropped.
+/// the rolling direction and laterally in a frame that follows half the contact point's move on
+/// the rail profile (its arc length, PatchShape::origin; the half measured against exact theory,
+/// doc/true_patch.md): a patch that changes shape or moves keeps the traction of the material
+/// still in contact, zero where it newly reaches; one that moves clear of where it was starts
+/// from rest, with a message (status kOk). A patch that jumps to another zone (tread to gauge
+/// corner to flange) is another slot's: it starts from rest, the old slot's history dropped.
 ///
 /// The model's reference patch (ContactParameters a0, b0, fz0, fz_max) is not used: a and b come
 /// from the normal problem every step, and a slot's model is made when its patch appears with the

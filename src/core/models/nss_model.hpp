@@ -7,10 +7,11 @@
 ///
 /// A step with a shape (StepInput::shape) marches the shape's strips whichever mesh was chosen: the
 /// strips are the patch's own (the normal problem's), nx nodes each. Their history is carried from
-/// step to step at fixed physical coordinates, laterally in a coordinate attached to the rail's
-/// profile (remapAtFixedPoints: a patch that changes shape or moves on the profile keeps the
-/// traction of the material still in contact; where the new patch covers no part of the old one
-/// the history is lost and the step says so). A step without a shape after one with a shape
+/// step to step at fixed physical coordinates, laterally in a frame that follows half the
+/// reference point's move on the rail's profile (remapAtFixedPoints, kCarriedShare in the source:
+/// a patch that changes shape or moves keeps the traction of the material still in contact;
+/// where the new patch covers no part of the old one on the profile the history is lost and the
+/// step says so). A step without a shape after one with a shape
 /// carries the history back onto the ellipse's mesh alike. The buffers are re-sized when the
 /// node count changes (the only steps that allocate).
 ///
