@@ -6,7 +6,7 @@ Redoes the paper's Figs. 1-4 and 8-10 with our exact solver in the place of CONT
   doc/figures/combined{1,2,3}.png force magnitude and angle, combined creepages (Figs. 2-4)
   doc/figures/load_dfx.png        dFx/(mu dFz) against lambda/a0 for each xi (Fig. 8)
   doc/figures/load_xi0.05_l15.png, doc/figures/load_xi0.1_l15.png  Fx and Fz histories (Figs. 9-10)
-  doc/figures/patch_freq.png      fs^ over exact's steady gain against lambda/a on A-2.2's
+  doc/figures/patch_freq.png      fs^ and mz^ over exact's steady gains against lambda/a on A-2.2's
                                   gauge-corner and tread patches (patch_frequency's patch_freq.csv)
 Usage: python3 scripts/plot_figures.py [doc/data] [doc/figures] [FIGURE ...]
 FIGURE: freq, combined, load, patch_freq (all when none is named).
@@ -66,17 +66,19 @@ def freq_figure():
 
 
 def patch_freq_figure():
-    """Amplitude and phase of fs^ / (exact's steady dfs/deta) on the real patches: the models on
-    our strips (the styles of freq_ab1), nss also on the equivalent ellipse and on the exact
+    """Amplitude and phase of fs^ over exact's steady dfs/deta, and the amplitude of mz^ over
+    exact's steady dmz/deta (about the contact point), on the real patches: the models on our
+    strips (the styles of freq_ab1), nss also on the equivalent ellipse and on the exact
     solution's own strips (thin)."""
     data = defaultdict(lambda: defaultdict(list))
     for r in rows("patch_freq.csv"):
         data[r["patch"]][(r["model"], r["geometry"])].append(
-            (float(r["lambda_over_a"]), complex(float(r["fs_re"]), float(r["fs_im"]))))
+            (float(r["lambda_over_a"]), complex(float(r["fs_re"]), float(r["fs_im"])),
+             complex(float(r["mz_re"]), float(r["mz_im"]))))
     thin = {("nss", "ellipse"): ("tab:red", ":", "nss, ellipse"),
             ("nss", "exact_strips"): ("tab:purple", "-", "nss, exact's strips")}
     titles = {"corner_y5": "gauge corner, y = 5 mm", "tread_y0.5": "tread, y = 0.5 mm"}
-    fig, ax = plt.subplots(2, len(data), figsize=(10, 6), sharex=True, squeeze=False)
+    fig, ax = plt.subplots(3, len(data), figsize=(10, 8), sharex=True, squeeze=False)
     for col, (patch, curves) in enumerate(sorted(data.items())):
         for (model, geometry), pts in curves.items():
             if geometry in ("grid", "strips"):
@@ -87,14 +89,16 @@ def patch_freq_figure():
                 lw = 0.8
             else:
                 continue
-            pts.sort()
+            pts.sort(key=lambda p: p[0])
             lam = [p[0] for p in pts]
             ax[0][col].semilogx(lam, [abs(p[1]) for p in pts], color=c, ls=ls, lw=lw, label=name)
             ax[1][col].semilogx(lam, unwrapped_phase([p[1] for p in pts]), color=c, ls=ls, lw=lw)
+            ax[2][col].semilogx(lam, [abs(p[2]) for p in pts], color=c, ls=ls, lw=lw)
         ax[0][col].set_title(titles.get(patch, patch))
-        ax[1][col].set_xlabel("lambda / a (a of the equivalent ellipse)")
+        ax[2][col].set_xlabel("lambda / a (a of the equivalent ellipse)")
     ax[0][0].set_ylabel("|fs^| / exact steady dfs/deta")
-    ax[1][0].set_ylabel("phase [deg]")
+    ax[1][0].set_ylabel("phase of fs^ [deg]")
+    ax[2][0].set_ylabel("|mz^| / exact steady dmz/deta")
     ax[0][0].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(f"{OUT}/patch_freq.png", dpi=80)
