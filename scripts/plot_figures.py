@@ -6,7 +6,10 @@ Redoes the paper's Figs. 1-4 and 8-10 with our exact solver in the place of CONT
   doc/figures/combined{1,2,3}.png force magnitude and angle, combined creepages (Figs. 2-4)
   doc/figures/load_dfx.png        dFx/(mu dFz) against lambda/a0 for each xi (Fig. 8)
   doc/figures/load_xi0.05_l15.png, doc/figures/load_xi0.1_l15.png  Fx and Fz histories (Figs. 9-10)
-Usage: python3 scripts/plot_figures.py [doc/data] [doc]
+  doc/figures/patch_freq.png      fs^ and mz^ over exact's steady gains against lambda/a on A-2.2's
+                                  gauge-corner and tread patches (patch_frequency's patch_freq.csv)
+Usage: python3 scripts/plot_figures.py [doc/data] [doc/figures] [FIGURE ...]
+FIGURE: freq, combined, load, patch_freq (all when none is named).
 """
 import csv
 import math
@@ -60,6 +63,45 @@ def freq_figure():
     ax[0][0].legend()
     fig.tight_layout()
     fig.savefig(f"{OUT}/freq_ab1.png", dpi=90)
+
+
+def patch_freq_figure():
+    """Amplitude and phase of fs^ over exact's steady dfs/deta, and the amplitude of mz^ over
+    exact's steady dmz/deta (about the contact point), on the real patches: the models on our
+    strips (the styles of freq_ab1), nss also on the equivalent ellipse and on the exact
+    solution's own strips (thin)."""
+    data = defaultdict(lambda: defaultdict(list))
+    for r in rows("patch_freq.csv"):
+        data[r["patch"]][(r["model"], r["geometry"])].append(
+            (float(r["lambda_over_a"]), complex(float(r["fs_re"]), float(r["fs_im"])),
+             complex(float(r["mz_re"]), float(r["mz_im"]))))
+    thin = {("nss", "ellipse"): ("tab:red", ":", "nss, ellipse"),
+            ("nss", "exact_strips"): ("tab:purple", "-", "nss, exact's strips")}
+    titles = {"corner_y5": "gauge corner, y = 5 mm", "tread_y0.5": "tread, y = 0.5 mm"}
+    fig, ax = plt.subplots(3, len(data), figsize=(10, 8), sharex=True, squeeze=False)
+    for col, (patch, curves) in enumerate(sorted(data.items())):
+        for (model, geometry), pts in curves.items():
+            if geometry in ("grid", "strips"):
+                c, ls = STYLE[model]
+                lw, name = 1.5, model if model == "exact" else f"{model}, strips"
+            elif (model, geometry) in thin:
+                c, ls, name = thin[(model, geometry)]
+                lw = 0.8
+            else:
+                continue
+            pts.sort(key=lambda p: p[0])
+            lam = [p[0] for p in pts]
+            ax[0][col].semilogx(lam, [abs(p[1]) for p in pts], color=c, ls=ls, lw=lw, label=name)
+            ax[1][col].semilogx(lam, unwrapped_phase([p[1] for p in pts]), color=c, ls=ls, lw=lw)
+            ax[2][col].semilogx(lam, [abs(p[2]) for p in pts], color=c, ls=ls, lw=lw)
+        ax[0][col].set_title(titles.get(patch, patch))
+        ax[2][col].set_xlabel("lambda / a (a of the equivalent ellipse)")
+    ax[0][0].set_ylabel("|fs^| / exact steady dfs/deta")
+    ax[1][0].set_ylabel("phase of fs^ [deg]")
+    ax[2][0].set_ylabel("|mz^| / exact steady dmz/deta")
+    ax[0][0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(f"{OUT}/patch_freq.png", dpi=80)
 
 
 def history(name):
@@ -133,8 +175,14 @@ def load_figures():
 
 
 if __name__ == "__main__":
-    freq_figure()
-    for n in (1, 2, 3):
-        combined_figure(n)
-    load_figures()
+    only = set(sys.argv[3:])
+    if not only or "freq" in only:
+        freq_figure()
+    if not only or "combined" in only:
+        for n in (1, 2, 3):
+            combined_figure(n)
+    if not only or "load" in only:
+        load_figures()
+    if not only or "patch_freq" in only:
+        patch_freq_figure()
     print(f"figures written to {OUT}/")

@@ -9,10 +9,17 @@ filled on a solid line through its meshes, calibrated open on a dashed one. The 
 other point is both cheaper and more accurate) is drawn in grey and its points are printed, so that
 doc/validation.md can be read against them; so are every row, auto against the cheapest fixed
 choice, and the numbers auto's rule reads off the chart (auto_rule), per variant.
+The real-profile cases (speed_accuracy_patches.csv beside the table, when there): A-2.2's
+gauge-corner patch (y = 5 mm) and tread patches (y = 0.5, 0 mm), each FastSim model on the patch as its equivalent ellipse (dotted)
+and on its strips (solid), and the exact solver on coarser grids, drawn in
+<figure>_patches.png (worst error over the harmonic scenes, of the exact peak force, and over
+the held creepages, of mu Fn) and
+printed per model, mesh, variant and geometry.
 Usage: python3 scripts/plot_speed_accuracy.py [doc/data/speed_accuracy.csv] [doc/figures/speed_accuracy.png]
 """
 import csv
 import math
+import os
 import sys
 
 import matplotlib
@@ -207,6 +214,85 @@ def auto_rule(scenes):
                       f"at most {own[0]:.4f} ({own[1]})")
 
 
+PATCHES = (("corner_y5", "gauge corner, y = 5 mm (Hertz)"),
+           ("tread_y0.5", "tread, y = 0.5 mm (our patch narrower than exact's)"),
+           ("tread_y0", "tread, y = 0 mm (a/b 0.26)"))
+
+
+def patch_rows(path):
+    """Per model, mesh, variant, geometry and patch: worst error over the harmonic scenes (of the
+    exact peak force), the held (steady) scene's (of mu fn), and the mean cost per step."""
+    groups = {}
+    with open(path) as f:
+        for r in csv.DictReader(f):
+            patch = r["scene"].split("_held")[0].split("_linear")[0].split("_partial")[0]
+            key = (r["model"], r["mesh"], r["fastsim"], r["nx"], r["ny"], r["tolerance"],
+                   r["geometry"], patch)
+            groups.setdefault(key, []).append(r)
+    out = []
+    for key, rs in groups.items():
+        held = [float(r["error"]) for r in rs if r["scene"].endswith("_held")]
+        wave = [float(r["error"]) for r in rs if not r["scene"].endswith("_held")]
+        out.append({"model": key[0], "mesh": key[1], "fastsim": key[2], "nx": key[3],
+                    "ny": key[4], "tolerance": key[5], "geometry": key[6], "patch": key[7],
+                    "worst": max(wave, default=0.0), "held": max(held, default=0.0),
+                    "ns": sum(float(r["ns_per_step"]) for r in rs) / len(rs)})
+    return out
+
+
+def patches_figure(path, out):
+    """Per patch (columns): the worst harmonic error and the held one against the cost, the
+    default variant (calibrated) drawn, both printed; nss fixed printed only (as adaptive)."""
+    table = patch_rows(path)
+    print("real-profile cases (A-2.2 right wheel): per patch, worst over the harmonic scenes in % "
+          "of the exact peak, held in % of mu fn, mean ns/step")
+    for r in sorted(table, key=lambda r: (r["patch"], r["model"], r["mesh"], r["geometry"],
+                                           r["fastsim"], int(r["nx"]), r["tolerance"])):
+        if not drawn(r):
+            continue
+        at = f"@{float(r['tolerance']):g}" if r["model"] == "auto" else ""
+        print(f"  {r['patch']:10s} {series(r):26s} {r['geometry']:8s} {r['nx']:>2}x{r['ny']:<2}"
+              f"{at:6s} worst {100 * r['worst']:7.2f} held {100 * r['held']:6.2f} "
+              f"{r['ns']:9.0f} ns")
+    shown = [r for r in table if drawn(r) and r["fastsim"] in ("calibrated", "-")
+             and label(r) != "nss fixed"]
+    fig, ax = plt.subplots(2, len(PATCHES), figsize=(15, 8.5), squeeze=False)
+    for col, (patch, title) in enumerate(PATCHES):
+        for row, column, unit in ((0, "worst", "harmonic eta, worst: % of exact peak"),
+                                  (1, "held", "creepages held: % of mu Fn")):
+            axis = ax[row][col]
+            groups = {}
+            for r in shown:
+                if r["patch"] == patch:
+                    groups.setdefault((label(r), r["geometry"]), []).append(r)
+            for (name, geometry), rs in sorted(groups.items()):
+                rs = sorted(rs, key=lambda r: r["ns"])
+                axis.plot([r["ns"] for r in rs], [100 * r[column] for r in rs],
+                          ls=":" if geometry == "ellipse" else "-", lw=1,
+                          marker=MARKER.get(name, "P"), color=COLOUR.get(name, "grey"),
+                          markerfacecolor="white" if geometry == "ellipse" else None,
+                          label=f"{name}, {geometry}")
+                for r in rs:
+                    axis.annotate(tag(r), (r["ns"], 100 * r[column]), textcoords="offset points",
+                                  xytext=(3, 3), fontsize=6)
+            axis.set_xscale("log")
+            axis.set_yscale("log")
+            axis.grid(True, which="both", alpha=0.3)
+            axis.set_ylabel(unit)
+            if row == 0:
+                axis.set_title(title, fontsize=10)
+            else:
+                axis.set_xlabel("cost per step [ns] (thread CPU time)")
+    handles, names = ax[0][0].get_legend_handles_labels()
+    fig.legend(handles, names, fontsize=8, loc="lower center", ncol=6)
+    fig.suptitle("A-2.2, right wheel: the patch as its equivalent ellipse (open, dotted) or its "
+                 "strips (filled, solid), calibrated FastSim; exact on coarser grids; reference "
+                 "exact 40x30")
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    fig.savefig(out, dpi=70)
+    print(f"written {out}")
+
+
 def main():
     with open(TABLE) as f:
         table = list(csv.DictReader(f))
@@ -230,6 +316,9 @@ def main():
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     fig.savefig(OUT, dpi=90)
     print(f"written {OUT}")
+    patches = TABLE.replace("speed_accuracy.csv", "speed_accuracy_patches.csv")
+    if os.path.exists(patches):
+        patches_figure(patches, OUT.replace(".png", "_patches.png"))
 
 
 if __name__ == "__main__":

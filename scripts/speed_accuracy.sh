@@ -8,7 +8,11 @@
 # (doc/performance.md#model-auto); the printout goes to doc/data/speed_accuracy_reading.txt.
 # The exact reference histories are cached in doc/data/speed_accuracy_reference.csv (15 min
 # here on a busy machine; --refresh forces it, and is needed after a change to the exact solver or
-# the paper scenes). Needs a Release build of speed_accuracy.
+# the paper scenes). The real-profile cases (A-2.2's gauge corner and two tread patches, the patch
+# as its equivalent ellipse and as its strips, and exact at coarser grids, against exact 40x30)
+# add about a minute and write doc/data/speed_accuracy_patches.csv and
+# doc/figures/speed_accuracy_patches.png; --parts paper or --parts patches runs one part alone.
+# Needs a Release build of speed_accuracy.
 # usage: scripts/speed_accuracy.sh [speed_accuracy options, e.g. --models nss:fixed,auto:adaptive]
 set -eo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -14,6 +14,11 @@
 // cached in <out>/speed_accuracy_reference.csv, reused when its key line matches, rebuilt on
 // --refresh.
 // Writes <out>/speed_accuracy.csv (one row per model and mesh) and speed_accuracy_scenes.csv.
+// Real-profile cases (--parts patches or all): Manchester A-2.2's right-wheel gauge corner
+// (y = 5 mm) and tread (y = 0.5 mm) patches (validation/patch_harmonic.hpp), each model on the
+// patch as its equivalent ellipse with Hertz's pressure and on its strips, and the exact solver
+// at coarser grids, against the exact transient solver at --patch-grid; written to
+// <out>/speed_accuracy_patches.csv, one row per model, mesh, geometry and scene.
 // Options: speed_accuracy --help.
 // LIST: NAME[:MESH[:FASTSIM]],... (mesh fixed when left out), by default
 // steady,shen-li,nss:fixed,nss:adaptive,exact,auto:adaptive; a model this build lacks is skipped,
@@ -25,6 +30,7 @@
 // the exact reference keeps the scene's own parameters.
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
@@ -39,6 +45,7 @@
 #include "core/models/auto_model.hpp"
 #include "tool_options.hpp"
 #include "validation/harmonic_scenes.hpp"
+#include "validation/patch_harmonic.hpp"
 #include "wheel_rail_contact/exact/nonsteady_coefficients.hpp"
 
 using namespace wheel_rail_contact;
@@ -58,6 +65,10 @@ struct Options {
   std::vector<std::string> sets;                               // --set NAME=VALUE, as given
   std::vector<std::pair<std::string, std::string>> overrides;  // the same, split
   bool refresh = false;
+  std::string parts = "all";  // all | paper (the elliptic scenes) | patches (real profiles)
+  std::string cases = "test/data/profiles/a22_cases.csv";
+  int patchGrid = 40;                           // exact reference grid mx (my = 3/4 mx)
+  std::vector<int> patchExactGrids = {12, 20};  // the exact model's points on the chart
 };
 
 struct Scene {
@@ -307,6 +318,186 @@ std::vector<Variant> variants(const Options& o) {
   return out;
 }
 
+// ---- real-profile cases -------------------------------------------------------------------------
+
+constexpr double kPatchMu = 0.3;  // the benchmark's friction
+
+struct PatchCase {
+  std::string name;  // <patch>_<scene>
+  const RealPatch* patch;
+  PatchHarmonicScene scene;
+  bool held = false;  // creepages held: scored over mu fn (exact) instead of the peak force
+};
+
+// The scenes of one patch at its exact grid's step: the case's creepages held (partial slip, up to
+// saturation on the corner; scored once steady), a small harmonic eta alone at lambda/a 5 and 20
+// (linear), and eta harmonic by 10 % about the case's creepages halved at lambda/a 5.
+std::vector<PatchCase> patchCases(const RealPatch* patch, const std::string& name) {
+  const Creepages& c = patch->creepages;
+  const Creepages half{0.5 * c.xi, 0.5 * c.eta, 0.5 * c.phi};
+  std::vector<PatchCase> out;
+  PatchHarmonicScene held = patchHarmonicScene(*patch, 2.0, kPatchMu, 0.0, c);
+  for (Creepages& x : held.creepages) x = c;
+  out.push_back({name + "_held", patch, held, true});
+  for (double l : {5.0, 20.0}) {
+    char tag[32];
+    std::snprintf(tag, sizeof tag, "_linear_l%g", l);
+    out.push_back({name + tag, patch, patchHarmonicScene(*patch, l, kPatchMu)});
+  }
+  out.push_back({name + "_partial_l5", patch,
+                 patchHarmonicScene(*patch, 5.0, kPatchMu, 0.1 * std::abs(half.eta), half)});
+  return out;
+}
+
+// The real-profile scenes on an exact grid mx x 3/4 mx: the gauge corner at 5 mm (Hertz: ellipse
+// and strips alike), the tread at 0.5 mm (non-Hertzian; our patch narrower than the exact one,
+// doc/true_patch.md) and the centred tread at 0 mm (a/b 0.26: where the strips matter most).
+std::vector<PatchCase> patchScenes(const Options& o, int mx,
+                                   std::vector<std::unique_ptr<RealPatch>>* patches) {
+  const std::pair<double, ContactZone> where[] = {
+      {5.0, ContactZone::kGaugeCorner}, {0.5, ContactZone::kTread}, {0.0, ContactZone::kTread}};
+  std::vector<PatchCase> out;
+  for (const auto& w : where) {
+    patches->push_back(
+        std::make_unique<RealPatch>(a22RightPatch(o.cases, w.first, w.second, mx, mx * 3 / 4)));
+    for (PatchCase& c : patchCases(patches->back().get(), patches->back()->name)) out.push_back(c);
+  }
+  return out;
+}
+
+// A force history's mean and fundamental (at the scene's frequency) over its last period: the
+// measure that compares runs at different steps (the exact solver at a coarser grid rolls its own
+// element length). Error: the RMS of their difference, sqrt(|d mean|^2 + |d fundamental|^2 / 2),
+// over the reference's peak |(fx, fs)| in its last period, or, with the creepages held, over
+// mu fn (the benchmark's measure: a held force may be small against the patch's capacity).
+struct Summary {
+  std::complex<double> mx, ms, fx, fs;  // means and fundamentals of fx, fs
+  double peak = 0.0;
+};
+
+Summary summarize(const PatchHarmonicScene& s, const std::vector<StepOutput>& f) {
+  const int n = s.period_steps, first = static_cast<int>(f.size()) - n;
+  Summary r;
+  for (int k = 0; k < n; ++k) {
+    const std::complex<double> w = std::polar(2.0 / n, -2.0 * M_PI * k / n);
+    const StepOutput& o = f[first + k];
+    r.mx += o.fx / n;
+    r.ms += o.fy / n;
+    r.fx += o.fx * w;
+    r.fs += o.fy * w;
+    r.peak = std::max(r.peak, std::hypot(o.fx, o.fy));
+  }
+  return r;
+}
+
+double summaryError(const Summary& m, const Summary& ref, const PatchCase& c) {
+  const double d2 = std::norm(m.mx - ref.mx) + std::norm(m.ms - ref.ms) +
+                    0.5 * (std::norm(m.fx - ref.fx) + std::norm(m.fs - ref.fs));
+  const double norm = c.held ? kPatchMu * c.patch->exact.fn : ref.peak;
+  return std::sqrt(d2) / std::max(norm, 1e-300);
+}
+
+// One pass of a model over a scene's steps from a fresh state; CPU ns.
+double timedPatchPass(ContactModel& model, const RealPatch& patch, const PatchHarmonicScene& s,
+                      PatchGeometry g, std::vector<StepOutput>* out) {
+  static volatile double sink = 0.0;
+  model.reset();
+  StepInput in;
+  in.V = 1.0;
+  in.dt = s.dq;
+  in.fz = patch.normal.fn;
+  in.a = patch.normal.a;
+  in.b = patch.normal.b;
+  in.shape = g == PatchGeometry::kStrips ? &patch.shape : nullptr;
+  const double t0 = threadCpuNs();
+  for (const Creepages& c : s.creepages) {
+    in.xi = c.xi;
+    in.eta = c.eta;
+    in.phi = c.phi;
+    const StepOutput o = model.step(in);
+    if (out) out->push_back(o);
+    sink = sink + o.fx;
+  }
+  return threadCpuNs() - t0;
+}
+
+ContactParameters patchParams(const Options& o, const Variant& v, const RealPatch& patch) {
+  PaperScene base;
+  base.params.G = patch.G;
+  base.params.nu = patch.nu;
+  base.params.mu = kPatchMu;
+  const NormalPatch& n = patch.normal;
+  base.params.b0 = n.b;
+  base.params.a0 = std::min(std::max(n.a, kKalkerMinAOverB * n.b), kKalkerMaxAOverB * n.b);
+  base.params.fz0 = n.fn;
+  base.params.fz_max = 0.0;
+  return paramsFor(o, v, base);
+}
+
+void patchPart(const Options& o, const std::vector<Variant>& vs) {
+  std::cerr << "real-profile cases: A-2.2 patches, exact reference " << o.patchGrid << "x"
+            << o.patchGrid * 3 / 4 << "\n";
+  std::vector<std::unique_ptr<RealPatch>> patches;
+  std::vector<PatchCase> cases = patchScenes(o, o.patchGrid, &patches);
+  std::vector<Summary> refs;
+  for (const PatchCase& c : cases) {
+    refs.push_back(summarize(c.scene, runExactHarmonic(*c.patch, c.scene, kPatchMu)));
+    std::cerr << "exact reference " << c.name << " done\n";
+  }
+  std::ofstream out = tools::writeFile(o.out + "/speed_accuracy_patches.csv");
+  out << "model,mesh,fastsim,nx,ny,tolerance,geometry,scene,error,ns_per_step\n";
+  auto write = [&](const Variant& v, int ny, const char* geometry, const PatchCase& c, double err,
+                   double ns) {
+    char line[256];
+    std::snprintf(line, sizeof line, "%s,%s,%s,%d,%d,%g,%s,%s,%.5f,%.4g\n", v.model.c_str(),
+                  v.mesh.c_str(), v.fastsim.c_str(), v.n, ny, v.tolerance, geometry, c.name.c_str(),
+                  err, ns);
+    out << line;
+  };
+  // The exact solver on coarser grids, each on its own grid's step: one timed pass.
+  for (int mx : o.patchExactGrids) {
+    std::vector<std::unique_ptr<RealPatch>> own_patches;
+    const std::vector<PatchCase> own = patchScenes(o, mx, &own_patches);
+    for (size_t k = 0; k < own.size(); ++k) {
+      const double t0 = threadCpuNs();
+      const std::vector<StepOutput> f = runExactHarmonic(*own[k].patch, own[k].scene, kPatchMu);
+      const double ns = (threadCpuNs() - t0) / f.size();
+      write({"exact", "grid", kNoFastSim, mx}, mx * 3 / 4, "grid", own[k],
+            summaryError(summarize(own[k].scene, f), refs[k], cases[k]), ns);
+    }
+    std::cerr << "exact " << mx << "x" << mx * 3 / 4 << " done\n";
+  }
+  for (const Variant& v : vs) {
+    if (v.model == "exact") continue;
+    for (const PatchGeometry g : {PatchGeometry::kEllipse, PatchGeometry::kStrips}) {
+      for (size_t k = 0; k < cases.size(); ++k) {
+        const PatchCase& c = cases[k];
+        std::unique_ptr<ContactModel> model;
+        try {
+          model = makeContactModel(patchParams(o, v, *c.patch));
+        } catch (const std::invalid_argument& e) {
+          std::cerr << "skipping " << v.model << " on " << c.name << ": " << e.what() << "\n";
+          continue;
+        }
+        std::vector<StepOutput> f;
+        timedPatchPass(*model, *c.patch, c.scene, g, &f);
+        double best = 1e300, total = 0.0;
+        for (int r = 0; r < o.repeats || (total < 2e7 && r < 200); ++r) {
+          const double ns = timedPatchPass(*model, *c.patch, c.scene, g, nullptr);
+          best = std::min(best, ns);
+          total += ns;
+        }
+        Variant shown = v;
+        if (const auto* a = dynamic_cast<const AutoModel*>(model.get())) shown.n = a->meshSize();
+        write(shown, shown.n, toString(g), c, summaryError(summarize(c.scene, f), refs[k], c),
+              best / c.scene.creepages.size());
+      }
+    }
+    std::cerr << "patches: " << v.model << ":" << v.mesh << ":" << v.fastsim << " " << v.n
+              << " done\n";
+  }
+}
+
 // ---- output -------------------------------------------------------------------------------------
 
 double worstOf(const Result& r, const std::vector<Scene>& scenes, const std::string& family) {
@@ -383,6 +574,15 @@ void addOptions(CLI::App& app, Options* o) {
           },
           "NAME=VALUE"));
   tools::flag(app, "--refresh", &o->refresh, "recompute the cached exact reference");
+  tools::option(app, "--parts", &o->parts,
+                "all, paper (the elliptic scenes: speed_accuracy.csv) or patches (the real-profile "
+                "cases: speed_accuracy_patches.csv)")
+      ->check(CLI::IsMember({"all", "paper", "patches"}));
+  tools::option(app, "--cases", &o->cases, "A-2.2's wheelset states (a22_cases.csv)");
+  tools::option(app, "--patch-grid", &o->patchGrid,
+                "real-profile cases: exact reference grid mx (my = 3/4 mx)");
+  tools::option(app, "--patch-exact-grids", &o->patchExactGrids,
+                "real-profile cases: the exact model's grids mx (my = 3/4 mx)");
   app.callback([o] {
     o->repeats = std::max(1, o->repeats);
     o->rounds = std::max(1, o->rounds);
@@ -393,6 +593,8 @@ void addOptions(CLI::App& app, Options* o) {
 
 int run(const Options& o) {
   tools::requireFolder(o.out);
+  if (o.parts != "paper") patchPart(o, variants(o));
+  if (o.parts == "patches") return 0;
   std::vector<Scene> paper = paperScenes(o);
   if (o.refresh || !readCache(o, &paper)) {
     std::cerr << "computing the exact reference (grid " << o.grid << ", load grid " << o.loadGrid
