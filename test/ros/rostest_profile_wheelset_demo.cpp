@@ -2,9 +2,9 @@
 // profile_wheelset_demo.test). Runs profile_wheelset_sim (a child process, the binary beside
 // contact_node) with the launch file's parameters, steady and nss, and checks the figures it
 // prints:
-// - hunting at 40 m/s from y0 = 3 mm: a sustained oscillation (amplitude 0.3-2 mm; 0.8 mm
-//   measured) whose wavelength is within 5 % of Klingel's with the equivalent conicity of S1002 on
-//   UIC60 1:40 at that amplitude (0.8 % measured), steady and nss within 3 % of each other;
+// - hunting at 58 m/s from y0 = 3 mm: a sustained oscillation (amplitude 2.5-4 mm; 3.2 mm
+//   measured) whose wavelength is within 8 % of Klingel's with the equivalent conicity of S1002 on
+//   UIC60 1:40 at that amplitude (3-4 % measured), steady and nss within 3 % of each other;
 // - a lateral impact of 80 kN for 50 ms: flange contact reached (steps with a flange patch), two
 //   patches on one wheel at some step, the largest |y| between 6 and 9 mm (the flange holds).
 // A bad parameter stops the sim at start-up naming it.
@@ -70,9 +70,9 @@ TEST(ProfileWheelsetDemo, HuntingAtKlingelsWavelengthAndAnImpactIntoFlangeContac
   ASSERT_EQ(r.size(), 4u) << output;
   for (const std::string model : {"steady", "nss"}) {
     const auto& h = r.at(model + "/hunting");
-    EXPECT_GT(number(h, "amplitude"), 0.3e-3) << model;
-    EXPECT_LT(number(h, "amplitude"), 2e-3) << model;
-    EXPECT_NEAR(number(h, "wavelength") / number(h, "klingel_wavelength"), 1.0, 0.05) << model;
+    EXPECT_GT(number(h, "amplitude"), 2.5e-3) << model;
+    EXPECT_LT(number(h, "amplitude"), 4e-3) << model;
+    EXPECT_NEAR(number(h, "wavelength") / number(h, "klingel_wavelength"), 1.0, 0.08) << model;
     const auto& i = r.at(model + "/impact");
     EXPECT_GT(number(i, "flange_steps"), 0.0) << model;
     EXPECT_GT(number(i, "two_point_steps"), 0.0) << model;

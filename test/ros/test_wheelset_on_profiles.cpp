@@ -113,29 +113,72 @@ TEST(WheelsetOnProfiles, RigidKinematicsAreSymmetricAndBothWheelsTouch) {
 }
 
 TEST(WheelsetOnProfiles, HuntingRunsAtKlingelsWavelengthForTheConicityAtItsAmplitude) {
-  // From y0 = 3 mm at 40 m/s the wheelset settles into a sustained oscillation (the profiles'
-  // conicity is highest at small amplitude). Its wavelength against Klingel's 2 pi sqrt(r0 l0 /
-  // lambda_e(A)) at its amplitude A: the suspension and inertia move it by about 1 % (measured
-  // 0.8 %); tolerance 5 %. Steady and nss agree within 3 % (the wavelength is some 500 patch
-  // lengths).
+  // From y0 = 3 mm at 58 m/s the wheelset settles into a sustained oscillation of about 3.2 mm
+  // (EN 15302's reference amplitude), where the profiles' equivalent conicity is about 0.18. Its
+  // wavelength against Klingel's 2 pi sqrt(r0 l0 / lambda_e(A)) at its amplitude A: the suspension,
+  // inertia and the true patch's effective rolling radii move it by a few per cent (measured
+  // +3.3 % steady, +4.0 % nss); tolerance 8 %. Steady and nss agree within 3 % (measured 0.1 %).
   double wavelength[2] = {0.0, 0.0};
   int i = 0;
   for (const std::string model : {"steady", "nss"}) {
-    const LoopRun r = run(model, 40.0, 1.5, 3e-3);
+    const LoopRun r = run(model, 58.0, 1.5, 3e-3);
     ASSERT_EQ(r.stopped, "") << model;
     for (const auto& st : r.steps) ASSERT_TRUE(allFinite(st)) << model << " t " << st.t;
     const demo::CycleFit f = demo::fitCycle(r.t, r.y, 0.6);
     ASSERT_TRUE(f.ok) << model << ": " << f.why;
-    EXPECT_GT(f.amplitude, 0.3e-3) << model;  // sustained, not decayed
-    EXPECT_LT(f.amplitude, 2e-3) << model;
-    wavelength[i] = 40.0 / f.frequency;
+    EXPECT_GT(f.amplitude, 2.5e-3) << model;  // sustained, not decayed (measured 3.15-3.26 mm)
+    EXPECT_LT(f.amplitude, 4e-3) << model;    // and short of the flange (6 mm)
+    wavelength[i] = 58.0 / f.frequency;
     const double klingel = kinematics()->klingelWavelength(f.amplitude);
-    EXPECT_NEAR(wavelength[i] / klingel, 1.0, 0.05)
+    EXPECT_NEAR(wavelength[i] / klingel, 1.0, 0.08)
         << model << ": amplitude " << f.amplitude << " m, lambda_e "
         << kinematics()->equivalentConicity(f.amplitude);
     ++i;
   }
   EXPECT_NEAR(wavelength[1] / wavelength[0], 1.0, 0.03);
+}
+
+TEST(WheelsetOnProfiles, At40MetresPerSecondTheHuntingDiesOffCentre) {
+  // At 40 m/s the oscillation from y0 = 3 mm does not last: it decays onto a rest about
+  // |y| = 0.28 mm off centre (measured -0.29 mm, +-0.08 mm), past the contact's 11 mm jump across
+  // the tread at |y| = 0.2 mm, where the yaw moment at zero yaw changes sign (the next test):
+  // after 1 s |y| stays below 0.5 mm.
+  const LoopRun r = run("steady", 40.0, 1.5, 3e-3);
+  ASSERT_EQ(r.stopped, "");
+  double maxAbs = 0.0;
+  for (size_t k = 0; k < r.t.size(); ++k)
+    if (r.t[k] >= 1.0) maxAbs = std::max(maxAbs, std::abs(r.y[k]));
+  EXPECT_LT(maxAbs, 0.5e-3);
+}
+
+TEST(WheelsetOnProfiles, TheKinematicPitchRateIsNotTheTruePatchsFreeRolling) {
+  // The demo's wheelset rolls at the pitch rate 2 V / (r_L + r_R) of the rigid kinematics'
+  // closest-point radii. The true patch's forces do not roll freely there: at zero yaw and
+  // lateral velocity the longitudinal forces add up to several kN (the merged two-lump patch's
+  // pressure sits away from its reference point), of opposite sign before and after the contact's
+  // jump at |y| = 0.2 mm, and just past the jump the yaw moment has the sign that turns the
+  // wheelset away from the centre although the left wheel's radius is the larger. Said here so
+  // that a free-rolling pitch (doc/wheelset_demo.md, Limits) shows up as this test failing.
+  ContactParameters cp;
+  cp.model = "steady";
+  WheelsetContactOptions o;
+  o.contact_table = table();
+  demo::ProfileWheelset ws(demo::ProfileWheelsetParameters{}, WheelsetTrackData{}, kinematics(), cp,
+                           o);
+  auto at = [&](double y) {
+    demo::WheelsetState s;
+    s.y = y;
+    ws.reset(s);
+    demo::ProfileStep st;
+    std::string why;
+    EXPECT_TRUE(ws.step(40.0, 1e-3, {}, {}, 0.0, &st, &why)) << why;
+    return st;
+  };
+  const demo::ProfileStep centred = at(0.0), past = at(0.3e-3), jump = at(0.22e-3);
+  EXPECT_GT(centred.left.force.x() + centred.right.force.x(), 3e3);  // measured 6.7 kN
+  EXPECT_LT(past.left.force.x() + past.right.force.x(), -8e3);       // measured -11.8 kN
+  EXPECT_GT(kinematics()->radiusDifference(0.22e-3), 0.0);
+  EXPECT_GT(jump.mz, 0.0);  // measured +1.3 kN m; -1.0 kN m at 0.1 mm before the jump
 }
 
 TEST(WheelsetOnProfiles, AnImpactBringsTheFlangeIntoContactAndTheWheelsetBack) {
