@@ -69,11 +69,19 @@ class Answers:
         with self.lock:
             self.lock.wait_for(lambda: stamp_ns in self.received, timeout=timeout)
 
-    def collect(self, n, timeout=2.0):
-        """A copy of the answers once `n` are in or `timeout` s have passed."""
+    def match(self, sent, timeout=2.0):
+        """The answers to `sent` (stamp [ns] -> perf_counter just before sending) once all are in
+        or `timeout` s have passed: the round trips [s] and the answers of the answered ones, and
+        how many were lost."""
         with self.lock:
-            self.lock.wait_for(lambda: len(self.received) >= n, timeout=timeout)
-            return dict(self.received)
+            self.lock.wait_for(lambda: len(self.received) >= len(sent), timeout=timeout)
+            got = dict(self.received)
+        trips, answers = [], []
+        for s, t in sent.items():
+            if s in got:
+                trips.append(got[s][0] - t)
+                answers.append(got[s][1])
+        return trips, answers, len(sent) - len(trips)
 
 
 class NodeLink:

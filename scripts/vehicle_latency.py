@@ -122,13 +122,8 @@ class Client:
                 self.answers.wait_for(stamp.to_nsec(), timeout=1.0)
         lost = 0
         if path == "topic":
-            got = self.answers.collect(n)
-            for s, t in sent.items():
-                if s not in got:
-                    lost += 1
-                    continue
-                trips.append(got[s][0] - t)
-                state = got[s][1]
+            trips, answers, lost = self.answers.match(sent)
+            for state in answers:
                 bad += sum(1 for c in state.contacts if c.status != 0)
                 bad += abs(len(state.contacts) - len(self.names))
         return trips, lost, bad, late, time.perf_counter() - start

@@ -88,13 +88,8 @@ class Client:
         wall = time.perf_counter() - start
         lost = 0
         if path == "topic":
-            got = self.answers.collect(n)
-            for s, t in sent.items():
-                if s not in got:
-                    lost += 1
-                    continue
-                trips.append(got[s][0] - t)
-                bad += self.bad(got[s][1])
+            trips, answers, lost = self.answers.match(sent)
+            bad += sum(self.bad(forces) for forces in answers)
         return trips, lost, bad, late, wall
 
 
