@@ -107,13 +107,34 @@ void LostInputs::see(const std::string& publisher, uint32_t seq, const std::stri
 void NodeDiagnostics::start(ros::NodeHandle& nh, const ros::NodeHandle& pnh, double period,
                             std::mutex* mutex,
                             const std::function<void(diagnostic_updater::Updater&)>& addTasks) {
-  updater = std::make_unique<diagnostic_updater::Updater>(nh, pnh);
-  updater->setHardwareID("wheel_rail_contact" + nh.getNamespace());
-  addTasks(*updater);
-  timer = nh.createWallTimer(ros::WallDuration(period), [this, mutex](const ros::WallTimerEvent&) {
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh, pnh);
+  updater_->setHardwareID("wheel_rail_contact" + nh.getNamespace());
+  addTasks(*updater_);
+  lastTime_ = ros::WallTime::now();
+  timer_ = nh.createWallTimer(ros::WallDuration(period), [this, mutex](const ros::WallTimerEvent&) {
     std::lock_guard<std::mutex> lock(*mutex);
-    updater->force_update();
+    updater_->force_update();
   });
+}
+
+double NodeDiagnostics::summarize(diagnostic_updater::DiagnosticStatusWrapper& stat, uint64_t ticks,
+                                  uint64_t unknown, uint64_t lost, const std::string& topic,
+                                  const std::string& items) {
+  const ros::WallTime now = ros::WallTime::now();
+  const double span = (now - lastTime_).toSec();
+  const double rate = span > 0.0 ? static_cast<double>(ticks - lastTicks_) / span : 0.0;
+  if (lost > lastLost_)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                 topic + " messages lost before the node: raise queue_size");
+  else if (unknown > lastUnknown_)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "inputs name unknown " + items);
+  else
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  lastTicks_ = ticks;
+  lastUnknown_ = unknown;
+  lastLost_ = lost;
+  lastTime_ = now;
+  return rate;
 }
 
 }  // namespace wheel_rail_contact

@@ -56,17 +56,29 @@ class LostInputs {
   uint64_t lost_ = 0;
 };
 
-/// The diagnostic updater and the wall timer that drives it (diagnostics keep coming while sim
-/// time is paused).
-struct NodeDiagnostics {
-  std::unique_ptr<diagnostic_updater::Updater> updater;
-  ros::WallTimer timer;
-
+/// The diagnostic updater, the wall timer that drives it (diagnostics keep coming while sim time
+/// is paused) and the node-level report's bookkeeping since the last report.
+class NodeDiagnostics {
+ public:
   /// Makes the updater (its constructor reads ~diagnostic_period and throws on a value
   /// ros::Duration cannot hold, which readDiagnosticPeriod rules out), lets `addTasks` add the
   /// node's tasks, then starts the timer every `period` s under `mutex`.
   void start(ros::NodeHandle& nh, const ros::NodeHandle& pnh, double period, std::mutex* mutex,
              const std::function<void(diagnostic_updater::Updater&)>& addTasks);
+
+  /// The node-level report's summary: WARN if inputs were lost before the node (`lost`, on
+  /// `topic`) or entries named unknown `items` (`unknown`) since the last report, else OK. Returns
+  /// the tick rate since the last report [Hz] (`ticks` counted since the start); the next report
+  /// counts from now.
+  double summarize(diagnostic_updater::DiagnosticStatusWrapper& stat, uint64_t ticks,
+                   uint64_t unknown, uint64_t lost, const std::string& topic,
+                   const std::string& items);
+
+ private:
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer timer_;
+  ros::WallTime lastTime_;
+  uint64_t lastTicks_ = 0, lastUnknown_ = 0, lastLost_ = 0;
 };
 
 }  // namespace wheel_rail_contact

@@ -125,7 +125,6 @@ void VehicleNode::start() {
   inputSub_ = nh_.subscribe("vehicle_input", queueSize_, &VehicleNode::inputCallback, this,
                             ros::TransportHints().tcpNoDelay());
 
-  lastDiagTime_ = ros::WallTime::now();
   diagnostics_.start(nh_, pnh_, diagnosticPeriod_, &mutex_, [this](diagnostic_updater::Updater& u) {
     u.add("vehicle " + nh_.getNamespace(), this, &VehicleNode::diagnoseVehicle);
     for (size_t i = 0; i < vehicle_->size(); ++i)
@@ -228,25 +227,13 @@ void VehicleNode::report(const VehicleContactResult& r, const std::string& name)
 
 void VehicleNode::diagnoseVehicle(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   const VehicleCounters& c = vehicle_->counters();
-  const ros::WallTime now = ros::WallTime::now();
-  const double span = (now - lastDiagTime_).toSec();
-  const double rate = span > 0.0 ? static_cast<double>(c.ticks - lastTicks_) / span : 0.0;
-  if (lostInputs_.count() > lastLost_)
-    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
-                 "vehicle_input messages lost before the node: raise queue_size");
-  else if (c.unknownNames > lastUnknown_)
-    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "inputs name unknown contacts");
-  else
-    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  const double rate = diagnostics_.summarize(stat, c.ticks, c.unknownNames, lostInputs_.count(),
+                                             "vehicle_input", "contacts");
   stat.add("contacts", vehicle_->size());
   stat.addf("tick rate [Hz]", "%.1f", rate);
   stat.add("ticks", c.ticks);
   stat.add("entries with an unknown contact name", c.unknownNames);
   stat.add("vehicle_input lost before the node (queue_size)", lostInputs_.count());
-  lastTicks_ = c.ticks;
-  lastUnknown_ = c.unknownNames;
-  lastLost_ = lostInputs_.count();
-  lastDiagTime_ = now;
 }
 
 void VehicleNode::diagnoseContact(size_t i, diagnostic_updater::DiagnosticStatusWrapper& stat) {

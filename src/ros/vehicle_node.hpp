@@ -56,12 +56,9 @@ class VehicleNode {
   ros::Publisher statePub_;
   ros::ServiceServer stepSrv_, resetSrv_;
   NodeDiagnostics diagnostics_;  // started in start()
-  ros::WallTime lastDiagTime_;
-  uint64_t lastTicks_ = 0, lastUnknown_ = 0;
   std::vector<StepperCounters> lastStepper_;
   std::vector<VehicleContactCounters> lastVehicle_;
   LostInputs lostInputs_;
-  uint64_t lastLost_ = 0;
 };
 
 }  // namespace wheel_rail_contact

@@ -203,7 +203,6 @@ void WheelsetNode::start() {
   inputSub_ = nh_.subscribe("wheelset_input", queueSize_, &WheelsetNode::inputCallback, this,
                             ros::TransportHints().tcpNoDelay());
 
-  lastDiagTime_ = ros::WallTime::now();
   diagnostics_.start(nh_, pnh_, diagnosticPeriod_, &mutex_, [this](diagnostic_updater::Updater& u) {
     u.add("wheelsets " + nh_.getNamespace(), this, &WheelsetNode::diagnoseNode);
     for (size_t i = 0; i < stepper_->size(); ++i)
@@ -306,16 +305,8 @@ void WheelsetNode::report(const WheelsetAnswer& a, const std::string& name) {
 
 void WheelsetNode::diagnoseNode(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   const WheelsetStepperCounters& c = stepper_->counters();
-  const ros::WallTime now = ros::WallTime::now();
-  const double span = (now - lastDiagTime_).toSec();
-  const double rate = span > 0.0 ? static_cast<double>(c.ticks - lastTicks_) / span : 0.0;
-  if (lostInputs_.count() > lastLost_)
-    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
-                 "wheelset_input messages lost before the node: raise queue_size");
-  else if (c.unknown_names > lastUnknown_)
-    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "inputs name unknown wheelsets");
-  else
-    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  const double rate = diagnostics_.summarize(stat, c.ticks, c.unknown_names, lostInputs_.count(),
+                                             "wheelset_input", "wheelsets");
   stat.add("wheelsets", stepper_->size());
   stat.add("model", stepper_->config().parameters.model);
   stat.add("contact table", stepper_->contactTable() ? "shared" : "off");
@@ -323,10 +314,6 @@ void WheelsetNode::diagnoseNode(diagnostic_updater::DiagnosticStatusWrapper& sta
   stat.add("ticks", c.ticks);
   stat.add("entries with an unknown wheelset name", c.unknown_names);
   stat.add("wheelset_input lost before the node (queue_size)", lostInputs_.count());
-  lastTicks_ = c.ticks;
-  lastUnknown_ = c.unknown_names;
-  lastLost_ = lostInputs_.count();
-  lastDiagTime_ = now;
 }
 
 void WheelsetNode::diagnoseWheelset(size_t i, diagnostic_updater::DiagnosticStatusWrapper& stat) {

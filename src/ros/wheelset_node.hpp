@@ -63,11 +63,8 @@ class WheelsetNode {
   ros::Publisher forcesPub_;
   ros::ServiceServer stepSrv_, resetSrv_;
   NodeDiagnostics diagnostics_;  // started in start()
-  ros::WallTime lastDiagTime_;
-  uint64_t lastTicks_ = 0, lastUnknown_ = 0;
   std::vector<WheelsetCounters> lastCounters_;
   LostInputs lostInputs_;
-  uint64_t lastLost_ = 0;
 };
 
 }  // namespace wheel_rail_contact
