@@ -16,9 +16,9 @@ import math
 import os
 import subprocess
 import sys
-import threading
 import time
-import xmlrpc.client
+
+from latency_common import NodeLink, keep_schedule, percentile, wait_for_master, wait_for_param
 
 
 def parse_args():
@@ -39,32 +39,6 @@ def parse_args():
     return p.parse_args()
 
 
-def percentile(values, q):
-    if not values:
-        return float("nan")
-    s = sorted(values)
-    return s[min(len(s) - 1, int(math.ceil(q / 100.0 * len(s))) - 1)]
-
-
-def wait_for_link(topic, timeout):
-    """True once a publisher of `topic` lists a live connection to this node (getBusInfo): a
-    subscriber counts a publisher before the publisher takes the connection, and what is
-    published in between is lost."""
-    import rosgraph.masterapi
-    import rospy
-    me = rospy.get_name()
-    master = rosgraph.masterapi.Master(me)
-    end = time.monotonic() + timeout
-    while time.monotonic() < end and not rospy.is_shutdown():
-        publishers = dict(master.getSystemState()[0]).get(topic, [])
-        for node in publishers:
-            rows = xmlrpc.client.ServerProxy(master.lookupNode(node)).getBusInfo(me)[2]
-            if any(r[1] == me and r[2] == "o" and r[4] == topic for r in rows):
-                return True
-        time.sleep(0.01)  # poll the graph again
-    return False
-
-
 class Client:
     def __init__(self, ns, names):
         import rospy
@@ -73,28 +47,11 @@ class Client:
         from wheel_rail_contact.srv import VehicleStep
         self.rospy, self.ContactInput, self.VehicleInput = rospy, ContactInput, VehicleInput
         self.names = names
-        self.lock = threading.Condition()
-        self.received = {}  # stamp (ns) -> (perf_counter at receipt, VehicleState)
         self.clock = rospy.Publisher("/clock", Clock, queue_size=10)
         self.Clock = Clock
-        self.pub = rospy.Publisher(ns + "/vehicle_input", VehicleInput, queue_size=10000,
-                                   tcp_nodelay=True)
-        self.sub = rospy.Subscriber(ns + "/vehicle_state", VehicleState, self.on_state,
-                                    queue_size=10000, tcp_nodelay=True)
-        rospy.wait_for_service(ns + "/vehicle_step", timeout=30.0)
-        self.step = rospy.ServiceProxy(ns + "/vehicle_step", VehicleStep, persistent=True)
-        end = time.monotonic() + 30.0
-        while self.pub.get_num_connections() == 0 and time.monotonic() < end:
-            time.sleep(0.01)
-        if self.pub.get_num_connections() == 0 or not wait_for_link(
-                rospy.resolve_name(ns + "/vehicle_state"), 30.0):
-            raise RuntimeError("vehicle node not connected")
-
-    def on_state(self, msg):
-        t = time.perf_counter()
-        with self.lock:
-            self.received[msg.header.stamp.to_nsec()] = (t, msg)
-            self.lock.notify_all()
+        self.link = NodeLink("vehicle node", ns, ("vehicle_input", "vehicle_state", "vehicle_step"),
+                             (VehicleInput, VehicleState, VehicleStep), 10000, 30.0)
+        self.pub, self.step, self.answers = self.link.pub, self.link.step, self.link.answers
 
     def tick(self, k, stamp):
         msg = self.VehicleInput()
@@ -135,8 +92,7 @@ class Client:
         # t0: the first tick's stamp [ns]
         """Returns round trips [s] of the answered ticks, the lost ticks, bad entries, late sends."""
         rospy = self.rospy
-        with self.lock:
-            self.received.clear()
+        self.answers.clear()
         sent = {}
         trips, bad, late = [], 0, 0
         start = time.perf_counter()
@@ -145,12 +101,7 @@ class Client:
             stamp = rospy.Time(ns // 10**9, ns % 10**9)
             msg = self.tick(k, stamp)
             if timing == "wall":
-                due = start + k / rate
-                now = time.perf_counter()
-                if now < due:
-                    time.sleep(due - now)
-                elif now > due + 1.0 / rate:
-                    late += 1
+                late += keep_schedule(start, k, rate)
             else:
                 self.clock.publish(self.Clock(clock=stamp))
             t = time.perf_counter()
@@ -168,19 +119,11 @@ class Client:
             sent[stamp.to_nsec()] = t
             self.pub.publish(msg)
             if timing == "lockstep":
-                with self.lock:
-                    self.lock.wait_for(lambda: stamp.to_nsec() in self.received, timeout=1.0)
+                self.answers.wait_for(stamp.to_nsec(), timeout=1.0)
         lost = 0
         if path == "topic":
-            with self.lock:
-                self.lock.wait_for(lambda: len(self.received) >= n, timeout=2.0)
-                got = dict(self.received)
-            for s, t in sent.items():
-                if s not in got:
-                    lost += 1
-                    continue
-                trips.append(got[s][0] - t)
-                state = got[s][1]
+            trips, answers, lost = self.answers.match(sent)
+            for state in answers:
                 bad += sum(1 for c in state.contacts if c.status != 0)
                 bad += abs(len(state.contacts) - len(self.names))
         return trips, lost, bad, late, time.perf_counter() - start
@@ -198,25 +141,15 @@ def main():
              "use_sim_time:=true"],
             stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT))
         for bogie in range(1, args.contacts // 4 + 1) if baseline else []:
-            import rosgraph
-            end = time.monotonic() + 30.0
-            while not rosgraph.is_master_online() and time.monotonic() < end:
-                time.sleep(0.1)  # the first roslaunch starts the master
+            wait_for_master()  # the first roslaunch starts the master
             launches.append(subprocess.Popen(
                 ["roslaunch", "wheel_rail_contact", "vehicle.launch", "bogie:=bogie%d" % bogie,
                  "model:=" + args.model], stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT))
     try:
         import rospy
-        import rosgraph
-        end = time.monotonic() + 30.0
-        while not rosgraph.is_master_online() and time.monotonic() < end:
-            time.sleep(0.1)
+        wait_for_master()
         rospy.init_node("vehicle_latency", anonymous=True, disable_signals=True)
-        node = "/" + args.ns.strip("/") + "/vehicle_node"
-        end = time.monotonic() + 30.0
-        while not rospy.has_param(node + "/contacts") and time.monotonic() < end:
-            time.sleep(0.1)
-        names = rospy.get_param(node + "/contacts")
+        names = wait_for_param("/" + args.ns.strip("/") + "/vehicle_node/contacts")
         client = Client("/" + args.ns.strip("/"), names)
         from wheel_rail_contact.srv import Reset
         reset_vehicle = rospy.ServiceProxy("/" + args.ns.strip("/") + "/reset", Reset)

@@ -18,9 +18,9 @@ import math
 import os
 import subprocess
 import sys
-import threading
 import time
-import xmlrpc.client
+
+from latency_common import NodeLink, keep_schedule, percentile, wait_for_master, wait_for_param
 
 
 def parse_args():
@@ -36,29 +36,6 @@ def parse_args():
     return p.parse_args()
 
 
-def percentile(values, q):
-    if not values:
-        return float("nan")
-    s = sorted(values)
-    return s[min(len(s) - 1, max(0, int(math.ceil(q / 100.0 * len(s))) - 1))]
-
-
-def wait_for_link(topic, timeout):
-    """True once a publisher of `topic` lists a live connection to this node (getBusInfo)."""
-    import rosgraph.masterapi
-    import rospy
-    me = rospy.get_name()
-    master = rosgraph.masterapi.Master(me)
-    end = time.monotonic() + timeout
-    while time.monotonic() < end and not rospy.is_shutdown():
-        for node in dict(master.getSystemState()[0]).get(topic, []):
-            rows = xmlrpc.client.ServerProxy(master.lookupNode(node)).getBusInfo(me)[2]
-            if any(r[1] == me and r[2] == "o" and r[4] == topic for r in rows):
-                return True
-        time.sleep(0.01)  # poll the graph again
-    return False
-
-
 class Client:
     def __init__(self, ns, names):
         import rospy
@@ -66,26 +43,10 @@ class Client:
         from wheel_rail_contact.srv import WheelsetStep
         self.rospy, self.Input, self.Kinematics = rospy, WheelsetInput, WheelsetKinematics
         self.names = names
-        self.lock = threading.Condition()
-        self.received = {}  # stamp (ns) -> (perf_counter at receipt, WheelsetForces)
-        self.pub = rospy.Publisher(ns + "/wheelset_input", WheelsetInput, queue_size=100000,
-                                   tcp_nodelay=True)
-        self.sub = rospy.Subscriber(ns + "/wheelset_forces", WheelsetForces, self.on_forces,
-                                    queue_size=100000, tcp_nodelay=True)
-        rospy.wait_for_service(ns + "/wheelset_step", timeout=120.0)
-        self.step = rospy.ServiceProxy(ns + "/wheelset_step", WheelsetStep, persistent=True)
-        end = time.monotonic() + 30.0
-        while self.pub.get_num_connections() == 0 and time.monotonic() < end:
-            time.sleep(0.01)
-        if self.pub.get_num_connections() == 0 or not wait_for_link(
-                rospy.resolve_name(ns + "/wheelset_forces"), 30.0):
-            raise RuntimeError("wheelset node not connected")
-
-    def on_forces(self, msg):
-        t = time.perf_counter()
-        with self.lock:
-            self.received[msg.header.stamp.to_nsec()] = (t, msg)
-            self.lock.notify_all()
+        self.link = NodeLink("wheelset node", ns,
+                             ("wheelset_input", "wheelset_forces", "wheelset_step"),
+                             (WheelsetInput, WheelsetForces, WheelsetStep), 100000, 120.0)
+        self.pub, self.step, self.answers = self.link.pub, self.link.step, self.link.answers
 
     def tick(self, k, stamp):
         msg = self.Input()
@@ -108,20 +69,14 @@ class Client:
     def run(self, path, n, rate, t0):
         """Round trips [s] of the answered ticks, lost ticks, bad answers, late sends, wall time."""
         rospy = self.rospy
-        with self.lock:
-            self.received.clear()
+        self.answers.clear()
         sent, trips, bad, late = {}, [], 0, 0
         start = time.perf_counter()
         for k in range(n):
             ns = t0 + k * int(round(1e9 / rate))
             stamp = rospy.Time(ns // 10**9, ns % 10**9)
             msg = self.tick(k, stamp)
-            due = start + k / rate
-            now = time.perf_counter()
-            if now < due:
-                time.sleep(due - now)
-            elif now > due + 1.0 / rate:
-                late += 1
+            late += keep_schedule(start, k, rate)
             t = time.perf_counter()
             if path == "service":
                 forces = self.step(msg).forces
@@ -133,15 +88,8 @@ class Client:
         wall = time.perf_counter() - start
         lost = 0
         if path == "topic":
-            with self.lock:
-                self.lock.wait_for(lambda: len(self.received) >= n, timeout=2.0)
-                got = dict(self.received)
-            for s, t in sent.items():
-                if s not in got:
-                    lost += 1
-                    continue
-                trips.append(got[s][0] - t)
-                bad += self.bad(got[s][1])
+            trips, answers, lost = self.answers.match(sent)
+            bad += sum(self.bad(forces) for forces in answers)
         return trips, lost, bad, late, wall
 
 
@@ -155,18 +103,11 @@ def main():
              "wheelsets:=4", "model:=" + args.model, "ns:=" + args.ns],
             stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
     try:
-        import rosgraph
         import rospy
-        end = time.monotonic() + 30.0
-        while not rosgraph.is_master_online() and time.monotonic() < end:
-            time.sleep(0.1)
+        wait_for_master()
         rospy.init_node("wheelset_latency_py", anonymous=True, disable_signals=True)
         ns = "/" + args.ns.strip("/")
-        node = ns + "/wheelset_node"
-        end = time.monotonic() + 30.0
-        while not rospy.has_param(node + "/wheelsets") and time.monotonic() < end:
-            time.sleep(0.1)
-        client = Client(ns, rospy.get_param(node + "/wheelsets"))
+        client = Client(ns, wait_for_param(ns + "/wheelset_node/wheelsets"))
         n = int(round(args.seconds * args.rate))
         ok = True
         for run in args.runs.split(","):

@@ -1,12 +1,10 @@
 #include "vehicle_node.hpp"
 
-#include <cctype>
-#include <cstdio>
-#include <cstdlib>
 #include <set>
 #include <stdexcept>
 
 #include "../cli/config_yaml.hpp"
+#include "node_common.hpp"
 #include "ros_conversions.hpp"
 
 namespace wheel_rail_contact {
@@ -17,27 +15,6 @@ const char* const kStepperKeys[] = {"max_dt", "time_jump_reset", "max_load_age"}
 const char* const kVehicleKeys[] = {"contacts", "frame_prefix", "queue_size", "publish_queue_size",
                                     "diagnostic_period"};
 
-std::string text(double v) {
-  char t[64];
-  std::snprintf(t, sizeof t, "%.17g", v);
-  return t;
-}
-
-double toNumber(const std::string& name, const std::string& t) {
-  char* end = nullptr;
-  const double d = std::strtod(t.c_str(), &end);
-  if (t.empty() || end != t.c_str() + t.size())
-    throw std::invalid_argument(name + ": expected a number, got '" + t + "'");
-  return d;
-}
-
-bool validContactName(const std::string& n) {
-  if (n.empty() || !std::isalpha(static_cast<unsigned char>(n[0]))) return false;
-  for (char ch : n)
-    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_') return false;
-  return true;
-}
-
 }  // namespace
 
 VehicleNode::VehicleNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
@@ -45,23 +22,7 @@ VehicleNode::VehicleNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh)
 
 bool VehicleNode::readParameters() {
   try {
-    XmlRpc::XmlRpcValue list;
-    if (!pnh_.getParam("contacts", list))
-      throw std::invalid_argument("contacts: not set (a list of contact names)");
-    if (list.getType() != XmlRpc::XmlRpcValue::TypeArray || list.size() == 0)
-      throw std::invalid_argument("contacts: expected a non-empty list of names, got " +
-                                  list.toXml());
-    std::vector<std::string> names;
-    for (int i = 0; i < list.size(); ++i) {
-      if (list[i].getType() != XmlRpc::XmlRpcValue::TypeString)
-        throw std::invalid_argument("contacts: entry " + std::to_string(i) +
-                                    " is not a name: " + list[i].toXml());
-      const std::string n = static_cast<std::string>(list[i]);
-      if (!validContactName(n))
-        throw std::invalid_argument("contacts: '" + n +
-                                    "' is not a name (a letter, then letters, digits, _)");
-      names.push_back(n);
-    }
+    const std::vector<std::string> names = readNameList(pnh_, "contacts", "contact");
 
     // Unknown private keys fail, as in contact_node; a contact's overrides live under ~NAME/.
     std::set<std::string> contactKeys(std::begin(kStepperKeys), std::end(kStepperKeys));
@@ -99,31 +60,10 @@ bool VehicleNode::readParameters() {
     }
 
     XmlRpc::XmlRpcValue v;
-    auto count = [&](const char* name, int value) {
-      XmlRpc::XmlRpcValue x;
-      if (!pnh_.getParam(name, x)) return value;
-      const double d = toNumber(name, parameterText(name, x));
-      if (!(d >= 1.0 && d <= 1e6) || d != static_cast<int>(d))
-        throw std::invalid_argument(std::string(name) +
-                                    ": must be an integer in [1, 1000000], got " + text(d));
-      return static_cast<int>(d);
-    };
-    queueSize_ = count("queue_size", 100);
-    publishQueueSize_ = count("publish_queue_size", 100);
-    if (pnh_.getParam("diagnostic_period", v))
-      diagnosticPeriod_ = toNumber("diagnostic_period", parameterText("diagnostic_period", v));
-    // ros::(Wall)Duration throws beyond 2^31 s; a day is plenty.
-    if (!(diagnosticPeriod_ > 0.0 && diagnosticPeriod_ <= 86400.0))
-      throw std::invalid_argument("diagnostic_period: must be in (0, 86400] s, got " +
-                                  text(diagnosticPeriod_));
-    std::string framePrefix;
-    if (pnh_.getParam("frame_prefix", v)) {
-      framePrefix = parameterText("frame_prefix", v);
-    } else {  // the namespace: /bogie1 -> bogie1_, so two vehicles' frames differ
-      for (char ch : nh_.getNamespace()) framePrefix += ch == '/' ? '_' : ch;
-      while (!framePrefix.empty() && framePrefix[0] == '_') framePrefix.erase(0, 1);
-      if (!framePrefix.empty()) framePrefix += '_';
-    }
+    queueSize_ = readCount(pnh_, "queue_size", 100);
+    publishQueueSize_ = readCount(pnh_, "publish_queue_size", 100);
+    diagnosticPeriod_ = readDiagnosticPeriod(pnh_, diagnosticPeriod_);
+    const std::string framePrefix = readFramePrefix(nh_, pnh_);
 
     std::vector<VehicleContactConfig> configs;
     for (const auto& n : names) {
@@ -168,12 +108,7 @@ bool VehicleNode::readParameters() {
         ROS_INFO("vehicle_node %s: contact %s: %s", nh_.getNamespace().c_str(), c.name.c_str(),
                  chosen.c_str());
     }
-    if (!ignored.empty()) {
-      std::string unused;
-      for (const auto& k : ignored) unused += " " + k;
-      ROS_INFO("vehicle_node %s: contact_node parameters not used here:%s",
-               nh_.getNamespace().c_str(), unused.c_str());
-    }
+    logIgnoredParameters("vehicle_node", nh_.getNamespace(), ignored);
     lastStepper_.assign(vehicle_->size(), StepperCounters{});
     lastVehicle_.assign(vehicle_->size(), VehicleContactCounters{});
     return true;
@@ -190,22 +125,12 @@ void VehicleNode::start() {
   inputSub_ = nh_.subscribe("vehicle_input", queueSize_, &VehicleNode::inputCallback, this,
                             ros::TransportHints().tcpNoDelay());
 
-  // Made only now: its constructor reads ~diagnostic_period and throws on a value ros::Duration
-  // cannot hold, which readParameters() has ruled out.
-  updater_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_);
-  updater_->setHardwareID("wheel_rail_contact" + nh_.getNamespace());
-  updater_->add("vehicle " + nh_.getNamespace(), this, &VehicleNode::diagnoseVehicle);
-  for (size_t i = 0; i < vehicle_->size(); ++i)
-    updater_->add(
-        "contact " + nh_.getNamespace() + " " + vehicle_->config(i).name,
-        [this, i](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnoseContact(i, s); });
-  lastDiagTime_ = ros::WallTime::now();
-  // A wall timer: diagnostics keep coming while sim time is paused.
-  diagnosticTimer_ =
-      nh_.createWallTimer(ros::WallDuration(diagnosticPeriod_), [this](const ros::WallTimerEvent&) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        updater_->force_update();
-      });
+  diagnostics_.start(nh_, pnh_, diagnosticPeriod_, &mutex_, [this](diagnostic_updater::Updater& u) {
+    u.add("vehicle " + nh_.getNamespace(), this, &VehicleNode::diagnoseVehicle);
+    for (size_t i = 0; i < vehicle_->size(); ++i)
+      u.add("contact " + nh_.getNamespace() + " " + vehicle_->config(i).name,
+            [this, i](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnoseContact(i, s); });
+  });
 }
 
 void VehicleNode::tick(const VehicleInput& in, VehicleState* state) {
@@ -251,15 +176,8 @@ void VehicleNode::inputCallback(const ros::MessageEvent<const VehicleInput>& eve
   auto state = boost::make_shared<VehicleState>();
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    // roscpp numbers each publisher's messages: a gap is a tick dropped before this callback.
-    auto seen = lastSeq_.find(event.getPublisherName());
-    if (seen != lastSeq_.end() && msg->header.seq > seen->second + 1) {
-      lostInputs_ += msg->header.seq - seen->second - 1;
-      ROS_WARN_THROTTLE(1.0, "%s: %lu vehicle_input messages lost before the node (queue_size %d)",
-                        nh_.getNamespace().c_str(), static_cast<unsigned long>(lostInputs_),
-                        queueSize_);
-    }
-    lastSeq_[event.getPublisherName()] = msg->header.seq;
+    lostInputs_.see(event.getPublisherName(), msg->header.seq, nh_.getNamespace(), "vehicle_input",
+                    queueSize_);
     tick(*msg, state.get());
   }
   statePub_.publish(state);
@@ -309,25 +227,13 @@ void VehicleNode::report(const VehicleContactResult& r, const std::string& name)
 
 void VehicleNode::diagnoseVehicle(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   const VehicleCounters& c = vehicle_->counters();
-  const ros::WallTime now = ros::WallTime::now();
-  const double span = (now - lastDiagTime_).toSec();
-  const double rate = span > 0.0 ? static_cast<double>(c.ticks - lastTicks_) / span : 0.0;
-  if (lostInputs_ > lastLost_)
-    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
-                 "vehicle_input messages lost before the node: raise queue_size");
-  else if (c.unknownNames > lastUnknown_)
-    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "inputs name unknown contacts");
-  else
-    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  const double rate = diagnostics_.summarize(stat, c.ticks, c.unknownNames, lostInputs_.count(),
+                                             "vehicle_input", "contacts");
   stat.add("contacts", vehicle_->size());
   stat.addf("tick rate [Hz]", "%.1f", rate);
   stat.add("ticks", c.ticks);
   stat.add("entries with an unknown contact name", c.unknownNames);
-  stat.add("vehicle_input lost before the node (queue_size)", lostInputs_);
-  lastTicks_ = c.ticks;
-  lastUnknown_ = c.unknownNames;
-  lastLost_ = lostInputs_;
-  lastDiagTime_ = now;
+  stat.add("vehicle_input lost before the node (queue_size)", lostInputs_.count());
 }
 
 void VehicleNode::diagnoseContact(size_t i, diagnostic_updater::DiagnosticStatusWrapper& stat) {

@@ -6,12 +6,12 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 
-#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
+#include "node_common.hpp"
 #include "vehicle_stepper.hpp"
 #include "wheel_rail_contact/Reset.h"
 #include "wheel_rail_contact/VehicleInput.h"
@@ -55,15 +55,10 @@ class VehicleNode {
   ros::Subscriber inputSub_;
   ros::Publisher statePub_;
   ros::ServiceServer stepSrv_, resetSrv_;
-  std::unique_ptr<diagnostic_updater::Updater> updater_;  // made in start()
-  ros::WallTimer diagnosticTimer_;
-  ros::WallTime lastDiagTime_;
-  uint64_t lastTicks_ = 0, lastUnknown_ = 0;
+  NodeDiagnostics diagnostics_;  // started in start()
   std::vector<StepperCounters> lastStepper_;
   std::vector<VehicleContactCounters> lastVehicle_;
-  /// VehicleInput header.seq per publisher: a gap means the subscriber queue overflowed.
-  std::map<std::string, uint32_t> lastSeq_;
-  uint64_t lostInputs_ = 0, lastLost_ = 0;
+  LostInputs lostInputs_;
 };
 
 }  // namespace wheel_rail_contact

@@ -2,13 +2,11 @@
 
 #include <ros/package.h>
 
-#include <cctype>
-#include <cstdio>
-#include <cstdlib>
 #include <set>
 #include <stdexcept>
 
 #include "../cli/config_yaml.hpp"
+#include "node_common.hpp"
 #include "ros_conversions.hpp"
 
 namespace wheel_rail_contact {
@@ -19,27 +17,6 @@ const char* const kNodeKeys[] = {"wheelsets",     "wheel_profile",       "rail_p
                                  "contact_table", "whole_force_balance", "frame_prefix",
                                  "queue_size",    "publish_queue_size",  "diagnostic_period",
                                  "max_dt",        "time_jump_reset",     "threads"};
-
-std::string text(double v) {
-  char t[64];
-  std::snprintf(t, sizeof t, "%.17g", v);
-  return t;
-}
-
-double toNumber(const std::string& name, const std::string& t) {
-  char* end = nullptr;
-  const double d = std::strtod(t.c_str(), &end);
-  if (t.empty() || end != t.c_str() + t.size())
-    throw std::invalid_argument(name + ": expected a number, got '" + t + "'");
-  return d;
-}
-
-bool validName(const std::string& n) {
-  if (n.empty() || !std::isalpha(static_cast<unsigned char>(n[0]))) return false;
-  for (char ch : n)
-    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_') return false;
-  return true;
-}
 
 uint8_t patchStatus(const PatchResult& p) {
   if (p.creepages.status == CreepageStatus::kInvalidInput)
@@ -123,23 +100,8 @@ WheelsetNode::WheelsetNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh
 
 bool WheelsetNode::readParameters() {
   try {
-    XmlRpc::XmlRpcValue list;
-    if (!pnh_.getParam("wheelsets", list))
-      throw std::invalid_argument("wheelsets: not set (a list of wheelset names)");
-    if (list.getType() != XmlRpc::XmlRpcValue::TypeArray || list.size() == 0)
-      throw std::invalid_argument("wheelsets: expected a non-empty list of names, got " +
-                                  list.toXml());
     WheelsetStepperConfig config;
-    for (int i = 0; i < list.size(); ++i) {
-      if (list[i].getType() != XmlRpc::XmlRpcValue::TypeString)
-        throw std::invalid_argument("wheelsets: entry " + std::to_string(i) +
-                                    " is not a name: " + list[i].toXml());
-      const std::string n = static_cast<std::string>(list[i]);
-      if (!validName(n))
-        throw std::invalid_argument("wheelsets: '" + n +
-                                    "' is not a name (a letter, then letters, digits, _)");
-      config.names.push_back(n);
-    }
+    config.names = readNameList(pnh_, "wheelsets", "wheelset");
 
     // Every private key is known: the node's, the model's (ContactParameters) and the wheelset's
     // (contact_cli wheelset's --config keys); contact_node's own keys of a shared file are
@@ -209,32 +171,11 @@ bool WheelsetNode::readParameters() {
     if (pnh_.getParam("time_jump_reset", v))
       config.time_jump_reset = toNumber("time_jump_reset", parameterText("time_jump_reset", v));
 
-    auto count = [&](const char* name, int value) {
-      XmlRpc::XmlRpcValue x;
-      if (!pnh_.getParam(name, x)) return value;
-      const double d = toNumber(name, parameterText(name, x));
-      if (!(d >= 1.0 && d <= 1e6) || d != static_cast<int>(d))
-        throw std::invalid_argument(std::string(name) +
-                                    ": must be an integer in [1, 1000000], got " + text(d));
-      return static_cast<int>(d);
-    };
-    queueSize_ = count("queue_size", 100);
-    config.threads = count("threads", 1);
-    publishQueueSize_ = count("publish_queue_size", 100);
-    if (pnh_.getParam("diagnostic_period", v))
-      diagnosticPeriod_ = toNumber("diagnostic_period", parameterText("diagnostic_period", v));
-    // ros::(Wall)Duration throws beyond 2^31 s; a day is plenty.
-    if (!(diagnosticPeriod_ > 0.0 && diagnosticPeriod_ <= 86400.0))
-      throw std::invalid_argument("diagnostic_period: must be in (0, 86400] s, got " +
-                                  text(diagnosticPeriod_));
-    std::string framePrefix;
-    if (pnh_.getParam("frame_prefix", v)) {
-      framePrefix = parameterText("frame_prefix", v);
-    } else {  // the namespace: /train/car1 -> train_car1_, so two vehicles' frames differ
-      for (char ch : nh_.getNamespace()) framePrefix += ch == '/' ? '_' : ch;
-      while (!framePrefix.empty() && framePrefix[0] == '_') framePrefix.erase(0, 1);
-      if (!framePrefix.empty()) framePrefix += '_';
-    }
+    queueSize_ = readCount(pnh_, "queue_size", 100);
+    config.threads = readCount(pnh_, "threads", 1);
+    publishQueueSize_ = readCount(pnh_, "publish_queue_size", 100);
+    diagnosticPeriod_ = readDiagnosticPeriod(pnh_, diagnosticPeriod_);
+    const std::string framePrefix = readFramePrefix(nh_, pnh_);
 
     stepper_ = std::make_unique<WheelsetStepper>(config);
     frameIds_.clear();
@@ -246,12 +187,7 @@ bool WheelsetNode::readParameters() {
         nh_.getNamespace().c_str(), stepper_->size(), p.model.c_str(), fastsimVariantName(p), p.G,
         p.nu, p.mu, p.mesh.c_str(), p.nx, p.ny, profiles.c_str(),
         stepper_->contactTable() ? "on (one for all wheelsets)" : "off (direct search)");
-    if (!ignored.empty()) {
-      std::string unused;
-      for (const auto& k : ignored) unused += " " + k;
-      ROS_INFO("wheelset_node %s: contact_node parameters not used here:%s",
-               nh_.getNamespace().c_str(), unused.c_str());
-    }
+    logIgnoredParameters("wheelset_node", nh_.getNamespace(), ignored);
     lastCounters_.assign(stepper_->size(), WheelsetCounters{});
     return true;
   } catch (const std::exception& e) {
@@ -267,22 +203,12 @@ void WheelsetNode::start() {
   inputSub_ = nh_.subscribe("wheelset_input", queueSize_, &WheelsetNode::inputCallback, this,
                             ros::TransportHints().tcpNoDelay());
 
-  // Made only now: its constructor reads ~diagnostic_period and throws on a value ros::Duration
-  // cannot hold, which readParameters() has ruled out.
-  updater_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_);
-  updater_->setHardwareID("wheel_rail_contact" + nh_.getNamespace());
-  updater_->add("wheelsets " + nh_.getNamespace(), this, &WheelsetNode::diagnoseNode);
-  for (size_t i = 0; i < stepper_->size(); ++i)
-    updater_->add(
-        "wheelset " + nh_.getNamespace() + " " + stepper_->name(i),
-        [this, i](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnoseWheelset(i, s); });
-  lastDiagTime_ = ros::WallTime::now();
-  // A wall timer: diagnostics keep coming while sim time is paused.
-  diagnosticTimer_ =
-      nh_.createWallTimer(ros::WallDuration(diagnosticPeriod_), [this](const ros::WallTimerEvent&) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        updater_->force_update();
-      });
+  diagnostics_.start(nh_, pnh_, diagnosticPeriod_, &mutex_, [this](diagnostic_updater::Updater& u) {
+    u.add("wheelsets " + nh_.getNamespace(), this, &WheelsetNode::diagnoseNode);
+    for (size_t i = 0; i < stepper_->size(); ++i)
+      u.add("wheelset " + nh_.getNamespace() + " " + stepper_->name(i),
+            [this, i](diagnostic_updater::DiagnosticStatusWrapper& s) { diagnoseWheelset(i, s); });
+  });
 }
 
 void WheelsetNode::tick(const WheelsetInput& in, WheelsetForces* out) {
@@ -331,15 +257,8 @@ void WheelsetNode::inputCallback(const ros::MessageEvent<const WheelsetInput>& e
   auto out = boost::make_shared<WheelsetForces>();
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    // roscpp numbers each publisher's messages: a gap is a tick dropped before this callback.
-    auto seen = lastSeq_.find(event.getPublisherName());
-    if (seen != lastSeq_.end() && msg->header.seq > seen->second + 1) {
-      lostInputs_ += msg->header.seq - seen->second - 1;
-      ROS_WARN_THROTTLE(1.0, "%s: %lu wheelset_input messages lost before the node (queue_size %d)",
-                        nh_.getNamespace().c_str(), static_cast<unsigned long>(lostInputs_),
-                        queueSize_);
-    }
-    lastSeq_[event.getPublisherName()] = msg->header.seq;
+    lostInputs_.see(event.getPublisherName(), msg->header.seq, nh_.getNamespace(), "wheelset_input",
+                    queueSize_);
     tick(*msg, out.get());
   }
   forcesPub_.publish(out);
@@ -386,27 +305,15 @@ void WheelsetNode::report(const WheelsetAnswer& a, const std::string& name) {
 
 void WheelsetNode::diagnoseNode(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   const WheelsetStepperCounters& c = stepper_->counters();
-  const ros::WallTime now = ros::WallTime::now();
-  const double span = (now - lastDiagTime_).toSec();
-  const double rate = span > 0.0 ? static_cast<double>(c.ticks - lastTicks_) / span : 0.0;
-  if (lostInputs_ > lastLost_)
-    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
-                 "wheelset_input messages lost before the node: raise queue_size");
-  else if (c.unknown_names > lastUnknown_)
-    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "inputs name unknown wheelsets");
-  else
-    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  const double rate = diagnostics_.summarize(stat, c.ticks, c.unknown_names, lostInputs_.count(),
+                                             "wheelset_input", "wheelsets");
   stat.add("wheelsets", stepper_->size());
   stat.add("model", stepper_->config().parameters.model);
   stat.add("contact table", stepper_->contactTable() ? "shared" : "off");
   stat.addf("tick rate [Hz]", "%.1f", rate);
   stat.add("ticks", c.ticks);
   stat.add("entries with an unknown wheelset name", c.unknown_names);
-  stat.add("wheelset_input lost before the node (queue_size)", lostInputs_);
-  lastTicks_ = c.ticks;
-  lastUnknown_ = c.unknown_names;
-  lastLost_ = lostInputs_;
-  lastDiagTime_ = now;
+  stat.add("wheelset_input lost before the node (queue_size)", lostInputs_.count());
 }
 
 void WheelsetNode::diagnoseWheelset(size_t i, diagnostic_updater::DiagnosticStatusWrapper& stat) {

@@ -7,12 +7,12 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 
-#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
+#include "node_common.hpp"
 #include "wheel_rail_contact/Reset.h"
 #include "wheel_rail_contact/WheelsetForces.h"
 #include "wheel_rail_contact/WheelsetInput.h"
@@ -62,14 +62,9 @@ class WheelsetNode {
   ros::Subscriber inputSub_;
   ros::Publisher forcesPub_;
   ros::ServiceServer stepSrv_, resetSrv_;
-  std::unique_ptr<diagnostic_updater::Updater> updater_;  // made in start()
-  ros::WallTimer diagnosticTimer_;
-  ros::WallTime lastDiagTime_;
-  uint64_t lastTicks_ = 0, lastUnknown_ = 0;
+  NodeDiagnostics diagnostics_;  // started in start()
   std::vector<WheelsetCounters> lastCounters_;
-  /// WheelsetInput header.seq per publisher: a gap means the subscriber queue overflowed.
-  std::map<std::string, uint32_t> lastSeq_;
-  uint64_t lostInputs_ = 0, lastLost_ = 0;
+  LostInputs lostInputs_;
 };
 
 }  // namespace wheel_rail_contact

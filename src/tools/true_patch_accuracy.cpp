@@ -14,6 +14,7 @@
 #include "core/exact/halfspace_solver.hpp"
 #include "core/fastsim/fastsim.hpp"
 #include "tool_options.hpp"
+#include "validation/ellipse_patch.hpp"
 #include "validation/manchester_a22.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/fastsim/patch_shape.hpp"
@@ -130,18 +131,6 @@ PatchShape exactStrips(const A22Exact& e, double* a, double* b) {
   return s;
 }
 
-// Kalker's strips of the ellipse (a, b) at `origin` on the profile.
-PatchShape ellipseStrips(double a, double b, double fz, int ny, double origin) {
-  PatchShape s;
-  s.origin = origin;
-  const double p0 = 3.0 * fz / (2.0 * M_PI * a * b);
-  for (int j = 0; j < ny; ++j) {
-    const double yn = -1.0 + (2.0 * j + 1.0) / ny, r = std::sqrt(1.0 - yn * yn);
-    s.strips.push_back(PatchStrip{b * yn, 2.0 * b / ny, a * r, -a * r, p0 * r});
-  }
-  return s;
-}
-
 // An ellipse (6 x 4 mm, 80 kN) sliding sideways `speed` b per element rolled for 40 elements
 // after 60 at rest, then 40 more at rest, at constant creepages, its reference point moving with
 // it: nss on its strips against the exact transient solution (the pressure moved across a fixed
@@ -154,11 +143,7 @@ void slide(double speed, double share, const Creepages& w, const Options& o, dou
   const double a = 6e-3, b = 4e-3, fz = 8e4, G = 8.2e10, nu = 0.28;
   const int settle = 60, moving = 40;
   const double travel = speed * b * moving;
-  HalfspaceGrid g;
-  g.mx = 24;
-  g.dx = 2.2 * a / g.mx;
-  g.dy = g.dx;
-  g.my = static_cast<int>(std::ceil((2.2 * b + travel) / g.dy));
+  const HalfspaceGrid g = ellipseSlideGrid(a, b, travel);
   HalfspaceSolver exact(g, G, nu);
   ContactParameters p;
   p.model = "nss";
@@ -169,19 +154,10 @@ void slide(double speed, double share, const Creepages& w, const Options& o, dou
   p.nx = p.ny = o.nx;
   p.mu = o.mu;
   auto nss = makeContactModel(p);
-  const double p0 = 3.0 * fz / (2.0 * M_PI * a * b);
   *worst = *above = 0.0;
   for (int k = 0; k < settle + moving + 40; ++k) {
     const double s = -0.5 * travel + speed * b * std::min(std::max(k - settle, 0), moving);
-    Eigen::VectorXd pressure(g.size());
-    double sum = 0.0;
-    for (int ix = 0; ix < g.mx; ++ix)
-      for (int iy = 0; iy < g.my; ++iy) {
-        const double x = g.xc(ix) / a, y = (g.yc(iy) - s) / b, r = 1.0 - x * x - y * y;
-        pressure(g.index(ix, iy)) = r > 0.0 ? p0 * std::sqrt(r) : 0.0;
-        sum += pressure(g.index(ix, iy)) * g.dx * g.dy;
-      }
-    exact.setPressure(pressure * (fz / sum));
+    exact.setPressure(movedEllipsePressure(g, a, b, fz, s));
     const HalfspaceSolution& x =
         exact.solve(RollingMode::kTransient, Creepages{w.xi + w.phi * s, w.eta, w.phi}, o.mu);
     const PatchShape shape = ellipseStrips(a, b, fz, o.nx, 2.0 * share * s);

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../process.hpp"
@@ -340,6 +341,22 @@ inline wheel_rail_contact::ContactParameters parametersOf(const std::string& nod
   for (const auto& d : wheel_rail_contact::parameterDocs())
     if (parameterTextOf(node, d.name, &text)) wheel_rail_contact::setParameter(&p, d.name, text);
   return p;
+}
+
+/// The node `executable` started as node `name` after its private parameters `params` are set on
+/// the parameter server: exit code 1 (the controlled failure; a node that keeps running, a valid
+/// configuration, ends with SIGINT's after 20 s) and a ROS_FATAL "invalid parameter <text>".
+inline void expectFatalParameters(
+    const std::string& executable, const std::string& name,
+    const std::vector<std::pair<std::string, XmlRpc::XmlRpcValue>>& params,
+    const std::string& text) {
+  for (const auto& p : params) ros::param::set("/" + name + "/" + p.first, p.second);
+  std::string out;
+  const int code = run(
+      std::string("timeout --preserve-status -s INT 20 ") + executable + " __name:=" + name, &out);
+  EXPECT_EQ(code, 1) << text << "\n" << out;
+  EXPECT_NE(out.find("FATAL"), std::string::npos) << out;
+  EXPECT_NE(out.find("invalid parameter " + text), std::string::npos) << text << "\n" << out;
 }
 
 }  // namespace wrc_test

@@ -10,19 +10,10 @@ namespace {
 
 int counter = 0;
 
-/// vehicle_node started as a fresh node whose private parameters are `params`; the exit code of
-/// a node that keeps running (a valid configuration) is that of SIGINT after 20 s.
+/// vehicle_node as a fresh node with `params`.
 void expectFatal(const std::vector<std::pair<std::string, XmlRpc::XmlRpcValue>>& params,
                  const std::string& text) {
-  const std::string name = "vehicle_bad_" + std::to_string(++counter);
-  for (const auto& p : params) ros::param::set("/" + name + "/" + p.first, p.second);
-  std::string out;
-  const int code = run(
-      std::string("timeout --preserve-status -s INT 20 ") + WRC_VEHICLE_NODE + " __name:=" + name,
-      &out);
-  EXPECT_EQ(code, 1) << text << "\n" << out;
-  EXPECT_NE(out.find("FATAL"), std::string::npos) << out;
-  EXPECT_NE(out.find("invalid parameter " + text), std::string::npos) << text << "\n" << out;
+  expectFatalParameters(WRC_VEHICLE_NODE, "vehicle_bad_" + std::to_string(++counter), params, text);
 }
 
 XmlRpc::XmlRpcValue list(const std::vector<std::string>& names) {

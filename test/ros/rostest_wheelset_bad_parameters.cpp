@@ -10,21 +10,13 @@ namespace {
 
 int counter = 0;
 
-/// wheelset_node started as a fresh node whose private parameters are `params` (the direct search:
-/// a valid configuration starts at once); the exit code of a node that keeps running is that of
-/// SIGINT after 20 s.
+/// wheelset_node as a fresh node with `params` and the direct search (a valid configuration
+/// starts at once).
 void expectFatal(std::vector<std::pair<std::string, XmlRpc::XmlRpcValue>> params,
                  const std::string& text) {
-  const std::string name = "wheelset_bad_" + std::to_string(++counter);
   params.emplace_back("contact_table", XmlRpc::XmlRpcValue(false));
-  for (const auto& p : params) ros::param::set("/" + name + "/" + p.first, p.second);
-  std::string out;
-  const int code = run(
-      std::string("timeout --preserve-status -s INT 20 ") + WRC_WHEELSET_NODE + " __name:=" + name,
-      &out);
-  EXPECT_EQ(code, 1) << text << "\n" << out;
-  EXPECT_NE(out.find("FATAL"), std::string::npos) << out;
-  EXPECT_NE(out.find("invalid parameter " + text), std::string::npos) << text << "\n" << out;
+  expectFatalParameters(WRC_WHEELSET_NODE, "wheelset_bad_" + std::to_string(++counter), params,
+                        text);
 }
 
 XmlRpc::XmlRpcValue names() {

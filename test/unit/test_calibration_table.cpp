@@ -76,6 +76,41 @@ std::string message(const std::string& body) {
   return "";
 }
 
+/// Creepages of every size and sign (some zero) from linear theory to full slip, from a seeded
+/// generator: each component zero one time in ten, else of either sign and of size scale 10^(-4u),
+/// u uniform in [0, 1); longitudinal and lateral at scale 0.05, spin at 20.
+class RandomCreepages {
+ public:
+  explicit RandomCreepages(unsigned seed) : rng_(seed) {}
+  double unit() { return unit_(rng_); }
+  Creepages next() { return Creepages{creepage(0.05), creepage(0.05), creepage(20.0)}; }
+
+ private:
+  double creepage(double scale) {
+    const double u = unit();
+    return u < 0.1 ? 0.0 : (u < 0.55 ? -1.0 : 1.0) * scale * std::pow(10.0, -4.0 * unit());
+  }
+  std::mt19937 rng_;
+  std::uniform_real_distribution<double> unit_{0.0, 1.0};
+};
+
+/// Steps `x` and `y` `n` times on the patch of a/b = ab (a b = 36 mm^2) at creepages from
+/// `draw`, on both branches and between them (every third step a random weight of the opposed
+/// branch): adds the steps to *compared and those `equal` tells apart to *differ.
+template <class Equal>
+void compareSteps(const PatchCalibration& x, const PatchCalibration& y, double ab, int n,
+                  RandomCreepages* draw, Equal equal, int* compared, int* differ) {
+  const double a = 6e-3 * std::sqrt(ab), b = 6e-3 / std::sqrt(ab), G = 8.2e10, muFz = 2.4e4;
+  const CreepCoefficients k = kalkerCoefficients(ab, 0.28);
+  for (int i = 0; i < n; ++i) {
+    const Creepages c = draw->next();
+    const double opposed = i % 3 == 0 ? draw->unit() : PatchCalibration::opposedBranch(c);
+    ++*compared;
+    if (!equal(x.step(a, b, G, k, muFz, c, opposed), y.step(a, b, G, k, muFz, c, opposed)))
+      ++*differ;
+  }
+}
+
 }  // namespace
 
 TEST(CalibrationTable, InterpolatesInCreepageAndLogAOverBAndHoldsBeyondTheLastKnot) {
@@ -661,12 +696,7 @@ TEST(CalibrationTable, VectorisedStepIsTheScalarStepWithinRoundOff) {
   };
   // The shipped table on three meshes and three a/b, creepages of every size and sign (some
   // zero) from linear theory to full slip, on both branches and between them.
-  std::mt19937 rng(19);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  auto creepage = [&](double scale) {
-    const double u = unit(rng);
-    return u < 0.1 ? 0.0 : (u < 0.55 ? -1.0 : 1.0) * scale * std::pow(10.0, -4.0 * unit(rng));
-  };
+  RandomCreepages draw(19);
   int compared = 0, differ = 0;
   for (int nx : {5, 10, 40})
     for (double ab : {0.2, 1.0, 3.7}) {
@@ -675,16 +705,7 @@ TEST(CalibrationTable, VectorisedStepIsTheScalarStepWithinRoundOff) {
       ASSERT_TRUE(lanes.vectorised());
       scalar.setVectorised(false);
       ASSERT_FALSE(scalar.vectorised());
-      const double a = 6e-3 * std::sqrt(ab), b = 6e-3 / std::sqrt(ab), G = 8.2e10, muFz = 2.4e4;
-      const CreepCoefficients k = kalkerCoefficients(ab, 0.28);
-      for (int n = 0; n < 4000; ++n) {
-        const Creepages c{creepage(0.05), creepage(0.05), creepage(20.0)};
-        const double opposed = n % 3 == 0 ? unit(rng) : PatchCalibration::opposedBranch(c);
-        ++compared;
-        if (!same(lanes.step(a, b, G, k, muFz, c, opposed),
-                  scalar.step(a, b, G, k, muFz, c, opposed)))
-          ++differ;
-      }
+      compareSteps(lanes, scalar, ab, 4000, &draw, same, &compared, &differ);
     }
   EXPECT_EQ(differ, 0) << "of " << compared;
   // A lane whose exp leaves Highway's range (|x| >= 700) takes std::exp, as the scalar path: a
@@ -718,12 +739,7 @@ TEST(CalibrationTable, RePickingFillsTheCorrectionAsStepsNeedItWithTheWholeGrids
            x.L.lateralCoupling == y.L.lateralCoupling && x.L.etaSlope == y.L.etaSlope &&
            x.L.etaGain == y.L.etaGain && x.boundShape == y.boundShape;
   };
-  std::mt19937 rng(46);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  auto creepage = [&](double scale) {
-    const double u = unit(rng);
-    return u < 0.1 ? 0.0 : (u < 0.55 ? -1.0 : 1.0) * scale * std::pow(10.0, -4.0 * unit(rng));
-  };
+  RandomCreepages draw(46);
   const CalibrationTable mesh20 = CalibrationTable::shipped().forMesh(20);
   const CalibrationTable other = CalibrationTable::load(writeTable(kTwoRows));
   int compared = 0, differ = 0;
@@ -737,17 +753,7 @@ TEST(CalibrationTable, RePickingFillsTheCorrectionAsStepsNeedItWithTheWholeGrids
       PatchCalibration whole = (fromOther ? other : mesh20).at(fromOther ? 1.0 : ab);
       picked.setVectorised(lanes);
       whole.setVectorised(lanes);
-      const double g = fromOther ? 1.0 : ab;
-      const double a = 6e-3 * std::sqrt(g), b = 6e-3 / std::sqrt(g), G = 8.2e10, muFz = 2.4e4;
-      const CreepCoefficients k = kalkerCoefficients(g, 0.28);
-      for (int n = 0; n < 300; ++n) {
-        const Creepages c{creepage(0.05), creepage(0.05), creepage(20.0)};
-        const double opposed = n % 3 == 0 ? unit(rng) : PatchCalibration::opposedBranch(c);
-        ++compared;
-        if (!identical(picked.step(a, b, G, k, muFz, c, opposed),
-                       whole.step(a, b, G, k, muFz, c, opposed)))
-          ++differ;
-      }
+      compareSteps(picked, whole, fromOther ? 1.0 : ab, 300, &draw, identical, &compared, &differ);
     }
   }
   EXPECT_EQ(differ, 0) << "of " << compared;
@@ -758,7 +764,7 @@ TEST(CalibrationTable, RePickingFillsTheCorrectionAsStepsNeedItWithTheWholeGrids
   const double a = 6e-3 * std::sqrt(0.6), b = 6e-3 / std::sqrt(0.6);
   const CreepCoefficients k = kalkerCoefficients(0.6, 0.28);
   for (int n = 0; n < 200; ++n) {
-    const Creepages c{creepage(0.05), creepage(0.05), creepage(20.0)};
+    const Creepages c = draw.next();
     EXPECT_TRUE(
         identical(orphan.step(a, b, 8.2e10, k, 2.4e4, c), whole.step(a, b, 8.2e10, k, 2.4e4, c)));
   }

@@ -12,6 +12,7 @@
 #include "../a22_states.hpp"
 #include "core/exact/halfspace_solver.hpp"
 #include "core/fastsim/transient_fastsim.hpp"
+#include "validation/ellipse_patch.hpp"
 #include "validation/patch_exact.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/fastsim/patch_shape.hpp"
@@ -19,19 +20,6 @@
 using namespace wheel_rail_contact;
 
 namespace {
-
-// Kalker's strips of the ellipse (a, b): ny strips of width 2b/ny, half-length a sqrt(1 - y^2/b^2),
-// Hertz's peak pressure on each.
-PatchShape ellipseShape(double a, double b, double fz, int ny, double origin = 0.0) {
-  PatchShape s;
-  s.origin = origin;
-  const double p0 = 3.0 * fz / (2.0 * M_PI * a * b);
-  for (int j = 0; j < ny; ++j) {
-    const double yn = -1.0 + (2.0 * j + 1.0) / ny, r = std::sqrt(1.0 - yn * yn);
-    s.strips.push_back(PatchStrip{b * yn, 2.0 * b / ny, a * r, -a * r, p0 * r});
-  }
-  return s;
-}
 
 // A patch of two lumps with a gap between (a tread and a gauge-corner part merged), pressure
 // amplitudes differing.
@@ -83,7 +71,7 @@ StepInput input(int k, double a, double b, double fz) {
 // marches the shape's strips, the adaptive mesh's layout.
 TEST(TruePatch, EllipseStripsGiveTheEllipsesForces) {
   const double a = 6e-3, b = 4e-3, fz = 8e4;
-  const PatchShape shape = ellipseShape(a, b, fz, 16);
+  const PatchShape shape = ellipseStrips(a, b, fz, 16);
   for (const char* model : {"steady", "shen-li", "nss"})
     for (FastSimVariant v : {FastSimVariant::kClassic, FastSimVariant::kCalibrated}) {
       const ContactParameters p = params(model, "adaptive", v);
@@ -164,7 +152,7 @@ TEST(TruePatch, BadShapesAreRejected) {
 
 // A slender patch (a/b 20, a flange's) is taken with the coefficients at the table's end, said.
 TEST(TruePatch, SlenderPatchBeyondKalkersTableIsTakenAndSaid) {
-  PatchShape s = ellipseShape(10e-3, 0.5e-3, 1.5e4, 16);
+  PatchShape s = ellipseStrips(10e-3, 0.5e-3, 1.5e4, 16);
   for (const char* model : {"steady", "shen-li", "nss", "auto"}) {
     auto m = makeContactModel(params(model, "adaptive", FastSimVariant::kClassic));
     StepInput in = input(1, 10e-3, 0.5e-3, 1.5e4);
@@ -316,7 +304,8 @@ TEST(TruePatch, ManchesterA22SteadyLimitAgainstExact) {
 // any patch from rest). On an ellipse, where the exact model solves the same patch.
 TEST(TruePatch, JumpStartsFromRestWithoutSpikeAgainstExact) {
   const double a = 6e-3, b = 4e-3, fz = 8e4, mu = 0.3;
-  const PatchShape here = ellipseShape(a, b, fz, 20, 0.0), there = ellipseShape(a, b, fz, 20, 0.05);
+  const PatchShape here = ellipseStrips(a, b, fz, 20, 0.0),
+                   there = ellipseStrips(a, b, fz, 20, 0.05);
   for (const char* model : {"nss", "shen-li"})
     for (FastSimVariant v : {FastSimVariant::kCalibrated, FastSimVariant::kClassic}) {
       ContactParameters p = params(model, "adaptive", v);
@@ -434,32 +423,19 @@ TEST(TruePatch, SlidingPatchAgainstExactTransient) {
     for (double speed : {0.01, 0.03}) {
       const int settle = 60, moving = 40;
       const double travel = speed * b * moving;
-      HalfspaceGrid g;
-      g.mx = 24;
-      g.dx = 2.2 * a / g.mx;
-      g.dy = g.dx;
-      g.my = static_cast<int>(std::ceil((2.2 * b + travel) / g.dy));
+      const HalfspaceGrid g = ellipseSlideGrid(a, b, travel);
       HalfspaceSolver exact(g, G, nu);
       ContactParameters p = params("nss", "adaptive", FastSimVariant::kCalibrated);
       p.nx = p.ny = 20;
       auto nss = makeContactModel(p);
-      const double p0 = 3.0 * fz / (2.0 * M_PI * a * b);
       double worst = 0.0, above = 0.0;
       for (int k = 0; k < settle + moving + 40; ++k) {
         const double s = -0.5 * travel + speed * b * std::min(std::max(k - settle, 0), moving);
-        Eigen::VectorXd pressure(g.size());
-        double sum = 0.0;
-        for (int ix = 0; ix < g.mx; ++ix)
-          for (int iy = 0; iy < g.my; ++iy) {
-            const double x = g.xc(ix) / a, y = (g.yc(iy) - s) / b, r = 1.0 - x * x - y * y;
-            pressure(g.index(ix, iy)) = r > 0.0 ? p0 * std::sqrt(r) : 0.0;
-            sum += pressure(g.index(ix, iy)) * g.dx * g.dy;
-          }
-        exact.setPressure(pressure * (fz / sum));
+        exact.setPressure(movedEllipsePressure(g, a, b, fz, s));
         // The spin's lever from the moving point: y = y_grid - s.
         const HalfspaceSolution& x =
             exact.solve(RollingMode::kTransient, Creepages{w.xi + w.phi * s, w.eta, w.phi}, mu);
-        const PatchShape shape = ellipseShape(a, b, fz, 20, s);
+        const PatchShape shape = ellipseStrips(a, b, fz, 20, s);
         StepInput in = input(1, a, b, fz);
         in.V = 2.0;
         in.dt = g.dx / in.V;  // one element rolled a step, as the exact transient step

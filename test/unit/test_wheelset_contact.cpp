@@ -11,6 +11,7 @@
 
 #include <algorithm>
 
+#include "../a22_wheelset_states.hpp"
 #include "wheel_rail_contact/contact_model.hpp"
 #include "wheel_rail_contact/fastsim/patch_shape.hpp"
 #include "wheel_rail_contact/wheelset/wheelset_contact.hpp"
@@ -19,31 +20,12 @@ using namespace wheel_rail_contact;
 
 namespace {
 
-/// The benchmark's right-wheel state at lateral shift y_mm (CONTACT's axes: to the right) in our
-/// REP 103 axes (doc/profiles.md): y and yaw change sign, roll does not; omega = -vpitch. The
-/// states are the right-wheel rows at 0.5, 5, 5.5 and 6.5 mm of test/data/profiles/a22_cases.csv.
-WheelsetState a22(double y_mm, double yaw, double roll, double vpitch) {
-  WheelsetState s;
-  s.pose.y = -y_mm * 1e-3;
-  s.pose.yaw = -yaw;
-  s.pose.roll = roll;
-  s.motion.V = 2.0;
-  s.motion.omega = -vpitch;
-  s.fz_left = s.fz_right = 1e4;
-  return s;
-}
-WheelsetState tread() {
-  return a22(0.5, 0.0012, -2.304e-05, -4.34741);
-}
-WheelsetState corner() {
-  return a22(5.0, 0.012, -0.0003554, -4.33536);
-}
-WheelsetState corner2() {
-  return a22(5.5, 0.0132, -0.0004777, -4.33189);
-}
-WheelsetState flange() {
-  return a22(6.5, 0.0156, -0.004376, -4.27488);
-}
+using a22_wheelset::a22;
+using a22_wheelset::corner;
+using a22_wheelset::corner2;
+using a22_wheelset::flange;
+using a22_wheelset::mirrored;
+using a22_wheelset::tread;
 
 bool inKalkersTable(const NormalPatch& n) {
   return n.a >= 0.1 * n.b && n.a <= 10.0 * n.b;
@@ -58,18 +40,6 @@ bool onStrips(const NormalPatch& n) {
 /// The FastSim models take every patch; the exact model only an ellipse in Kalker's table.
 bool modelTakes(const NormalPatch& n, const std::string& model = "steady") {
   return model != "exact" || inKalkersTable(n);
-}
-
-/// The mirror image in the track's x-z plane: the left wheel then sees what the right one saw.
-WheelsetState mirrored(WheelsetState s) {
-  s.pose.y = -s.pose.y;
-  s.pose.yaw = -s.pose.yaw;
-  s.pose.roll = -s.pose.roll;
-  s.motion.vy = -s.motion.vy;
-  s.motion.yaw_rate = -s.motion.yaw_rate;
-  s.motion.curvature = -s.motion.curvature;
-  std::swap(s.fz_left, s.fz_right);
-  return s;
 }
 
 ContactParameters parameters(const std::string& model) {

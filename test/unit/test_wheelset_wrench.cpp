@@ -11,40 +11,15 @@
 #include <utility>
 #include <vector>
 
+#include "../a22_wheelset_states.hpp"
 #include "wheel_rail_contact/wheelset/wheelset_contact.hpp"
 
 using namespace wheel_rail_contact;
 
 namespace {
 
-/// The benchmark's right-wheel states (test_wheelset_contact.cpp): lateral shift y_mm in CONTACT's
-/// axes (to the right), turned into REP 103 (y and yaw change sign, omega = -vpitch).
-WheelsetState a22(double y_mm, double yaw, double roll, double vpitch) {
-  WheelsetState s;
-  s.pose.y = -y_mm * 1e-3;
-  s.pose.yaw = -yaw;
-  s.pose.roll = roll;
-  s.motion.V = 2.0;
-  s.motion.omega = -vpitch;
-  s.fz_left = s.fz_right = 1e4;
-  return s;
-}
-std::vector<WheelsetState> a22States() {
-  return {a22(0.5, 0.0012, -2.304e-05, -4.34741), a22(5.0, 0.012, -0.0003554, -4.33536),
-          a22(5.5, 0.0132, -0.0004777, -4.33189), a22(6.5, 0.0156, -0.004376, -4.27488)};
-}
-
-/// The mirror image in the track's x-z plane: the left wheel then sees what the right one saw.
-WheelsetState mirrored(WheelsetState s) {
-  s.pose.y = -s.pose.y;
-  s.pose.yaw = -s.pose.yaw;
-  s.pose.roll = -s.pose.roll;
-  s.motion.vy = -s.motion.vy;
-  s.motion.yaw_rate = -s.motion.yaw_rate;
-  s.motion.curvature = -s.motion.curvature;
-  std::swap(s.fz_left, s.fz_right);
-  return s;
-}
+using a22_wheelset::a22;
+using a22_wheelset::mirrored;
 
 ContactParameters steady() {
   ContactParameters p;
@@ -72,7 +47,7 @@ TEST(WheelsetWrench, TheWheelsIsThePatchesSumAndItsVerticalForceTheLoadPlusTheTa
   // (fx lies along the track's x). Not 0: on the gauge corner at 5.5 mm it is some 1 kN.
   const double tolerance = NormalOptions{}.load_tolerance;
   bool tangential_share = false;
-  for (const WheelsetState& s : a22States()) {
+  for (const WheelsetState& s : a22_wheelset::fourStates()) {
     WheelsetContact c(WheelsetTrackData{}, steady());
     const WheelsetResult r = c.step(s, 0.0);
     for (const WheelResult* w : {&r.left, &r.right}) {
@@ -102,7 +77,7 @@ TEST(WheelsetWrench, EachPatchsForceIsItsContactFrameTurnedByTheContactAngle) {
   // n = (0, sin, cos)(delta), e_y = (0, cos, -sin)(delta); on the left n = (0, -sin, cos)(delta),
   // e_y = (0, cos, sin)(delta); e_x the track's x on both.
   int checked = 0;
-  for (const WheelsetState& s : a22States()) {
+  for (const WheelsetState& s : a22_wheelset::fourStates()) {
     WheelsetContact c(WheelsetTrackData{}, steady());
     const WheelsetResult r = c.step(s, 0.0);
     for (const WheelResult* w : {&r.left, &r.right}) {
@@ -131,7 +106,7 @@ TEST(WheelsetWrench, TheNormalForceHasNoMomentAboutTheAxleAndTheCentreSitsOnIt) 
   // wheelset's centre, at the loaded height.
   WheelsetContactOptions o;
   o.tangential = false;
-  for (const WheelsetState& s : a22States()) {
+  for (const WheelsetState& s : a22_wheelset::fourStates()) {
     WheelsetContact c(WheelsetTrackData{}, steady(), o);
     const WheelsetResult r = c.step(s, 0.0);
     const Eigen::Vector3d e = axle(s.pose);
@@ -154,7 +129,7 @@ TEST(WheelsetWrench, TheNormalForceHasNoMomentAboutTheAxleAndTheCentreSitsOnIt) 
 
 TEST(WheelsetWrench, TheLeftWheelInTheMirroredStateIsTheRightOneMirrored) {
   // The mirror in the track's x-z plane keeps fx, fz and my, and turns fy, mx and mz over.
-  for (const WheelsetState& s : a22States()) {
+  for (const WheelsetState& s : a22_wheelset::fourStates()) {
     WheelsetContact c(WheelsetTrackData{}, steady());
     const WheelResult right = c.step(s, 0.0).right;
     const WheelResult left = c.step(mirrored(s), 0.0).left;
@@ -177,7 +152,7 @@ TEST(WheelsetWrench, TheLeftWheelInTheMirroredStateIsTheRightOneMirrored) {
 
 TEST(WheelsetWrench, AWheelWithNoPatchHasZeroWrench) {
   WheelsetContact c(WheelsetTrackData{}, steady());
-  WheelsetState s = a22States().front();
+  WheelsetState s = a22_wheelset::fourStates().front();
   s.fz_left = 0.0;
   WheelsetResult r = c.step(s, 0.0);
   EXPECT_EQ(r.left.status, WheelStatus::kNoLoad);
@@ -197,7 +172,7 @@ TEST(WheelsetWrench, AWheelWithNoPatchHasZeroWrench) {
 TEST(WheelLoadTangential, TheWholeForcesVerticalComponentsCarryTheLoad) {
   // solveWheelLoad's tangential_vertical t_i: sum_i fn_i (n_z,i + t_i) = load.
   const ContactSearch search{WheelsetTrackData{}};
-  for (const WheelsetState& s : a22States()) {
+  for (const WheelsetState& s : a22_wheelset::fourStates()) {
     WheelsetPose pose = s.pose;
     WheelContactGeometry g = search.search(WheelSide::kRight, pose);
     ASSERT_EQ(g.status, ContactSearchStatus::kOk);
@@ -256,7 +231,7 @@ TEST(WheelsetBalance, EachStepTakesItsSlotsPreviousTractionRatio) {
   // At y = 0 the two tread candidates merge into the first one's patch; 0.3 mm to the right into
   // the second's, which takes the slot "tread" although it is the second tread candidate.
   const double tolerance = NormalOptions{}.load_tolerance;
-  std::vector<WheelsetState> states = a22States();
+  std::vector<WheelsetState> states = a22_wheelset::fourStates();
   states.push_back(a22(0.0, 0.0, 0.0, -4.34812));
   states.push_back(a22(0.3, 0.0, 0.0, -4.34812));
   for (const WheelsetState& s : states) {
@@ -292,7 +267,7 @@ TEST(WheelsetBalance, EachStepTakesItsSlotsPreviousTractionRatio) {
 TEST(WheelsetBalance, SettledTheWrenchsVerticalForceIsTheLoad) {
   // A steady evaluation: the whole forces' vertical components add up to the load, and the
   // normal forces' do not (the tangential share, up to 1 kN on the gauge corner at 5.5 mm).
-  for (const WheelsetState& s : a22States()) {
+  for (const WheelsetState& s : a22_wheelset::fourStates()) {
     WheelsetContact whole(WheelsetTrackData{}, steady(), wholeForce());
     const WheelsetResult r = whole.settle(s, 0.0, 1e-6);
     WheelsetContact plain(WheelsetTrackData{}, steady());
@@ -313,7 +288,7 @@ TEST(WheelsetBalance, SettledTheWrenchsVerticalForceIsTheLoad) {
   }
   // Bad settle arguments: both wheels refused.
   WheelsetContact c(WheelsetTrackData{}, steady(), wholeForce());
-  const WheelsetResult bad = c.settle(a22States().front(), 0.0, 0.0);
+  const WheelsetResult bad = c.settle(a22_wheelset::fourStates().front(), 0.0, 0.0);
   EXPECT_EQ(bad.left.status, WheelStatus::kInvalidInput);
   EXPECT_EQ(bad.right.status, WheelStatus::kInvalidInput);
   EXPECT_EQ(bad.left.side, WheelSide::kLeft);
@@ -325,8 +300,8 @@ TEST(WheelsetBalance, WithNoBalanceTheNormalForcesCarryTheLoadSayingSo) {
   // The normal forces alone carry the load that step; the wheel says so; nothing NaN.
   ContactParameters p = steady();
   p.mu = 5.0;
-  WheelsetState s = a22States()[2];  // 5.5 mm: one patch, the gauge corner
-  s.motion.vy = -0.4;                // eta about -0.2: the wheel slides to the right
+  WheelsetState s = a22_wheelset::fourStates()[2];  // 5.5 mm: one patch, the gauge corner
+  s.motion.vy = -0.4;                               // eta about -0.2: the wheel slides to the right
   WheelsetContact whole(WheelsetTrackData{}, p, wholeForce());
   WheelsetContact plain(WheelsetTrackData{}, p);
   whole.step(s, 0.0);
