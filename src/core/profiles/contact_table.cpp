@@ -35,13 +35,19 @@ struct TableCandidate {
   };
   std::vector<Row> rows;
 
+  /// The row interval holding eta: its first row j (clamped to the table), and u set to eta's
+  /// fraction of the way from row j to row j + 1.
+  int interval(double eta, double* u) const {
+    const double t = (eta - eta0) * inv_deta;
+    const int last = static_cast<int>(rows.size()) - 1;
+    const int j = std::min(std::max(static_cast<int>(std::floor(t)), 0), last - 1);
+    *u = t - j;
+    return j;
+  }
   /// The gap function's sample at eta, dZ above Z_a (gap, radius and angle; eta left unset).
   GapSample gapFunction(double eta, double dZ) const {
-    double u = (eta - eta0) * inv_deta;
-    const int last = static_cast<int>(rows.size()) - 1;
-    int j = static_cast<int>(std::floor(u));
-    j = std::min(std::max(j, 0), last - 1);
-    u -= j;
+    double u;
+    const int j = interval(eta, &u);
     const Row &p = rows[j], &q = rows[j + 1];
     const double v = 1.0 - u;
     GapSample s;
@@ -52,11 +58,8 @@ struct TableCandidate {
   }
   /// gapFunction(eta, dZ).gap alone (the same arithmetic).
   double gapAt(double eta, double dZ) const {
-    double u = (eta - eta0) * inv_deta;
-    const int last = static_cast<int>(rows.size()) - 1;
-    int j = static_cast<int>(std::floor(u));
-    j = std::min(std::max(j, 0), last - 1);
-    u -= j;
+    double u;
+    const int j = interval(eta, &u);
     const Row &p = rows[j], &q = rows[j + 1];
     return (1.0 - u) * (p.gap + p.gap_dz * dZ) + u * (q.gap + q.gap_dz * dZ);
   }
