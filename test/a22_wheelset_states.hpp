@@ -49,6 +49,7 @@ inline WheelsetState mirrored(WheelsetState s) {
   s.motion.vy = -s.motion.vy;
   s.motion.yaw_rate = -s.motion.yaw_rate;
   s.motion.curvature = -s.motion.curvature;
+  s.motion.cant = -s.motion.cant;
   std::swap(s.fz_left, s.fz_right);
   return s;
 }

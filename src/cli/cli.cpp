@@ -55,7 +55,9 @@ const char* const kWheelsetHelp =
     "t,y,yaw,roll,V,omega,fz (s, m, rad, rad, m/s, rad/s, N; omega the pitch rate about the\n"
     "axle, about V/r0 > 0 rolling forward; fz the vertical load per wheel), or fz_left,fz_right\n"
     "instead of fz, and optionally vy,yaw_rate,curvature (m/s, rad/s, 1/m, positive for a curve\n"
-    "to the left), vz,roll_rate (m/s, rad/s). Writes CSV to stdout, one row per contact patch:\n"
+    "to the left), cant (rad, the track's under the wheelset, positive raises the left rail;\n"
+    "without the column --config's cant, default 0), vz,roll_rate (m/s, rad/s). Writes CSV to\n"
+    "stdout, one row per contact patch:\n"
     "t,wheel,patch,y_rail,z_rail,y_wheel,contact_angle,rolling_radius,xi,eta,phi,fn,fx,fs,mz,\n"
     "a,b,pmax,status (wheel left|right; patch its zone tread|gauge_corner|flange, _2 for a\n"
     "second one; y_rail,z_rail,y_wheel the contact point in the profile files' own coordinates,\n"
@@ -66,9 +68,9 @@ const char* const kWheelsetHelp =
     "patch none and its status (no_contact, no_load, invalid_input, ...), geometry and\n"
     "creepages empty, forces zero. --config: the model's parameters and the wheelset and\n"
     "track data (nominal_radius, flange_back_distance, flange_back_position, gauge,\n"
-    "gauge_depth, rail_inclination, cant; profile_length_unit, profile_lateral_axis,\n"
-    "profile_vertical_axis, profile_smoothing_length), defaults the Manchester benchmark's\n"
-    "(doc/wheelset.md).";
+    "gauge_depth, rail_inclination; profile_length_unit, profile_lateral_axis,\n"
+    "profile_vertical_axis, profile_smoothing_length), defaults the Manchester benchmark's,\n"
+    "and cant, the scenario's cant where it has no cant column (doc/wheelset.md).";
 const char* const kUsage =
     "usage: contact_cli run --scenario FILE.csv [--config FILE.yaml] [--model M] [--PARAMETER V]\n"
     "       contact_cli wheelset --wheel-profile FILE --rail-profile FILE --scenario FILE.csv\n"
@@ -317,6 +319,7 @@ int runWheelset(const CommandLine& c, std::ostream& out, std::ostream& err) {
     s.motion.vy = r.vy;
     s.motion.yaw_rate = r.yaw_rate;
     s.motion.curvature = r.curvature;
+    s.motion.cant = r.cant.value_or(w.cant);
     s.motion.vz = r.vz;
     s.motion.roll_rate = r.roll_rate;
     s.fz_left = r.fz_left;

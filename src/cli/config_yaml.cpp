@@ -100,7 +100,9 @@ std::vector<ParameterDoc> wheelsetParameterDocs() {
       {"gauge_depth", "m", text(d.gauge_depth), "depth below the rails' top of the gauge points"},
       {"rail_inclination", "-", text(d.rail_inclination),
        "tilt of the rail profiles toward the centre (tangent, 0.025 = 1:40); 0: as read"},
-      {"cant", "rad", text(d.cant), "cant of the rails' plane, positive raises the left rail"},
+      {"cant", "rad", text(WheelsetConfig{}.cant),
+       "track's cant under the wheelset where the scenario has no cant column; positive raises "
+       "the left rail"},
       {"profile_length_unit", "m", "file",
        "metres per profile file unit (0.001, or mm / m); default: the file says"},
       {"profile_lateral_axis", "", "toward_field",
@@ -118,15 +120,21 @@ bool setWheelsetParameter(WheelsetConfig* w, const std::string& name, const std:
       {"flange_back_position", &WheelsetTrackData::flange_back_position},
       {"gauge", &WheelsetTrackData::gauge},
       {"gauge_depth", &WheelsetTrackData::gauge_depth},
-      {"rail_inclination", &WheelsetTrackData::rail_inclination},
-      {"cant", &WheelsetTrackData::cant}};
+      {"rail_inclination", &WheelsetTrackData::rail_inclination}};
   for (const auto& [key, field] : kTrackNumbers)
     if (name == key) {
       w->track.*field = number(name, value);
       return true;
     }
   ProfileReadOptions& r = w->profile_read;
-  if (name == "profile_length_unit") {
+  if (name == "cant") {
+    w->cant = number(name, value);
+    if (!(std::abs(w->cant) <= kMaxCant)) {
+      std::ostringstream m;
+      m << name << ": must be within +-" << kMaxCant << " rad, got '" << value << "'";
+      throw std::invalid_argument(m.str());
+    }
+  } else if (name == "profile_length_unit") {
     r.length_unit = value == "mm" ? 1e-3 : value == "m" ? 1.0 : number(name, value);
     if (!(r.length_unit > 0.0))
       throw std::invalid_argument(name + ": must be > 0 (metres per file unit), got '" + value +

@@ -9,6 +9,7 @@
 #include "wheel_rail_contact/contact_parameters.hpp"
 #include "wheel_rail_contact/profiles/profile.hpp"
 #include "wheel_rail_contact/profiles/wheelset_track.hpp"
+#include "wheel_rail_contact/wheelset/creepages.hpp"
 
 namespace wheel_rail_contact {
 
@@ -24,10 +25,14 @@ bool isNodeOnlyParameter(const std::string& name);
 void loadConfigYaml(const std::string& file, ContactParameters* p);
 
 /// contact_cli wheelset's data besides the model's parameters: the wheelset and track (its
-/// profiles are the command's files) and how the profile files are read.
+/// profiles are the command's files), how the profile files are read, and the cant of a scenario
+/// without a cant column.
 struct WheelsetConfig {
   WheelsetTrackData track;
   ProfileReadOptions profile_read;
+  /// The track's cant under the wheelset [rad] (WheelsetMotion::cant) for every row of a scenario
+  /// that has no cant column; |cant| <= kMaxCant.
+  double cant = 0.0;
 };
 
 /// The keys of WheelsetConfig, with their defaults (the benchmark's, WheelsetTrackData{}).
@@ -35,7 +40,7 @@ std::vector<ParameterDoc> wheelsetParameterDocs();
 
 /// Sets one wheelset key from text. Throws std::invalid_argument naming the key on a value that
 /// does not parse; false if `name` is not a wheelset key. Ranges are
-/// WheelsetTrackData::validate()'s and Profile::read()'s.
+/// WheelsetTrackData::validate()'s and Profile::read()'s; cant's, |cant| <= kMaxCant, here.
 bool setWheelsetParameter(WheelsetConfig* w, const std::string& name, const std::string& value);
 
 /// As loadConfigYaml, and the keys of wheelsetParameterDocs() go to *w: one file for the model and

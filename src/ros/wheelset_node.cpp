@@ -109,6 +109,13 @@ bool WheelsetNode::readParameters() {
     std::set<std::string> known(std::begin(kNodeKeys), std::end(kNodeKeys));
     for (const auto& d : parameterDocs()) known.insert(d.name);
     for (const auto& d : wheelsetParameterDocs()) known.insert(d.name);
+    // contact_cli wheelset's cant is the cant of a scenario without a cant column; here every
+    // tick gives its own (WheelsetKinematics.cant), so a ~cant would be a value never used.
+    known.erase("cant");
+    if (pnh_.hasParam("cant"))
+      throw std::invalid_argument(
+          "cant: not a parameter of wheelset_node: each tick's WheelsetKinematics.cant gives the "
+          "track's cant under its wheelset");
     std::set<std::string> ignored;
     std::vector<std::string> all;
     ros::param::getParamNames(all);
@@ -229,8 +236,8 @@ void WheelsetNode::tick(const WheelsetInput& in, WheelsetForces* out) {
     e.state.motion.roll_rate = m.roll_rate;
     e.state.motion.curvature = m.curvature;
     e.state.fz_left = m.load_left;
+    e.state.motion.cant = m.cant;
     e.state.fz_right = m.load_right;
-    e.cant = m.cant;
   }
   stepper_->step(static_cast<int64_t>(in.header.stamp.toNSec()), entries_, &answers_);
 
@@ -335,10 +342,9 @@ void WheelsetNode::diagnoseWheelset(size_t i, diagnostic_updater::DiagnosticStat
   stat.add("rejected: non-finite", c.non_finite);
   stat.add("rejected: stamp out of order", c.out_of_order);
   stat.add("rejected: dt > max_dt", c.dt_too_large);
-  stat.add("rejected: cant differs from ~cant", c.cant_mismatch);
   stat.add("wheels: no load", c.no_load);
   stat.add("wheels held: no contact", c.no_contact);
-  stat.add("wheels held: invalid input (beyond the profiles)", c.invalid_input);
+  stat.add("wheels held: invalid input (beyond the profiles, |cant| > 0.2 rad)", c.invalid_input);
   stat.add("wheels held: normal problem failed", c.normal_failed);
   stat.add("wheels held: a patch's model refused", c.patch_rejected);
   stat.add("resets", c.resets);

@@ -26,8 +26,6 @@ const char* toString(WheelsetEvent e) {
       return "out_of_order";
     case WheelsetEvent::kDtTooLarge:
       return "dt_too_large";
-    case WheelsetEvent::kCantMismatch:
-      return "cant_mismatch";
   }
   return "unknown";
 }
@@ -44,8 +42,8 @@ std::string seconds(int64_t ns) {
 bool finiteEntry(const WheelsetEntry& e) {
   const WheelsetPose& p = e.state.pose;
   const WheelsetMotion& m = e.state.motion;
-  for (double v : {p.y, p.yaw, p.roll, m.V, m.omega, m.vy, m.yaw_rate, m.curvature, m.vz,
-                   m.roll_rate, e.state.fz_left, e.state.fz_right, e.cant})
+  for (double v : {p.y, p.yaw, p.roll, m.V, m.omega, m.vy, m.yaw_rate, m.curvature, m.cant, m.vz,
+                   m.roll_rate, e.state.fz_left, e.state.fz_right})
     if (!std::isfinite(v)) return false;
   return true;
 }
@@ -195,15 +193,6 @@ void WheelsetStepper::step(int64_t stamp_ns, const std::vector<WheelsetEntry>& i
     if (!finiteEntry(e)) {
       refuse(&w, WheelsetEvent::kNonFinite, "a value of the wheelset's state is not finite", &a);
       ++c.non_finite;
-      out->push_back(std::move(a));
-      continue;
-    }
-    if (!(std::abs(e.cant - config_.track.cant) <= kCantTolerance)) {
-      std::ostringstream m;
-      m << "cant " << e.cant << " rad differs from the configured cant " << config_.track.cant
-        << " rad: a varying cant is not supported";
-      refuse(&w, WheelsetEvent::kCantMismatch, m.str(), &a);
-      ++c.cant_mismatch;
       out->push_back(std::move(a));
       continue;
     }

@@ -38,24 +38,20 @@ struct WheelsetStepperConfig {
 /// One wheelset's entry of a tick.
 struct WheelsetEntry {
   std::string name;
-  WheelsetState state;  ///< pose.z is not used
-  double cant = 0.0;    ///< must equal the track data's cant within kCantTolerance
+  /// pose.z is not used; motion.cant is the track's cant under the wheelset this tick (beyond
+  /// kMaxCant: WheelsetContact's kInvalidInput, held).
+  WheelsetState state;
 };
-
-/// How far a tick's cant may differ from the configured one [rad]: a varying cant is not
-/// supported (WheelsetContact takes the cant as track data).
-constexpr double kCantTolerance = 1e-6;
 
 /// Why an entry was not stepped (kStepped: it was; each wheel's answer says how).
 enum class WheelsetEvent {
   kStepped = 0,
-  kUnknownName,   ///< no configured wheelset has this name: no wheelset touched
-  kDuplicate,     ///< the name appears more than once: every occurrence rejected, held
-  kMissing,       ///< a configured wheelset absent from the tick: appended, rejected, held
-  kNonFinite,     ///< a value of the entry not finite: rejected, held, time base unchanged
-  kOutOfOrder,    ///< the stamp is not after the previous one: rejected, held
-  kDtTooLarge,    ///< dt > max_dt: rejected, held; the time base restarts at this stamp
-  kCantMismatch,  ///< cant differs from the configured one: rejected, held
+  kUnknownName,  ///< no configured wheelset has this name: no wheelset touched
+  kDuplicate,    ///< the name appears more than once: every occurrence rejected, held
+  kMissing,      ///< a configured wheelset absent from the tick: appended, rejected, held
+  kNonFinite,    ///< a value of the entry not finite: rejected, held, time base unchanged
+  kOutOfOrder,   ///< the stamp is not after the previous one: rejected, held
+  kDtTooLarge,   ///< dt > max_dt: rejected, held; the time base restarts at this stamp
 };
 const char* toString(WheelsetEvent e);
 
@@ -91,8 +87,7 @@ struct WheelsetAnswer {
 
 struct WheelsetCounters {
   uint64_t steps = 0;  ///< entries handed to WheelsetContact
-  uint64_t duplicate = 0, missing = 0, non_finite = 0, out_of_order = 0, dt_too_large = 0,
-           cant_mismatch = 0;
+  uint64_t duplicate = 0, missing = 0, non_finite = 0, out_of_order = 0, dt_too_large = 0;
   uint64_t held = 0;  ///< held wheel answers (two per rejected entry)
   uint64_t no_load = 0, no_contact = 0, invalid_input = 0, normal_failed = 0,
            patch_rejected = 0;  ///< wheel answers with that status

@@ -86,7 +86,7 @@ TEST(WheelsetConfig, KeysGoToTheTrackTheProfileReaderAndTheParameters) {
   EXPECT_EQ(w.track.gauge, 1.432);
   EXPECT_EQ(w.track.gauge_depth, 0.015);
   EXPECT_EQ(w.track.rail_inclination, 0.025);
-  EXPECT_EQ(w.track.cant, 0.01);
+  EXPECT_EQ(w.cant, 0.01);  // the scenario's default cant
   EXPECT_EQ(w.profile_read.length_unit, 1e-3);
   EXPECT_EQ(w.profile_read.lateral, LateralAxis::kTowardGauge);
   EXPECT_EQ(w.profile_read.vertical, VerticalAxis::kUp);
@@ -113,6 +113,7 @@ TEST(WheelsetConfig, ErrorsNameTheKeyAndTheFile) {
   EXPECT_EQ(configErrorOf("gauge: wide\n").rfind("gauge: expected a finite number, got 'wide'", 0),
             0u);
   EXPECT_EQ(configErrorOf("cant: .nan\n").rfind("cant: expected a finite number", 0), 0u);
+  EXPECT_EQ(configErrorOf("cant: 0.3\n").rfind("cant: must be within +-0.2 rad, got '0.3'", 0), 0u);
   EXPECT_EQ(configErrorOf("profile_length_unit: -1\n").rfind("profile_length_unit: must be > 0", 0),
             0u);
   EXPECT_EQ(configErrorOf("profile_lateral_axis: left\n").rfind("profile_lateral_axis:", 0), 0u);
@@ -272,6 +273,64 @@ TEST(ContactCliWheelset, BadFilesAndOptionsAreRefusedNamingThem) {
            "--mu", "-1"});
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("mu"), std::string::npos) << r.err;
+}
+
+TEST(ContactCliWheelset, EachRowTakesItsCantColumnOrElseTheConfigsCant) {
+  // A wheelset on its gauge corner in a 200 m left curve: the rows' cant column, and without it
+  // --config's cant (0 without either), give the same rows for the same cant (steady: no
+  // history; the same previous row, so the same warm start), and another cant another spin.
+  const std::string state = "-0.0055,-0.0132,-0.0004777,2,4.33189,1e4,0.005";
+  const std::string column =
+      writeTemp("w_cant.csv", "t,y,yaw,roll,V,omega,fz,curvature,cant\n0," + state + ",-0.12\n1," +
+                                  state + ",0\n2," + state + ",-0.05\n");
+  const std::string none =
+      writeTemp("w_nocant.csv", "t,y,yaw,roll,V,omega,fz,curvature\n0," + state + "\n1," + state +
+                                    "\n2," + state + "\n");
+  const std::string canted = writeTemp("w_cant.yaml", "cant: -0.12\n");
+  using Rows = std::map<std::string, std::vector<std::string>>;  // "t wheel patch" -> the row
+  const auto run = [&](const std::string& scenario, bool config) {
+    std::vector<std::string> args = {"wheelset", "--wheel-profile", kWheel,   "--rail-profile",
+                                     kRail,      "--scenario",      scenario, "--model",
+                                     "steady"};
+    if (config) args.insert(args.end(), {"--config", canted});
+    const CliResult r = cli(args);
+    EXPECT_EQ(r.code, 0) << r.err;
+    Rows rows;
+    std::istringstream in(r.out);
+    for (const auto& row : csvRows(in))
+      if (row.size() == 19u) rows[row[0] + " " + row[1] + " " + row[2]] = row;
+    return rows;
+  };
+  // The row without its t; or its creepages xi, eta, phi alone.
+  const auto whole = [](const Rows& r, const std::string& key) {
+    const std::vector<std::string>& v = r.at(key);
+    return std::vector<std::string>(v.begin() + 1, v.end());
+  };
+  const auto creepages = [](const Rows& r, const std::string& key) {
+    const std::vector<std::string>& v = r.at(key);
+    return std::vector<std::string>(v.begin() + 8, v.begin() + 11);
+  };
+  const Rows byColumn = run(column, false), byConfig = run(none, true), level = run(none, false);
+  const Rows byColumnWithConfig = run(column, true);
+  ASSERT_GT(level.count("0 right gauge_corner"), 0u) << "no gauge corner patch";
+  int compared = 0;
+  for (const char* wheel : {"left", "right"})
+    for (const char* patch : {"tread", "gauge_corner"}) {
+      const std::string at = std::string(" ") + wheel + " " + patch;
+      if (level.count("0" + at) == 0) continue;
+      ++compared;
+      EXPECT_EQ(whole(byColumn, "0" + at), whole(byConfig, "0" + at)) << at;          // -0.12 both
+      EXPECT_EQ(whole(byColumn, "1" + at), whole(level, "1" + at)) << at;             // 0 both
+      EXPECT_EQ(whole(byColumnWithConfig, "1" + at), whole(level, "1" + at)) << at;   // the column
+      EXPECT_EQ(creepages(byConfig, "1" + at), creepages(byConfig, "0" + at)) << at;  // every row
+      EXPECT_EQ(creepages(byConfig, "2" + at), creepages(byConfig, "0" + at)) << at;
+    }
+  EXPECT_GE(compared, 2);  // the left tread and the right gauge corner at least
+  // The cant moves the gauge corner's spin (its normal leans: kappa sin(cant) n_y).
+  EXPECT_NE(creepages(byColumn, "0 right gauge_corner")[2],
+            creepages(level, "0 right gauge_corner")[2]);
+  EXPECT_NE(creepages(byColumn, "2 right gauge_corner")[2],
+            creepages(byColumn, "0 right gauge_corner")[2]);
 }
 
 TEST(ContactCliWheelset, TheShippedA22SceneIsTheBenchmarksStates) {

@@ -1,8 +1,9 @@
 // rostest: wheelset_node (or its nodelet) against contact_cli wheelset on the same profiles,
 // parameters and wheelset states (the patches' geometry, normal forces, creepages and forces),
 // through the wheelset_step service and the wheelset_input/wheelset_forces topics (one answer per
-// input, equal to the service's after a reset); the hold rule (stamp out of order, unknown,
-// missing and repeated names, a cant the node does not support); the diagnostics. Private
+// input, equal to the service's after a reset), each tick with its own cant as the CLI's cant
+// column; the hold rule (stamp out of order, unknown, missing and repeated names, a cant beyond
+// 0.2 rad); the diagnostics. Private
 // parameter ~ns: the node's namespace. No sleeps: every wait is for an event, with a timeout.
 #include <diagnostic_msgs/DiagnosticArray.h>
 
@@ -30,7 +31,8 @@ constexpr int kTicks = 40;
 constexpr int64_t kStep = 1000000;  // 1 ms [ns]
 
 /// Wheelset w's state at tick k: the front one moves out toward its flange (tread, gauge corner),
-/// the rear one sways on its treads; V 20 m/s, 50 kN per wheel, a left curve.
+/// the rear one sways on its treads; V 20 m/s, 50 kN per wheel, a 300 m left curve whose cant
+/// (the outer, right rail raised) grows under the front wheelset and sways under the rear one.
 WheelsetKinematics state(int w, int k) {
   WheelsetKinematics s;
   s.name = kNames[w];
@@ -44,7 +46,8 @@ WheelsetKinematics state(int w, int k) {
   s.yaw_rate = w == 0 ? 0.05 : 0.15 * std::sin(6.0 * q);
   s.load_left = 5e4 + 2e3 * w;
   s.load_right = 5e4 - 1e3 * k;
-  s.curvature = 1.0 / 1000.0;
+  s.curvature = 1.0 / 300.0;
+  s.cant = w == 0 ? -0.02 - 0.12 * q : -0.1 + 0.03 * std::sin(6.0 * q);
   return s;
 }
 
@@ -78,13 +81,13 @@ bool cliReference(std::vector<std::vector<std::vector<CliRow>>>* ref) {
         "/tmp/rostest_wheelset_" + std::to_string(getpid()) + "_" + std::to_string(w);
     {
       std::ofstream f(csv + ".csv");
-      f << "t,y,yaw,roll,V,omega,fz_left,fz_right,vy,yaw_rate,curvature\n";
+      f << "t,y,yaw,roll,V,omega,fz_left,fz_right,vy,yaw_rate,curvature,cant\n";
       f.precision(17);
       for (int k = 0; k < kTicks; ++k) {
         const WheelsetKinematics s = state(w, k);
         f << 1.0 + k * 1e-3 << "," << s.lateral << "," << s.yaw << "," << s.roll << ","
           << s.velocity << "," << s.pitch_rate << "," << s.load_left << "," << s.load_right << ","
-          << s.lateral_velocity << "," << s.yaw_rate << "," << s.curvature << "\n";
+          << s.lateral_velocity << "," << s.yaw_rate << "," << s.curvature << "," << s.cant << "\n";
       }
     }
     std::string out;
@@ -285,6 +288,44 @@ TEST(WheelsetNode, EqualsContactCliWheelsetAndTheTopicEqualsTheService) {
   }
 }
 
+TEST(WheelsetNode, EachTicksCantIsTaken) {
+  // The same tick at the state's cant and at cant 0: each patch's spin differs by the track
+  // frame's turning kappa (sin(c) n_y + (cos(c) - 1) n_z), n = (0, +-sin(delta), cos(delta)) its
+  // normal (+ on the right wheel: the contact angle leans toward the track centre).
+  WheelsetClient c;
+  WheelsetForces canted, level;
+  const int k = kTicks - 1;  // the front wheelset on its gauge corner
+  ASSERT_TRUE(c.reset());
+  ASSERT_TRUE(c.step(tick(k, 7000 * kStep), &canted));
+  WheelsetInput in = tick(k, 7000 * kStep);
+  for (WheelsetKinematics& s : in.wheelsets) s.cant = 0.0;
+  ASSERT_TRUE(c.reset());
+  ASSERT_TRUE(c.step(in, &level));
+  int leaning = 0;
+  for (int w = 0; w < 2; ++w) {
+    const WheelsetKinematics s = state(w, k);
+    for (int side = 0; side < 2; ++side) {
+      const WheelContactState& a = side ? canted.wheelsets[w].right : canted.wheelsets[w].left;
+      const WheelContactState& b = side ? level.wheelsets[w].right : level.wheelsets[w].left;
+      ASSERT_EQ(a.status, WheelContactState::STATUS_OK) << a.message;
+      ASSERT_EQ(a.patches.size(), b.patches.size());
+      for (size_t i = 0; i < a.patches.size(); ++i) {
+        const PatchContactState &p = a.patches[i], &q = b.patches[i];
+        const double ny = (side ? 1.0 : -1.0) * std::sin(p.contact_angle);
+        const double nz = std::cos(p.contact_angle);
+        const double dphi = s.curvature * (std::sin(s.cant) * ny + (std::cos(s.cant) - 1.0) * nz);
+        EXPECT_NEAR(p.phi - q.phi, dphi, 1e-10) << w << " " << side << " " << p.slot;
+        EXPECT_EQ(p.fn, q.fn);  // the geometry and the loads are the rails' plane's
+        if (std::abs(dphi) > 1e-4) {
+          ++leaning;
+          EXPECT_NE(p.mz, q.mz);
+        }
+      }
+    }
+  }
+  EXPECT_GT(leaning, 0) << "no patch whose normal leans enough to show the cant";
+}
+
 TEST(WheelsetNode, RejectedEntriesHoldTheLastAcceptedAnswer) {
   WheelsetClient c;
   ASSERT_TRUE(c.reset());
@@ -326,12 +367,21 @@ TEST(WheelsetNode, RejectedEntriesHoldTheLastAcceptedAnswer) {
   EXPECT_TRUE(f.wheelsets[1].left.patches.empty());
   EXPECT_EQ(f.wheelsets[1].header.frame_id, "");
 
-  // A cant other than the configured one: refused, not computed with the wrong cant.
+  // A cant beyond 0.2 rad: stepped, both wheels refused as invalid input and held.
   in = tick(4, 5000 * kStep);
-  in.wheelsets[0].cant = 0.05;
+  in.wheelsets[0].cant = -0.25;
   ASSERT_TRUE(c.step(in, &f));
-  expectHeld(f.wheelsets[0], first.wheelsets[0]);
-  EXPECT_NE(f.wheelsets[0].left.message.find("cant"), std::string::npos);
+  for (const WheelContactState* w : {&f.wheelsets[0].left, &f.wheelsets[0].right}) {
+    EXPECT_EQ(w->status, WheelContactState::STATUS_INVALID_INPUT);
+    EXPECT_TRUE(w->held);
+    EXPECT_NE(w->message.find("cant"), std::string::npos) << w->message;
+  }
+  {
+    WheelsetContactState expected = first.wheelsets[0];
+    expected.left.status = expected.right.status = WheelContactState::STATUS_INVALID_INPUT;
+    expected.left.held = expected.right.held = true;
+    expectSameAnswer(f.wheelsets[0], expected);
+  }
   EXPECT_EQ(f.wheelsets[1].left.status, WheelContactState::STATUS_OK);
   EXPECT_FALSE(f.wheelsets[1].left.held);
 
@@ -343,7 +393,7 @@ TEST(WheelsetNode, RejectedEntriesHoldTheLastAcceptedAnswer) {
   ASSERT_TRUE(c.step(tick(6, 5000 * kStep), &f));
   EXPECT_EQ(f.wheelsets[0].left.status, WheelContactState::STATUS_OK);
   EXPECT_FALSE(f.wheelsets[0].left.held);
-  EXPECT_DOUBLE_EQ(f.wheelsets[0].dt, 5e-3);  // from the last stepped stamp, tick 1
+  EXPECT_DOUBLE_EQ(f.wheelsets[0].dt, 2e-3);  // from the last stepped stamp, tick 4's
 }
 
 TEST(WheelsetNode, DiagnosticsReportEachWheelset) {

@@ -1,7 +1,7 @@
 // rostest: wheelset_node with an invalid configuration exits with code 1 after a ROS_FATAL naming
 // the parameter: a missing or malformed wheelset list, an unknown key, a profile path that is
 // relative, in a package that does not exist or not a profile, wheelset data or model parameters
-// out of range. Never a crash.
+// out of range, a ~cant (each tick carries its own). Never a crash.
 #include "rostest_helpers.hpp"
 
 using namespace wrc_test;
@@ -49,6 +49,14 @@ TEST(WheelsetBadParameters, UnknownKeysFail) {
   expectFatal({{"wheelsets", names()}, {"contacts", names()}}, "contacts: unknown parameter");
 }
 
+TEST(WheelsetBadParameters, ACantParameterFailsForTheTickCarriesIt) {
+  // contact_cli wheelset's cant key (a scenario's default cant) is no parameter of the node: each
+  // tick's WheelsetKinematics.cant is the cant; a ~cant, whatever its value, would go unused.
+  expectFatal({{"wheelsets", names()}, {"cant", XmlRpc::XmlRpcValue(0.05)}},
+              "cant: not a parameter of wheelset_node: each tick's WheelsetKinematics.cant");
+  expectFatal({{"wheelsets", names()}, {"cant", XmlRpc::XmlRpcValue("steep")}}, "cant: not a");
+}
+
 TEST(WheelsetBadParameters, ProfilePathsNameTheParameter) {
   expectFatal({{"wheelsets", names()}, {"wheel_profile", XmlRpc::XmlRpcValue("profiles/x.prw")}},
               "wheel_profile: 'profiles/x.prw' is neither an absolute path");
@@ -63,7 +71,6 @@ TEST(WheelsetBadParameters, ProfilePathsNameTheParameter) {
 TEST(WheelsetBadParameters, ValuesOutOfRangeNameTheParameter) {
   expectFatal({{"wheelsets", names()}, {"gauge", XmlRpc::XmlRpcValue(3.0)}},
               "WheelsetTrackData: gauge");
-  expectFatal({{"wheelsets", names()}, {"cant", XmlRpc::XmlRpcValue("steep")}}, "cant");
   expectFatal({{"wheelsets", names()}, {"mu", XmlRpc::XmlRpcValue(-1.0)}}, "mu");
   expectFatal({{"wheelsets", names()}, {"model", XmlRpc::XmlRpcValue("fastest")}}, "model");
   expectFatal({{"wheelsets", names()}, {"max_dt", XmlRpc::XmlRpcValue(0.0)}}, "max_dt");

@@ -1,7 +1,7 @@
 // WheelsetStepper: N named wheelsets stepped per tick equal N separate WheelsetContacts (dt from
-// the stamps); unknown, missing and repeated names, non-finite values, stamps, cant, the hold rule,
-// reset and the shared contact table are defined outputs. S1002 on UIC60 1:40 (built in), the
-// Manchester benchmark's wheelset data.
+// the stamps, each tick's own cant); unknown, missing and repeated names, non-finite values,
+// stamps, a cant beyond the limit, the hold rule, reset and the shared contact table are defined
+// outputs. S1002 on UIC60 1:40 (built in), the Manchester benchmark's wheelset data.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -30,7 +30,7 @@ WheelsetStepperConfig config(const std::vector<std::string>& names,
 }
 
 /// A wheelset near the benchmark's case A-2.2 (V 2 m/s, 10 kN per wheel), moving laterally with
-/// k; i sets it apart from the others.
+/// k in a 500 m left curve whose cant changes with k; i sets it apart from the others.
 WheelsetEntry entry(const std::string& name, int k, int i) {
   WheelsetEntry e;
   e.name = name;
@@ -39,6 +39,8 @@ WheelsetEntry entry(const std::string& name, int k, int i) {
   e.state.motion.V = 2.0;
   e.state.motion.omega = 2.0 / 0.46 * (1.0 + 1e-3 * i);
   e.state.motion.vy = 2e-4 * std::cos(0.2 * k + i);
+  e.state.motion.curvature = 1.0 / 500.0;
+  e.state.motion.cant = -0.1 - 0.05 * std::sin(0.3 * k + i);
   e.state.fz_left = 1e4 + 100.0 * i;
   e.state.fz_right = 1e4 - 50.0 * k;
   return e;
@@ -180,11 +182,19 @@ TEST(WheelsetStepper, RejectedEntriesHoldTheLastAcceptedAnswer) {
   bad.state.motion.vy = std::numeric_limits<double>::quiet_NaN();
   v.step(11 * kMs, {bad}, &out);
   expectHeld(WheelsetEvent::kNonFinite);
+  // A cant beyond 0.2 rad: stepped, refused by WheelsetContact on both wheels, held.
   bad = entry("a", 1, 0);
-  bad.cant = 0.05;  // the configured cant is 0
+  bad.state.motion.cant = -0.25;
   v.step(11 * kMs, {bad}, &out);
-  expectHeld(WheelsetEvent::kCantMismatch);
-  EXPECT_NE(out[0].message.find("not supported"), std::string::npos);
+  EXPECT_EQ(out[0].event, WheelsetEvent::kStepped);
+  for (const WheelAnswer* w : {&out[0].left, &out[0].right}) {
+    EXPECT_EQ(w->status, WheelAnswerStatus::kInvalidInput);
+    EXPECT_TRUE(w->held);
+    EXPECT_NE(w->message.find("cant"), std::string::npos) << w->message;
+  }
+  expectSame(out[0].left.result, left);
+  expectSame(out[0].right.result, right);
+  EXPECT_EQ(v.counters(0).invalid_input, 2u);
   v.step(10 * kMs, {entry("a", 1, 0)}, &out);  // not after the accepted stamp
   expectHeld(WheelsetEvent::kOutOfOrder);
   v.step(100 * kMs, {entry("a", 1, 0)}, &out);  // dt 90 ms > max_dt
@@ -214,7 +224,6 @@ TEST(WheelsetStepper, RejectedEntriesHoldTheLastAcceptedAnswer) {
   EXPECT_EQ(out[0].right.status, WheelAnswerStatus::kOk);
   const WheelsetCounters& n = v.counters(0);
   EXPECT_EQ(n.non_finite, 1u);
-  EXPECT_EQ(n.cant_mismatch, 1u);
   EXPECT_EQ(n.out_of_order, 1u);
   EXPECT_EQ(n.dt_too_large, 1u);
   EXPECT_EQ(n.no_load, 1u);

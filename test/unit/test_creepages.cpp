@@ -27,6 +27,7 @@ WheelsetMotion mirrored(const WheelsetMotion& m) {
   r.yaw_rate = -m.yaw_rate;
   r.roll_rate = -m.roll_rate;
   r.curvature = -m.curvature;
+  r.cant = -m.cant;
   return r;
 }
 
@@ -210,9 +211,8 @@ TEST(Creepages, LinearisedWheelsetTheoryIsTheFirstOrderLimit) {
         pose.roll = -0.4 * eps * sg2;
         const double cone = 0.9 * eps;
         const double r = r0 * (1.0 + 0.5 * eps * sg);
-        WheelsetTrackData d = data;
-        d.cant = 0.5 * eps * sg2;
         WheelsetMotion m;
+        m.cant = 0.5 * eps * sg2;
         m.V = V;
         m.vy = 0.5 * eps * V * sg2;
         m.yaw_rate = 0.8 * eps * V / l0 * sg;
@@ -220,7 +220,7 @@ TEST(Creepages, LinearisedWheelsetTheoryIsTheFirstOrderLimit) {
         m.curvature = 0.6 * eps / l0 * sg2;
         m.omega = V / r * (1.0 + 0.3 * eps * sg2);
         const ContactCandidate c = coneContact(side, pose, cone, r, l0, r0);
-        const PatchCreepages k = ok(patchCreepages(side, pose, m, c, d));
+        const PatchCreepages k = ok(patchCreepages(side, pose, m, c, data));
         const double delta = c.contact_angle;
         const double xi = 1.0 - m.omega * r / V - s * l0 * (m.yaw_rate / V + m.curvature);
         const double eta = m.vy / V + m.roll_rate * r / V - pose.yaw;
@@ -288,15 +288,64 @@ TEST(Creepages, RadialSteeringInACurveGivesNoLongitudinalCreepage) {
   }
 }
 
+TEST(Creepages, CantTurnsTheCurvesRotationInTheCantedTrackAxes) {
+  // The step's cant enters only through the track frame's turning Omega = V kappa (0, sin c,
+  // cos c): against cant 0, each patch's sliding velocity changes by dOmega x p and its spin by
+  // dOmega.n, dOmega = V kappa (0, sin c, cos c - 1), in the patch's contact frame. On tangent
+  // track the cant changes nothing. Every zone of the benchmark's states, both wheels.
+  const WheelsetTrackData data;
+  const ContactSearch cs(data);
+  int flange = 0, leaning = 0;
+  for (const A22State& a : a22States()) {
+    const WheelsetPose p = a22Pose(a);
+    WheelsetMotion m;
+    m.V = 20.0;
+    m.omega = 20.0 / 0.46;
+    m.vy = 0.02;
+    m.yaw_rate = -0.01;
+    m.curvature = -1.0 / 250.0;
+    for (const ContactCandidate& c : cs.search(a.side, p).candidates) {
+      flange += c.zone != ContactZone::kTread;
+      const PatchCreepages level = ok(patchCreepages(a.side, p, m, c, data));
+      for (double cant : {0.15, -0.2, 0.05}) {
+        WheelsetMotion mc = m;
+        mc.cant = cant;
+        const PatchCreepages k = ok(patchCreepages(a.side, p, mc, c, data));
+        const Eigen::Vector3d dOmega =
+            m.V * m.curvature * Eigen::Vector3d(0.0, std::sin(cant), std::cos(cant) - 1.0);
+        const Eigen::Vector3d dv = dOmega.cross(c.point);
+        const Eigen::Vector3d n = k.frame.col(2);
+        EXPECT_NEAR(k.xi - level.xi, dv.x() / m.V, 1e-12) << a.y_mm << " " << cant;
+        EXPECT_NEAR(k.eta - level.eta, dv.dot(k.frame.col(1)) / m.V, 1e-12);
+        EXPECT_NEAR(k.phi - level.phi, dOmega.dot(n) / m.V, 1e-12);
+        EXPECT_NEAR(k.normal_velocity - level.normal_velocity, dv.dot(n), 1e-12);
+        // Not vacuous: at 0.15 rad in a 250 m curve the spin moves by about kappa sin(c) n_y.
+        if (std::abs(cant) > 0.1 && std::abs(n.y()) > 0.3) {
+          EXPECT_GT(std::abs(k.phi - level.phi), 1e-4) << a.y_mm;
+          ++leaning;
+        }
+        // On tangent track the cant is no input.
+        WheelsetMotion straight = mc;
+        straight.curvature = 0.0;
+        WheelsetMotion straight_level = m;
+        straight_level.curvature = 0.0;
+        const PatchCreepages s = ok(patchCreepages(a.side, p, straight, c, data));
+        const PatchCreepages s0 = ok(patchCreepages(a.side, p, straight_level, c, data));
+        EXPECT_EQ(s.xi, s0.xi);
+        EXPECT_EQ(s.eta, s0.eta);
+        EXPECT_EQ(s.phi, s0.phi);
+      }
+    }
+  }
+  EXPECT_GT(flange, 0) << "no gauge corner or flange patch among the states";
+  EXPECT_GT(leaning, 0) << "no patch whose normal leans enough to show the cant";
+}
+
 TEST(Creepages, LeftWheelInTheMirroredStateHasTheMirroredCreepages) {
   // The contact frame is not mirrored (doc/conventions.md): the left wheel in the mirror image of
   // the right wheel's state has the same xi and the opposite eta and phi.
   const WheelsetTrackData data;
   const ContactSearch cs(data);
-  WheelsetTrackData canted = data;
-  canted.cant = 0.1;
-  WheelsetTrackData canted_m = data;
-  canted_m.cant = -0.1;
   for (const A22State& a : a22States()) {
     if (a.side != WheelSide::kRight) continue;
     const WheelsetPose p = a22Pose(a);
@@ -308,14 +357,14 @@ TEST(Creepages, LeftWheelInTheMirroredStateHasTheMirroredCreepages) {
     m.roll_rate = 0.004;
     m.vz = -0.001;
     m.curvature = 1.0 / 300.0;
+    m.cant = 0.1;
     const WheelContactGeometry r = cs.search(WheelSide::kRight, p);
     const WheelContactGeometry l = cs.search(WheelSide::kLeft, mirrored(p));
     ASSERT_EQ(r.candidates.size(), l.candidates.size());
     for (std::size_t k = 0; k < r.candidates.size(); ++k) {
-      const PatchCreepages cr =
-          ok(patchCreepages(WheelSide::kRight, p, m, r.candidates[k], canted));
+      const PatchCreepages cr = ok(patchCreepages(WheelSide::kRight, p, m, r.candidates[k], data));
       const PatchCreepages cl =
-          ok(patchCreepages(WheelSide::kLeft, mirrored(p), mirrored(m), l.candidates[k], canted_m));
+          ok(patchCreepages(WheelSide::kLeft, mirrored(p), mirrored(m), l.candidates[k], data));
       EXPECT_NEAR(cl.xi, cr.xi, 1e-9) << "y = " << a.y_mm;
       EXPECT_NEAR(cl.eta, -cr.eta, 1e-9) << "y = " << a.y_mm;
       EXPECT_NEAR(cl.phi, -cr.phi, 1e-9) << "y = " << a.y_mm;
@@ -412,6 +461,7 @@ TEST(Creepages, BadInputGivesAStatusNeverNaN) {
         {&WheelsetMotion::vy, "vy"},
         {&WheelsetMotion::yaw_rate, "yaw_rate"},
         {&WheelsetMotion::curvature, "curvature"},
+        {&WheelsetMotion::cant, "cant"},
         {&WheelsetMotion::vz, "vz"},
         {&WheelsetMotion::roll_rate, "roll_rate"}};
     for (const auto& [field, name] : fields) {
@@ -431,6 +481,14 @@ TEST(Creepages, BadInputGivesAStatusNeverNaN) {
     cc = c;
     cc.rolling_radius = bad;
     refused(patchCreepages(WheelSide::kRight, pose, m, cc, data), "rolling_radius");
+  }
+  // A cant beyond kMaxCant either way, the largest one taken.
+  for (double cant : {-0.21, 0.21}) {
+    WheelsetMotion b = m;
+    b.cant = cant;
+    refused(patchCreepages(WheelSide::kRight, pose, b, c, data), "cant");
+    b.cant = cant > 0 ? kMaxCant : -kMaxCant;
+    EXPECT_EQ(patchCreepages(WheelSide::kRight, pose, b, c, data).status, CreepageStatus::kOk);
   }
   // A candidate of the other wheel, a default one, another pose's: refused by name.
   refused(patchCreepages(WheelSide::kLeft, pose, m, c, data), "contact_angle");

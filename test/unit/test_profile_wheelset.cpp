@@ -55,7 +55,6 @@ TEST(WheelsetTrack, ValidationNamesTheParameter) {
   EXPECT_NE(with([](auto& d) { d.gauge_depth = 0.0; }).find("gauge_depth"), std::string::npos);
   EXPECT_NE(with([](auto& d) { d.rail_inclination = -0.025; }).find("rail_inclination"),
             std::string::npos);
-  EXPECT_NE(with([](auto& d) { d.cant = 0.5; }).find("cant"), std::string::npos);
   EXPECT_NE(with([](auto& d) { d.flange_back_position = INFINITY; }).find("flange_back_position"),
             std::string::npos);
   EXPECT_NE(with([](auto& d) { d.flange_back_position = -0.2; }).find("flange_back_position"),

@@ -311,6 +311,107 @@ TEST(WheelsetContact, BadInputGivesAStatusAndZeroForcesNeverNaN) {
   expectAllFinite(r.right);
 }
 
+TEST(WheelsetContact, EachStepTakesItsOwnCant) {
+  // A wheelset entering a canted left curve (the outer, right rail raised: cant < 0) on its gauge
+  // corner: each step's patches are those of a fresh object's first step at that step's cant
+  // (steady FastSim has no history, the cold start the same iteration), and the cant moves the
+  // spin by kappa ((sin c2 - sin c1) n_y + (cos c2 - cos c1) n_z) at the same geometry.
+  WheelsetContactOptions cold;
+  cold.warm_start = false;
+  WheelsetState s = corner2();
+  s.motion.curvature = 1.0 / 200.0;
+  const double cants[] = {-0.05, -0.15, 0.0, -0.15};
+  WheelsetContact c(WheelsetTrackData{}, parameters("steady"), cold);
+  const PatchResult* prev_corner = nullptr;
+  WheelsetResult prev;
+  for (int k = 0; k < 4; ++k) {
+    s.motion.cant = cants[k];
+    const WheelsetResult r = c.step(s, k == 0 ? 0.0 : 1e-3);
+    WheelsetContact fresh(WheelsetTrackData{}, parameters("steady"), cold);
+    const WheelsetResult f = fresh.step(s, 1e-3);
+    for (const auto& [w, g] : {std::pair{&r.left, &f.left}, std::pair{&r.right, &f.right}}) {
+      ASSERT_EQ(w->status, WheelStatus::kOk) << w->message;
+      ASSERT_EQ(w->patches.size(), g->patches.size());
+      for (size_t i = 0; i < w->patches.size(); ++i) {
+        const PatchResult &a = w->patches[i], &b = g->patches[i];
+        EXPECT_EQ(a.slot, b.slot);
+        EXPECT_EQ(a.creepages.xi, b.creepages.xi) << k << " " << a.slot;
+        EXPECT_EQ(a.creepages.eta, b.creepages.eta);
+        EXPECT_EQ(a.creepages.phi, b.creepages.phi);
+        EXPECT_EQ(a.normal.fn, b.normal.fn);
+        EXPECT_EQ(a.fx, b.fx);
+        EXPECT_EQ(a.fs, b.fs);
+        EXPECT_EQ(a.mz, b.mz);
+      }
+      EXPECT_EQ(w->wrench.fy, g->wrench.fy);
+      EXPECT_EQ(w->wrench.fz, g->wrench.fz);
+    }
+    const PatchResult* corner = find(r.right, ContactZone::kGaugeCorner);
+    ASSERT_NE(corner, nullptr);
+    if (k > 0) {
+      const Eigen::Vector3d n = corner->creepages.frame.col(2);
+      const double c1 = cants[k - 1], c2 = cants[k];
+      const double dphi = s.motion.curvature * ((std::sin(c2) - std::sin(c1)) * n.y() +
+                                                (std::cos(c2) - std::cos(c1)) * n.z());
+      EXPECT_NEAR(corner->creepages.phi - prev_corner->creepages.phi, dphi, 1e-12) << k;
+      EXPECT_GT(std::abs(dphi), 1e-4) << k;  // the gauge corner's normal leans: it shows
+      EXPECT_NE(corner->mz, prev_corner->mz) << k;
+    }
+    prev = r;
+    prev_corner = find(prev.right, ContactZone::kGaugeCorner);
+  }
+
+  // nss carries a slot's history across a change of cant (the same patch, rolled on).
+  const double dt = 2e-4;
+  WheelsetContact n(WheelsetTrackData{}, parameters("nss"));
+  s.motion.cant = -0.05;
+  n.step(s, 0.0);
+  double last = 0.0;
+  for (double cant : {-0.05, -0.1, -0.15}) {
+    s.motion.cant = cant;
+    const WheelsetResult r = n.step(s, dt);
+    const PatchResult* p = find(r.right, ContactZone::kGaugeCorner);
+    ASSERT_NE(p, nullptr);
+    EXPECT_GT(std::hypot(p->fx, p->fs), last) << cant;  // still building up: not restarted
+    last = std::hypot(p->fx, p->fs);
+  }
+}
+
+TEST(WheelsetContact, ACantBeyondTheLimitIsRefusedAndLeavesTheHistory) {
+  const double dt = 2e-4;
+  WheelsetState s = corner2();
+  s.motion.curvature = 1.0 / 200.0;
+  s.motion.cant = -0.1;
+  WheelsetContact a(WheelsetTrackData{}, parameters("nss")),
+      b(WheelsetTrackData{}, parameters("nss"));
+  for (WheelsetContact* c : {&a, &b}) {
+    c->step(s, 0.0);
+    c->step(s, dt);
+  }
+  for (double cant : {-0.25, 0.2 + 1e-9, std::numeric_limits<double>::quiet_NaN()}) {
+    WheelsetState bad = s;
+    bad.motion.cant = cant;
+    const WheelsetResult r = a.step(bad, dt);
+    for (const WheelResult* w : {&r.left, &r.right}) {
+      EXPECT_EQ(w->status, WheelStatus::kInvalidInput) << cant;
+      EXPECT_TRUE(w->patches.empty());
+      EXPECT_EQ(w->wrench.fy, 0.0);
+      if (std::isfinite(cant)) {
+        EXPECT_NE(w->message.find("cant"), std::string::npos) << w->message;
+      }
+    }
+  }
+  const WheelsetResult ra = a.step(s, dt);
+  const PatchResult* pa = find(ra.right, ContactZone::kGaugeCorner);
+  const WheelsetResult rb = b.step(s, dt);
+  const PatchResult* pb = find(rb.right, ContactZone::kGaugeCorner);
+  ASSERT_NE(pa, nullptr);
+  ASSERT_NE(pb, nullptr);
+  EXPECT_EQ(pa->fx, pb->fx);
+  EXPECT_EQ(pa->fs, pb->fs);
+  EXPECT_GT(std::abs(pa->fs), 0.0);
+}
+
 TEST(WheelsetContact, ConstructionRefusesBadDataNamingTheParameter) {
   ContactParameters p;
   p.G = -1.0;

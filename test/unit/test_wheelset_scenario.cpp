@@ -45,15 +45,19 @@ TEST(WheelsetScenario, ColumnsByNameInAnyOrder) {
   EXPECT_EQ(rows[0].vy, 0.0);  // optional columns not given
   EXPECT_EQ(rows[0].yaw_rate, 0.0);
   EXPECT_EQ(rows[0].curvature, 0.0);
+  EXPECT_FALSE(rows[0].cant.has_value());  // the caller's default
   EXPECT_EQ(rows[1].t, 0.5);
   EXPECT_EQ(rows[1].fz_right, 2e4);
 }
 
 TEST(WheelsetScenario, SeparateLoadsAndTheOptionalMotionColumns) {
   const auto rows = read(
-      "t,y,yaw,roll,V,omega,fz_left,fz_right,vy,yaw_rate,curvature,vz,roll_rate\n"
-      "0,0,0,0,20,43.5,9e3,1.1e4,0.1,0.02,0.002,-0.003,0.004\n");
-  ASSERT_EQ(rows.size(), 1u);
+      "t,y,yaw,roll,V,omega,fz_left,fz_right,vy,yaw_rate,curvature,cant,vz,roll_rate\n"
+      "0,0,0,0,20,43.5,9e3,1.1e4,0.1,0.02,0.002,-0.1,-0.003,0.004\n"
+      "1,0,0,0,20,43.5,9e3,1.1e4,0.1,0.02,0.002,0,-0.003,0.004\n");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].cant, -0.1);
+  EXPECT_EQ(rows[1].cant, 0.0);  // given as 0: not the default
   EXPECT_EQ(rows[0].fz_left, 9e3);
   EXPECT_EQ(rows[0].fz_right, 1.1e4);
   EXPECT_EQ(rows[0].vy, 0.1);

@@ -1,7 +1,10 @@
 /// Wheelset and track data: what places the wheel and rail profiles relative to each other.
 ///
 /// Axes: REP 103 track axes, x forward, y left, z up; the origin on the track centre line in the
-/// plane of the rails' tops (cant turns that plane as a whole: see cant). Units SI (m, rad).
+/// plane of the rails' tops. Units SI (m, rad). The track's cant (the rails' plane turned about x)
+/// is not track data: it changes along the track, and each step gives the cant under the
+/// wheelset (WheelsetMotion::cant). The geometry here is relative to the rails' plane, so the cant
+/// does not change it.
 #pragma once
 
 #include <memory>
@@ -27,11 +30,6 @@ struct WheelsetTrackData {
   /// centre, 1/40 = 0.025. 0: as read, which is right for a profile with its inclination built in
   /// (the standard UIC60 1:40).
   double rail_inclination = 0.0;
-  /// Cant: the angle of the rails' plane about x [rad], REP 103 sense (positive raises the left
-  /// rail). The contact geometry is worked out relative to that plane, so cant does not change
-  /// it; it turns the track frame relative to gravity (loads, creepages in curves).
-  double cant = 0.0;
-
   /// Profiles in their profile frame (profile.hpp). Null right profiles: the standard S1002 and
   /// UIC60 1:40 (Profile::standardWheel(), standardRail()). Null left profiles: the right ones
   /// mirrored.
@@ -40,7 +38,7 @@ struct WheelsetTrackData {
   /// Throws std::invalid_argument naming the parameter if a value is outside its physical range
   /// or the profiles cannot be placed with it: nominal_radius (0.1, 1] m; flange_back_distance
   /// [0.5, 2] m and below gauge; gauge [0.5, 2] m; gauge_depth (0, 0.05] m; rail_inclination
-  /// [0, 0.1]; |cant| <= 0.2 rad; flange_back_position finite and within 20 mm of the wheel
+  /// [0, 0.1]; flange_back_position finite and within 20 mm of the wheel
   /// profile's lateral extent; a profile of the wrong kind; a rail whose highest point, or a wheel
   /// whose lowest point (the flange tip), is an end of the profile (axes upside down); a rail that
   /// does not reach gauge_depth below its top on the gauge side; a wheel whose flange tip is not

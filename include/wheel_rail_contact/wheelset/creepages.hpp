@@ -4,10 +4,10 @@
 ///
 /// Frames (doc/conventions.md, "Wheelset and track frames"). The track frame: REP 103, x forward,
 /// y left, z up, origin on the track's centre line in the plane of the rails' tops (turned by the
-/// cant about x). It follows the centre line at the speed V and, in a curve of curvature kappa,
-/// turns at V kappa about the vertical. In it the wheelset's centre sits at (0, pose.y,
-/// nominal_radius + pose.z) and moves at (0, vy, vz); the rails move backwards: a rail point p
-/// moves at -(V e_x + Omega x p), Omega = V kappa (0, sin(cant), cos(cant)), which is
+/// step's cant about x, WheelsetMotion::cant). It follows the centre line at the speed V and, in a
+/// curve of curvature kappa, turns at V kappa about the vertical. In it the wheelset's centre sits
+/// at (0, pose.y, nominal_radius + pose.z) and moves at (0, vy, vz); the rails move backwards: a
+/// rail point p moves at -(V e_x + Omega x p), Omega = V kappa (0, sin(cant), cos(cant)), which is
 /// -V (1 - kappa y_h) along x at a horizontal distance y_h from the centre line.
 ///
 /// The patch's contact frame (doc/conventions.md): z = n, the candidate's normal (rail into wheel,
@@ -48,6 +48,16 @@ struct WheelsetMotion {
   double yaw_rate =
       0.0;  ///< d(pose.yaw)/dt [rad/s], relative to the track (which turns at V kappa)
   double curvature = 0.0;  ///< of the track's centre line [1/m], positive for a curve to the left
+  /// The track's cant under the wheelset this step [rad]: the angle of the rails' plane about the
+  /// track's x, REP 103 sense (positive raises the left rail), |cant| <= kMaxCant. The track
+  /// frame's axes are those of the canted plane, and the contact geometry is relative to that
+  /// plane, so the cant does not change it: it enters only the track frame's turning in a curve,
+  /// Omega = V kappa (0, sin(cant), cos(cant)) (nothing at curvature 0). A cant that changes along
+  /// the track (a transition) is taken step by step; its rate does not enter: the track frame's
+  /// roll at V dcant/ds moves a rail point p at -V (e_x + dcant/ds e_x x p) in the frame, along
+  /// the twisted rail's own tangent as the rolling wheel's material does, so to first order in the
+  /// twist it adds no creepage (doc/method.md).
+  double cant = 0.0;
   /// Vertical velocity of the wheelset's centre, d(pose.z)/dt [m/s], and roll rate,
   /// d(pose.roll)/dt [rad/s]. A wheelset moving laterally on coned or flanged wheels also rises and
   /// rolls as its profiles make it; without these the motion leaves the rail's surface at the patch
@@ -56,6 +66,10 @@ struct WheelsetMotion {
   double vz = 0.0;
   double roll_rate = 0.0;
 };
+
+/// The largest cant a step may give [rad]: about 300 mm of cant over standard gauge's 1.5 m
+/// between the rails' centres, beyond any railway's.
+inline constexpr double kMaxCant = 0.2;
 
 enum class CreepageStatus {
   kOk,
@@ -87,8 +101,9 @@ struct PatchCreepages {
 };
 
 /// The creepages of one contact candidate of one wheel (ContactSearch::search or ContactTable for
-/// the same side and pose; the same track data: nominal_radius places the axle, cant turns the
-/// curve's rotation). Never throws; bad input gives a status and a message, never NaN.
+/// the same side and pose; the same track data: nominal_radius places the axle). Never throws;
+/// bad input (a motion value not finite or beyond its range, |motion.cant| > kMaxCant) gives a
+/// status and a message, never NaN.
 PatchCreepages patchCreepages(WheelSide side, const WheelsetPose& pose,
                               const WheelsetMotion& motion, const ContactCandidate& candidate,
                               const WheelsetTrackData& data);

@@ -68,12 +68,18 @@
 
 namespace wheel_rail_contact {
 
-/// The wheelset's state at one step.
+/// The wheelset's state at one step, in the track frame under the wheelset (REP 103 axes of the
+/// rails' plane, turned by the step's cant, motion.cant).
+///
+/// The loads are along the track's z, normal to the rails' plane (the patches' normal forces'
+/// components along it add up to the load, step 2 above), so the cant does not change what a
+/// load does; a simulator whose loads are along gravity gives their components along the track's
+/// z. The cant enters only the creepages in a curve (WheelsetMotion::cant).
 struct WheelsetState {
   WheelsetPose pose;      ///< y, yaw, roll; z is not used (each wheel's load sets its approach)
-  WheelsetMotion motion;  ///< V, omega, vy, yaw_rate, curvature, vz, roll_rate
-  double fz_left = 0.0;   ///< vertical load on the left wheel [N], > 0 for contact
-  double fz_right = 0.0;  ///< vertical load on the right wheel [N]
+  WheelsetMotion motion;  ///< V, omega, vy, yaw_rate, curvature, cant, vz, roll_rate
+  double fz_left = 0.0;   ///< load on the left wheel along the track's z [N], > 0 for contact
+  double fz_right = 0.0;  ///< load on the right wheel along the track's z [N]
 };
 
 struct WheelsetContactOptions {
@@ -199,8 +205,9 @@ class WheelsetContact {
   WheelsetContact& operator=(WheelsetContact&&) noexcept;
 
   /// Advances both wheels by one step of dt [s] (0 for the first step: no travel yet). Never
-  /// throws on a state and never gives a non-finite number: bad input gives a wheel status and
-  /// zero forces.
+  /// throws on a state and never gives a non-finite number: bad input (a value not finite,
+  /// |motion.cant| > kMaxCant, dt < 0, a pose beyond the search's range) gives the wheels
+  /// kInvalidInput with zero forces and leaves their history as it was.
   WheelsetResult step(const WheelsetState& state, double dt);
   /// A steady evaluation at one state for whole_force_balance: step(state, dt) repeated until no
   /// patch's fn changes by more than tolerance times its wheel's load from one step to the next

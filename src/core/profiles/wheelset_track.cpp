@@ -61,7 +61,6 @@ void WheelsetTrackData::validate() const {
   if (!(flange_back_distance < gauge)) bad("flange_back_distance", "must be smaller than gauge");
   inRange("gauge_depth", gauge_depth, 0.0, 0.05, true, "m");
   inRange("rail_inclination", rail_inclination, 0.0, 0.1, false, "(tangent)");
-  inRange("cant", cant, -0.2, 0.2, false, "rad");
   if (!std::isfinite(flange_back_position)) bad("flange_back_position", "is not finite");
   const std::shared_ptr<const Profile> wr = wheel_right ? wheel_right : Profile::standardWheel();
   const std::shared_ptr<const Profile> rr = rail_right ? rail_right : Profile::standardRail();

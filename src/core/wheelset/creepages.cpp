@@ -42,7 +42,7 @@ PatchCreepages patchCreepages(WheelSide side, const WheelsetPose& pose,
   finite("motion roll_rate", motion.roll_rate, kMaxInput);
   // A track radius below 1 m is not a railway: the rails would not be prisms over a patch.
   finite("motion curvature", motion.curvature, 1.0);
-  finite("track cant", data.cant, 0.2);
+  finite("motion cant", motion.cant, kMaxCant);
   if (!(data.nominal_radius > 0.0) || !std::isfinite(data.nominal_radius))
     refuse("track nominal_radius must be finite and > 0");
   if (!(candidate.rolling_radius > 0.0 && candidate.rolling_radius <= 10.0))
@@ -111,7 +111,7 @@ PatchCreepages patchCreepages(WheelSide side, const WheelsetPose& pose,
   // The track frame's own rotation, V kappa about the vertical, which is (0, sin, cos)(cant) in
   // the canted track axes. The rail, fixed on the ground, turns at -Omega in the frame.
   const Eigen::Vector3d Omega =
-      V * motion.curvature * Eigen::Vector3d(0.0, std::sin(data.cant), std::cos(data.cant));
+      V * motion.curvature * Eigen::Vector3d(0.0, std::sin(motion.cant), std::cos(motion.cant));
   const Eigen::Vector3d v_wheel =
       Eigen::Vector3d(0.0, motion.vy, motion.vz) + omega_w.cross(q - centre);
   const Eigen::Vector3d v_rail = -(V * ex + Omega.cross(p));

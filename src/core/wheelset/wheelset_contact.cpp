@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -49,8 +50,8 @@ bool finite(const WheelsetPose& p) {
 
 bool finite(const WheelsetMotion& m) {
   return std::isfinite(m.V) && std::isfinite(m.omega) && std::isfinite(m.vy) &&
-         std::isfinite(m.yaw_rate) && std::isfinite(m.curvature) && std::isfinite(m.vz) &&
-         std::isfinite(m.roll_rate);
+         std::isfinite(m.yaw_rate) && std::isfinite(m.curvature) && std::isfinite(m.cant) &&
+         std::isfinite(m.vz) && std::isfinite(m.roll_rate);
 }
 
 bool sameProfile(const std::shared_ptr<const Profile>& a, const std::shared_ptr<const Profile>& b) {
@@ -65,9 +66,8 @@ bool sameTrack(const WheelsetTrackData& a, const WheelsetTrackData& b) {
   return a.nominal_radius == b.nominal_radius && a.flange_back_distance == b.flange_back_distance &&
          a.flange_back_position == b.flange_back_position && a.gauge == b.gauge &&
          a.gauge_depth == b.gauge_depth && a.rail_inclination == b.rail_inclination &&
-         a.cant == b.cant && sameProfile(a.wheel_right, b.wheel_right) &&
-         sameProfile(a.rail_right, b.rail_right) && sameProfile(a.wheel_left, b.wheel_left) &&
-         sameProfile(a.rail_left, b.rail_left);
+         sameProfile(a.wheel_right, b.wheel_right) && sameProfile(a.rail_right, b.rail_right) &&
+         sameProfile(a.wheel_left, b.wheel_left) && sameProfile(a.rail_left, b.rail_left);
 }
 
 // A slot's model (null while its patch is absent) and whether its patch was present this step.
@@ -268,6 +268,11 @@ struct WheelsetContact::Impl {
     if (!finite(s.pose) || !finite(s.motion) || !std::isfinite(load) || !std::isfinite(dt))
       return finish(WheelStatus::kInvalidInput, "a state value or dt is not finite", false);
     if (dt < 0.0) return finish(WheelStatus::kInvalidInput, "dt < 0", false);
+    if (!(std::abs(s.motion.cant) <= kMaxCant)) {
+      std::ostringstream m;
+      m << "cant = " << s.motion.cant << " rad is beyond +-" << kMaxCant << " rad";
+      return finish(WheelStatus::kInvalidInput, m.str(), false);
+    }
     if (!(load > 0.0)) return finish(WheelStatus::kNoLoad, "vertical load <= 0", true);
 
     // The load sets the approach, so the wheel is searched at first touch: from z = 0 lowered or

@@ -23,14 +23,16 @@ enum Column {
   kVy,
   kYawRate,
   kCurvature,
+  kCant,
   kVz,
   kRollRate
 };
-const std::array<const char*, 14> kNames = {"t",        "y",         "yaw",     "roll",     "V",
-                                            "omega",    "fz",        "fz_left", "fz_right", "vy",
-                                            "yaw_rate", "curvature", "vz",      "roll_rate"};
+const std::array<const char*, 15> kNames = {
+    "t",        "y",  "yaw",      "roll",      "V",    "omega", "fz",       "fz_left",
+    "fz_right", "vy", "yaw_rate", "curvature", "cant", "vz",    "roll_rate"};
 const char* const kKnown =
-    "t,y,yaw,roll,V,omega and fz or fz_left,fz_right; optional vy,yaw_rate,curvature,vz,roll_rate";
+    "t,y,yaw,roll,V,omega and fz or fz_left,fz_right; optional "
+    "vy,yaw_rate,curvature,cant,vz,roll_rate";
 
 std::string trim(const std::string& s) {
   const auto first = s.find_first_not_of(" \t\r");
@@ -111,6 +113,7 @@ std::vector<WheelsetScenarioRow> readWheelsetScenario(std::istream& in, const st
     r.vy = v[kVy];
     r.yaw_rate = v[kYawRate];
     r.curvature = v[kCurvature];
+    if (col[kCant] >= 0) r.cant = v[kCant];
     r.vz = v[kVz];
     r.roll_rate = v[kRollRate];
     rows.push_back(r);
