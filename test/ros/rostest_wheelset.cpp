@@ -289,18 +289,22 @@ TEST(WheelsetNode, EqualsContactCliWheelsetAndTheTopicEqualsTheService) {
 }
 
 TEST(WheelsetNode, EachTicksCantIsTaken) {
-  // The same tick at the state's cant and at cant 0: each patch's spin differs by the track
-  // frame's turning kappa (sin(c) n_y + (cos(c) - 1) n_z), n = (0, +-sin(delta), cos(delta)) its
-  // normal (+ on the right wheel: the contact angle leans toward the track centre).
+  // The same two ticks at the states' cants and at cant 0 (nss: the first step rolls nothing):
+  // each patch's spin at the second differs by the track frame's turning kappa (sin(c) n_y +
+  // (cos(c) - 1) n_z), n = (0, +-sin(delta), cos(delta)) its normal (+ on the right wheel: the
+  // contact angle leans toward the track centre).
   WheelsetClient c;
   WheelsetForces canted, level;
   const int k = kTicks - 1;  // the front wheelset on its gauge corner
   ASSERT_TRUE(c.reset());
+  ASSERT_TRUE(c.step(tick(k - 1, 7000 * kStep), &canted));
   ASSERT_TRUE(c.step(tick(k, 7000 * kStep), &canted));
-  WheelsetInput in = tick(k, 7000 * kStep);
-  for (WheelsetKinematics& s : in.wheelsets) s.cant = 0.0;
   ASSERT_TRUE(c.reset());
-  ASSERT_TRUE(c.step(in, &level));
+  for (int j : {k - 1, k}) {
+    WheelsetInput in = tick(j, 7000 * kStep);
+    for (WheelsetKinematics& s : in.wheelsets) s.cant = 0.0;
+    ASSERT_TRUE(c.step(in, &level));
+  }
   int leaning = 0;
   for (int w = 0; w < 2; ++w) {
     const WheelsetKinematics s = state(w, k);
