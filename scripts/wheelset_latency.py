@@ -6,6 +6,14 @@ answers collected from wheelset_forces as they come; `service`: one wheelset_ste
 late call delays the next). Round trip: from just before the publish or call to the answer's
 arrival (time.perf_counter). Prints one line per run; a stall is a round trip over --stall.
 
+What keeps the client's own pauses out of the numbers (a client of one's own needs the same):
+the service proxy is persistent (one connection, no master lookup per call); the answers'
+subscriber asks for tcp_nodelay and exists only during a topic run (during a service run it would
+decode every answer a second time on rospy's thread); an answer is reduced at receipt to what the
+run counts, so the heap does not grow with the run; and the garbage collector is off during the
+timed loop (--gc on keeps Python's default, whose full passes over a large heap take 0.1-0.6 s).
+The line ends with the collector's passes during the run.
+
   scripts/wheelset_latency.py --launch --seconds 10 --rate 1000 --runs topic,service
 
 --launch starts `roslaunch wheel_rail_contact wheelset.launch wheelsets:=4` on its own master port
@@ -14,13 +22,15 @@ about 10 s to build at start-up: the script waits for the service. Exit code 1 i
 or a wheel's answer was not ok. The C++ client is `rosrun wheel_rail_contact wheelset_latency`.
 """
 import argparse
+import contextlib
 import math
 import os
 import subprocess
 import sys
 import time
 
-from latency_common import NodeLink, keep_schedule, percentile, wait_for_master, wait_for_param
+from latency_common import (GcPasses, NodeLink, collector_off, keep_schedule, percentile,
+                            wait_for_master, wait_for_param)
 
 
 def parse_args():
@@ -33,6 +43,9 @@ def parse_args():
     p.add_argument("--stall", type=float, default=0.02, help="a longer round trip is a stall [s]")
     p.add_argument("--launch", action="store_true", help="start the wheelset node (own master)")
     p.add_argument("--port", type=int, default=11470, help="with --launch: master port")
+    p.add_argument("--gc", choices=("off", "on"), default="off",
+                   help="garbage collector during the timed loop: off (frozen and disabled) or "
+                   "on (Python's default)")
     return p.parse_args()
 
 
@@ -40,13 +53,15 @@ class Client:
     def __init__(self, ns, names):
         import rospy
         from wheel_rail_contact.msg import WheelsetForces, WheelsetInput, WheelsetKinematics
-        from wheel_rail_contact.srv import WheelsetStep
+        from wheel_rail_contact.srv import Reset, WheelsetStep
         self.rospy, self.Input, self.Kinematics = rospy, WheelsetInput, WheelsetKinematics
         self.names = names
         self.link = NodeLink("wheelset node", ns,
                              ("wheelset_input", "wheelset_forces", "wheelset_step"),
-                             (WheelsetInput, WheelsetForces, WheelsetStep), 100000, 120.0)
+                             (WheelsetInput, WheelsetForces, WheelsetStep), 100000, 120.0,
+                             keep=self.bad, listen=False)
         self.pub, self.step, self.answers = self.link.pub, self.link.step, self.link.answers
+        self.reset = rospy.ServiceProxy(ns + "/reset", Reset)
 
     def tick(self, k, stamp):
         msg = self.Input()
@@ -66,10 +81,23 @@ class Client:
         n = abs(len(forces.wheelsets) - len(self.names))
         return n + sum((w.left.status != 0) + (w.right.status != 0) for w in forces.wheelsets)
 
-    def run(self, path, n, rate, t0):
-        """Round trips [s] of the answered ticks, lost ticks, bad answers, late sends, wall time."""
-        rospy = self.rospy
+    def run(self, path, n, rate, t0, gc_off):
+        """Round trips [s] of the answered ticks, lost ticks, bad answers, late sends, wall time,
+        the garbage collector's passes (GcPasses)."""
+        self.reset()  # a fresh time base: the gap since the last run is no dt > max_dt to reject
+        if path == "topic":
+            self.link.listen()
         self.answers.clear()
+        try:
+            with collector_off() if gc_off else contextlib.nullcontext():
+                with GcPasses() as passes:
+                    return self.loop(path, n, rate, t0) + (passes,)
+        finally:
+            self.link.deaf()
+
+    def loop(self, path, n, rate, t0):
+        # the timed loop of run()
+        rospy = self.rospy
         sent, trips, bad, late = {}, [], 0, 0
         start = time.perf_counter()
         for k in range(n):
@@ -88,8 +116,8 @@ class Client:
         wall = time.perf_counter() - start
         lost = 0
         if path == "topic":
-            trips, answers, lost = self.answers.match(sent)
-            bad += sum(self.bad(forces) for forces in answers)
+            trips, bads, lost = self.answers.match(sent)
+            bad += sum(bads)
         return trips, lost, bad, late, wall
 
 
@@ -112,14 +140,15 @@ def main():
         ok = True
         for run in args.runs.split(","):
             t0 = time.time_ns()  # stamps from the wall clock: each run continues the time line
-            trips, lost, bad, late, wall = client.run(run, n, args.rate, t0)
+            trips, lost, bad, late, wall, gcp = client.run(run, n, args.rate, t0, args.gc == "off")
             stalls = sum(1 for t in trips if t > args.stall)
             print("python %-7s %d wheelsets, %d ticks at %.0f Hz in %.2f s wall: round trip p50 "
                   "%.3f ms, p99 %.3f ms, max %.3f ms; lost %d, not ok %d, stalls > %.0f ms %d, "
-                  "late sends %d (load average %.1f)" % (
+                  "late sends %d; gc %s: %d passes, %d full, longest %.1f ms (load average %.1f)" % (
                       run, len(client.names), n, args.rate, wall, 1e3 * percentile(trips, 50),
                       1e3 * percentile(trips, 99), 1e3 * max(trips) if trips else float("nan"),
-                      lost, bad, 1e3 * args.stall, stalls, late, os.getloadavg()[0]), flush=True)
+                      lost, bad, 1e3 * args.stall, stalls, late, args.gc, gcp.passes, gcp.full,
+                      1e3 * gcp.longest, os.getloadavg()[0]), flush=True)
             ok = ok and lost == 0 and bad == 0
         return 0 if ok else 1
     finally:
