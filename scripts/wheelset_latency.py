@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Round trip of wheelset_node driven by a Python (rospy) client at a wall-clock rate: one
-WheelsetInput per tick with every wheelset (a sway on the treads at 30 m/s, 60 kN per wheel), sent
-on a fixed schedule. `topic`: published on wheelset_input on schedule whatever the answers do,
-answers collected from wheelset_forces as they come; `service`: one wheelset_step call per tick (a
-late call delays the next). Round trip: from just before the publish or call to the answer's
+WheelsetInput per tick with every wheelset (a sway on the treads at 30 m/s, 60 kN per wheel;
+--sway, --offset), sent on a fixed schedule. `topic`: published on wheelset_input on schedule
+whatever the answers do, answers collected from wheelset_forces as they come; `service`: one
+wheelset_step call per tick (a late call delays the next). Round trip: from just before the publish or call to the answer's
 arrival (time.perf_counter). Prints one line per run; a stall is a round trip over --stall.
 
 What keeps the client's own pauses out of the numbers (a client of one's own needs the same):
@@ -43,6 +43,10 @@ def parse_args():
     p.add_argument("--stall", type=float, default=0.02, help="a longer round trip is a stall [s]")
     p.add_argument("--launch", action="store_true", help="start the wheelset node (own master)")
     p.add_argument("--port", type=int, default=11470, help="with --launch: master port")
+    p.add_argument("--sway", type=float, default=3e-3, help="lateral amplitude [m]")
+    p.add_argument("--offset", type=float, default=0.0,
+                   help="lateral centre of the sway [m] (2e-3 with --sway 1e-3: clear of the "
+                   "centred tread)")
     p.add_argument("--gc", choices=("off", "on"), default="off",
                    help="garbage collector during the timed loop: off (frozen and disabled) or "
                    "on (Python's default)")
@@ -50,12 +54,12 @@ def parse_args():
 
 
 class Client:
-    def __init__(self, ns, names):
+    def __init__(self, ns, names, sway=3e-3, offset=0.0):
         import rospy
         from wheel_rail_contact.msg import WheelsetForces, WheelsetInput, WheelsetKinematics
         from wheel_rail_contact.srv import Reset, WheelsetStep
         self.rospy, self.Input, self.Kinematics = rospy, WheelsetInput, WheelsetKinematics
-        self.names = names
+        self.names, self.sway, self.offset = names, sway, offset
         self.link = NodeLink("wheelset node", ns,
                              ("wheelset_input", "wheelset_forces", "wheelset_step"),
                              (WheelsetInput, WheelsetForces, WheelsetStep), 100000, 120.0,
@@ -68,9 +72,10 @@ class Client:
         msg.header.stamp = stamp
         for i, name in enumerate(self.names):
             w = 2.0 * math.pi * 1.5 * 1e-3 * k + i
-            s = self.Kinematics(name=name, lateral=3e-3 * math.sin(w), yaw=1e-3 * math.cos(w),
+            s = self.Kinematics(name=name, lateral=self.offset + self.sway * math.sin(w),
+                                yaw=1e-3 * math.cos(w),
                                 velocity=30.0, pitch_rate=30.0 / 0.46,
-                                lateral_velocity=3e-3 * 2.0 * math.pi * 1.5 * math.cos(w),
+                                lateral_velocity=self.sway * 2.0 * math.pi * 1.5 * math.cos(w),
                                 yaw_rate=-1e-3 * 2.0 * math.pi * 1.5 * math.sin(w),
                                 load_left=6e4 + 2e3 * math.sin(w),
                                 load_right=6e4 - 2e3 * math.sin(w))
@@ -135,16 +140,19 @@ def main():
         wait_for_master()
         rospy.init_node("wheelset_latency_py", anonymous=True, disable_signals=True)
         ns = "/" + args.ns.strip("/")
-        client = Client(ns, wait_for_param(ns + "/wheelset_node/wheelsets"))
+        client = Client(ns, wait_for_param(ns + "/wheelset_node/wheelsets"), args.sway,
+                        args.offset)
         n = int(round(args.seconds * args.rate))
         ok = True
         for run in args.runs.split(","):
             t0 = time.time_ns()  # stamps from the wall clock: each run continues the time line
-            trips, lost, bad, late, wall, gcp = client.run(run, n, args.rate, t0, args.gc == "off")
+            trips, lost, bad, late, wall, gcp = client.run(run, n, args.rate, t0,
+                                                           args.gc == "off")
             stalls = sum(1 for t in trips if t > args.stall)
             print("python %-7s %d wheelsets, %d ticks at %.0f Hz in %.2f s wall: round trip p50 "
                   "%.3f ms, p99 %.3f ms, max %.3f ms; lost %d, not ok %d, stalls > %.0f ms %d, "
-                  "late sends %d; gc %s: %d passes, %d full, longest %.1f ms (load average %.1f)" % (
+                  "late sends %d; gc %s: %d passes, %d full, longest %.1f ms (load average "
+                  "%.1f)" % (
                       run, len(client.names), n, args.rate, wall, 1e3 * percentile(trips, 50),
                       1e3 * percentile(trips, 99), 1e3 * max(trips) if trips else float("nan"),
                       lost, bad, 1e3 * args.stall, stalls, late, args.gc, gcp.passes, gcp.full,

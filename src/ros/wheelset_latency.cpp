@@ -4,7 +4,9 @@
 // come on another thread); `service` calls wheelset_step on schedule (a late call delays the next).
 // Round trip: from just before the publish or call to the answer's arrival. Private parameters:
 // ns (default /wheelsets), wheelsets (names, default wheelset1..4), seconds (10), rate (1000 Hz),
-// mode (topic | service), stall (20 ms: a round trip longer counts as a stall). Prints one line:
+// mode (topic | service), stall (20 ms: a round trip longer counts as a stall), sway (3e-3 m: the
+// lateral amplitude) and offset (0 m: the lateral centre of the sway; offset 2e-3 with sway 1e-3
+// keeps every wheel on its tread clear of the centred pose). Prints one line:
 // the round trip, the node's WheelsetContact steps per tick (its answers' solver_time) and what is
 // left of each round trip without them (the transport: both ends' messages and sockets, the
 // node's callback and the answer's fill). Exit code 1 if a tick was lost or a wheel's answer was
@@ -39,19 +41,21 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-/// Wheelset i's state at tick k: a sway on the treads at 30 m/s, 60 kN per wheel.
-WheelsetInput tick(const std::vector<std::string>& names, int64_t stampNs, int k) {
+/// Wheelset i's state at tick k: a sway on the treads (lateral offset + sway sin(w)) at 30 m/s,
+/// 60 kN per wheel.
+WheelsetInput tick(const std::vector<std::string>& names, int64_t stampNs, int k, double sway,
+                   double offset) {
   WheelsetInput in;
   in.header.stamp.fromNSec(static_cast<uint64_t>(stampNs));
   for (size_t i = 0; i < names.size(); ++i) {
     wheel_rail_contact::WheelsetKinematics s;
     s.name = names[i];
     const double w = 2.0 * M_PI * 1.5 * 1e-3 * k + static_cast<double>(i);
-    s.lateral = 3e-3 * std::sin(w);
+    s.lateral = offset + sway * std::sin(w);
     s.yaw = 1e-3 * std::cos(w);
     s.velocity = 30.0;
     s.pitch_rate = 30.0 / 0.46;
-    s.lateral_velocity = 3e-3 * 2.0 * M_PI * 1.5 * std::cos(w);
+    s.lateral_velocity = sway * 2.0 * M_PI * 1.5 * std::cos(w);
     s.yaw_rate = -1e-3 * 2.0 * M_PI * 1.5 * std::sin(w);
     s.load_left = 6e4 + 2e3 * std::sin(w);
     s.load_right = 6e4 - 2e3 * std::sin(w);
@@ -94,6 +98,7 @@ int main(int argc, char** argv) {
     names = {"wheelset1", "wheelset2", "wheelset3", "wheelset4"};
   const double seconds = pnh.param("seconds", 10.0), rate = pnh.param("rate", 1000.0);
   const double stall = pnh.param("stall", 0.02);
+  const double sway = pnh.param("sway", 3e-3), offset = pnh.param("offset", 0.0);
   const std::string mode = pnh.param<std::string>("mode", "topic");
   const int n = static_cast<int>(std::lround(seconds * rate));
   const int64_t periodNs = static_cast<int64_t>(std::llround(1e9 / rate));
@@ -161,7 +166,7 @@ int main(int argc, char** argv) {
       std::this_thread::sleep_until(due);
     else if (Clock::now() - due > std::chrono::nanoseconds(periodNs))
       ++late;
-    const WheelsetInput in = tick(names, t0 + periodNs * k, k);
+    const WheelsetInput in = tick(names, t0 + periodNs * k, k, sway, offset);
     if (service) {
       wheel_rail_contact::WheelsetStep srv;
       srv.request.input = in;
