@@ -4,7 +4,8 @@ WheelsetInput per tick with every wheelset (a sway on the treads at 30 m/s, 60 k
 --sway, --offset), sent on a fixed schedule. `topic`: published on wheelset_input on schedule
 whatever the answers do, answers collected from wheelset_forces as they come; `service`: one
 wheelset_step call per tick (a late call delays the next). Round trip: from just before the
-publish or call to the answer's arrival (time.perf_counter). Prints one line per run; a stall is a round trip over --stall.
+publish or call to the answer's arrival (time.perf_counter). Prints one line per run; a stall is
+a round trip over --stall.
 
 What keeps the client's own pauses out of the numbers (a client of one's own needs the same):
 the service proxy is persistent (one connection, no master lookup per call); the answers'
