@@ -11,9 +11,9 @@ What keeps the client's own pauses out of the numbers (a client of one's own nee
 the service proxy is persistent (one connection, no master lookup per call); the answers'
 subscriber asks for tcp_nodelay and exists only during a topic run (during a service run it would
 decode every answer a second time on rospy's thread); an answer is reduced at receipt to what the
-run counts, so the heap does not grow with the run; and the garbage collector is off during the
-timed loop (--gc on keeps Python's default, whose full passes over a large heap take 0.1-0.6 s).
-The line ends with the collector's passes during the run.
+run counts, so the heap does not grow with the run (a full collector pass over a heap of every
+answer took 0.1-0.6 s); and the garbage collector is off during the timed loop (--gc on keeps
+Python's default). The line ends with the collector's passes during the run.
 
   scripts/wheelset_latency.py --launch --seconds 10 --rate 1000 --runs topic,service
 
