@@ -13,7 +13,9 @@ subscriber asks for tcp_nodelay and exists only during a topic run (during a ser
 decode every answer a second time on rospy's thread); an answer is reduced at receipt to what the
 run counts, so the heap does not grow with the run (a full collector pass over a heap of every
 answer took 0.1-0.6 s); and the garbage collector is off during the timed loop (--gc on keeps
-Python's default). The line ends with the collector's passes during the run.
+Python's default). The line gives the node's own time per tick (its answers' solver_time
+summed), the transport (each round trip less its tick's node time) and the collector's passes
+during the run.
 
   scripts/wheelset_latency.py --launch --seconds 10 --rate 1000 --runs topic,service
 
@@ -64,7 +66,7 @@ class Client:
         self.link = NodeLink("wheelset node", ns,
                              ("wheelset_input", "wheelset_forces", "wheelset_step"),
                              (WheelsetInput, WheelsetForces, WheelsetStep), 100000, 120.0,
-                             keep=self.bad, listen=False)
+                             keep=self.summary, listen=False)
         self.pub, self.step, self.answers = self.link.pub, self.link.step, self.link.answers
         self.reset = rospy.ServiceProxy(ns + "/reset", Reset)
 
@@ -83,14 +85,24 @@ class Client:
             msg.wheelsets.append(s)
         return msg
 
+    def summary(self, forces):
+        """What a run keeps of an answer: its wheels not ok (or entries missing or extra) and the
+        node's time for the tick (its WheelsetContact steps, solver_time summed) [s]."""
+        return self.bad(forces), sum(w.solver_time for w in forces.wheelsets)
+
     def bad(self, forces):
         n = abs(len(forces.wheelsets) - len(self.names))
         return n + sum((w.left.status != 0) + (w.right.status != 0) for w in forces.wheelsets)
 
     def run(self, path, n, rate, t0, gc_off):
-        """Round trips [s] of the answered ticks, lost ticks, bad answers, late sends, wall time,
-        the garbage collector's passes (GcPasses)."""
-        self.reset()  # a fresh time base: the gap since the last run is no dt > max_dt to reject
+        """Round trips [s] of the answered ticks, the node's times for them [s], lost ticks, bad
+        answers, late sends, wall time, the garbage collector's passes (GcPasses)."""
+        # An untimed call opens the persistent connection (rospy opens it on the first call, with a
+        # master lookup); the reset then gives a fresh time base and histories (the gap since the
+        # last run is no dt > max_dt to reject).
+        before = t0 - int(round(1e9 / rate))
+        self.step(self.tick(0, self.rospy.Time(before // 10**9, before % 10**9)))
+        self.reset()
         if path == "topic":
             self.link.listen()
         self.answers.clear()
@@ -104,7 +116,7 @@ class Client:
     def loop(self, path, n, rate, t0):
         # the timed loop of run()
         rospy = self.rospy
-        sent, trips, bad, late = {}, [], 0, 0
+        sent, trips, node, bad, late = {}, [], [], 0, 0
         start = time.perf_counter()
         for k in range(n):
             ns = t0 + k * int(round(1e9 / rate))
@@ -115,16 +127,19 @@ class Client:
             if path == "service":
                 forces = self.step(msg).forces
                 trips.append(time.perf_counter() - t)
-                bad += self.bad(forces)
+                b, tick_time = self.summary(forces)
+                bad += b
+                node.append(tick_time)
                 continue
             sent[ns] = t
             self.pub.publish(msg)
         wall = time.perf_counter() - start
         lost = 0
         if path == "topic":
-            trips, bads, lost = self.answers.match(sent)
-            bad += sum(bads)
-        return trips, lost, bad, late, wall
+            trips, kept, lost = self.answers.match(sent)
+            bad += sum(b for b, _ in kept)
+            node = [tick_time for _, tick_time in kept]
+        return trips, node, lost, bad, late, wall
 
 
 def main():
@@ -147,17 +162,21 @@ def main():
         ok = True
         for run in args.runs.split(","):
             t0 = time.time_ns()  # stamps from the wall clock: each run continues the time line
-            trips, lost, bad, late, wall, gcp = client.run(run, n, args.rate, t0,
-                                                           args.gc == "off")
+            trips, node, lost, bad, late, wall, gcp = client.run(run, n, args.rate, t0,
+                                                                 args.gc == "off")
             stalls = sum(1 for t in trips if t > args.stall)
+            transport = [t - c for t, c in zip(trips, node)]  # the round trip less the node's
+            ms = lambda v, q: 1e3 * percentile(v, q)  # noqa: E731
             print("python %-7s %d wheelsets, %d ticks at %.0f Hz in %.2f s wall: round trip p50 "
                   "%.3f ms, p99 %.3f ms, max %.3f ms; lost %d, not ok %d, stalls > %.0f ms %d, "
-                  "late sends %d; gc %s: %d passes, %d full, longest %.1f ms (load average "
-                  "%.1f)" % (
-                      run, len(client.names), n, args.rate, wall, 1e3 * percentile(trips, 50),
-                      1e3 * percentile(trips, 99), 1e3 * max(trips) if trips else float("nan"),
-                      lost, bad, 1e3 * args.stall, stalls, late, args.gc, gcp.passes, gcp.full,
-                      1e3 * gcp.longest, os.getloadavg()[0]), flush=True)
+                  "late sends %d; the node's steps per tick p50 %.3f ms, p99 %.3f ms; the "
+                  "transport p50 %.3f ms, p99 %.3f ms, max %.3f ms; gc %s: %d passes, %d full, "
+                  "longest %.1f ms (load average %.1f)" % (
+                      run, len(client.names), n, args.rate, wall, ms(trips, 50), ms(trips, 99),
+                      ms(trips, 100), lost, bad, 1e3 * args.stall, stalls, late, ms(node, 50),
+                      ms(node, 99), ms(transport, 50), ms(transport, 99), ms(transport, 100),
+                      args.gc, gcp.passes, gcp.full, 1e3 * gcp.longest, os.getloadavg()[0]),
+                  flush=True)
             ok = ok and lost == 0 and bad == 0
         return 0 if ok else 1
     finally:

@@ -10,10 +10,10 @@
 // the round trip, the node's WheelsetContact steps per tick (its answers' solver_time) and what is
 // left of each round trip without them (the transport: both ends' messages and sockets, the
 // node's callback and the answer's fill). Exit code 1 if a tick was lost or a wheel's answer was
-// not ok. The node is reset first (a fresh time base). In `service` mode the client does not
-// subscribe to wheelset_forces: a service client does not need the node's published copy, and
-// receiving it would cost the node a second message send per call and the client a second
-// decode.
+// not ok. One untimed call and a reset come first (the connection, a fresh time base). In `service`
+// mode the client does not subscribe to wheelset_forces: a service client does not need the node's
+// published copy, and receiving it would cost the node a second message send per call and the
+// client a second decode.
 #include <ros/ros.h>
 
 #include <algorithm>
@@ -142,9 +142,14 @@ int main(int argc, char** argv) {
   }
   ros::ServiceClient step =
       nh.serviceClient<wheel_rail_contact::WheelsetStep>(ns + "/wheelset_step", true);
+  // An untimed call opens the persistent connection (roscpp opens it on the first call, with a
+  // master lookup); the reset then gives a fresh time base and histories.
+  wheel_rail_contact::WheelsetStep warmUp;
+  warmUp.request.input =
+      tick(names, static_cast<int64_t>(ros::WallTime::now().toNSec()) - periodNs, 0, sway, offset);
   wheel_rail_contact::Reset reset;
-  if (!ros::service::call(ns + "/reset", reset)) {
-    std::fprintf(stderr, "wheelset_latency: %s/reset failed\n", ns.c_str());
+  if (!step.call(warmUp) || !ros::service::call(ns + "/reset", reset)) {
+    std::fprintf(stderr, "wheelset_latency: %s/wheelset_step or reset failed\n", ns.c_str());
     return 1;
   }
   const Clock::time_point wait = Clock::now() + std::chrono::seconds(30);
