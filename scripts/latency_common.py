@@ -1,6 +1,9 @@
 """What scripts/vehicle_latency.py and scripts/wheelset_latency.py share: waiting for the master,
-a parameter and a live topic link, the answers collected by stamp, the wall-clock schedule and the
-percentiles. Imported from the scripts' own folder (installed beside them)."""
+a parameter and a live topic link, the answers collected by stamp, the wall-clock schedule, the
+garbage collector held off a timed loop and the percentiles. Imported from the scripts' own folder
+(installed beside them)."""
+import contextlib
+import gc
 import math
 import threading
 import time
@@ -48,17 +51,64 @@ def wait_for_link(topic, timeout):
     return False
 
 
-class Answers:
-    """A node's answers on a topic, by stamp [ns] -> (perf_counter at receipt, message)."""
+class GcPasses:
+    """Python's garbage-collector passes while it is installed: how many, how many of the oldest
+    generation (2), the longest [s]. A full pass walks every live container object, so a client
+    that keeps its answers pauses for as long as its heap is large."""
 
     def __init__(self):
+        self.passes, self.full, self.longest, self._start = 0, 0, 0.0, None
+
+    def __call__(self, phase, info):
+        now = time.perf_counter()
+        if phase == "start":
+            self._start = now
+        elif self._start is not None:
+            self.passes += 1
+            self.full += info["generation"] == 2
+            self.longest = max(self.longest, now - self._start)
+
+    def __enter__(self):
+        gc.callbacks.append(self)
+        return self
+
+    def __exit__(self, *exc):
+        gc.callbacks.remove(self)
+
+
+@contextlib.contextmanager
+def collector_off():
+    """No garbage-collector pass inside: collects once, freezes what lives (gc.freeze: later
+    passes skip it), disables the collector, and on leaving enables it again. Safe for a loop of
+    ROS messages: they hold no reference cycles, so reference counting frees each one at once
+    and nothing piles up while the collector is off."""
+    was_on = gc.isenabled()
+    gc.collect()
+    gc.freeze()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was_on:
+            gc.enable()
+        gc.unfreeze()
+
+
+class Answers:
+    """A node's answers on a topic, by stamp [ns] -> (perf_counter at receipt, keep(message));
+    `keep` (default: the message itself) says what of an answer to hold until the run ends: a
+    summary keeps the heap small (see GcPasses)."""
+
+    def __init__(self, keep=None):
         self.lock = threading.Condition()
         self.received = {}
+        self.keep = keep or (lambda msg: msg)
 
     def on_answer(self, msg):
         t = time.perf_counter()
+        kept = self.keep(msg)
         with self.lock:
-            self.received[msg.header.stamp.to_nsec()] = (t, msg)
+            self.received[msg.header.stamp.to_nsec()] = (t, kept)
             self.lock.notify_all()
 
     def clear(self):
@@ -71,8 +121,8 @@ class Answers:
 
     def match(self, sent, timeout=2.0):
         """The answers to `sent` (stamp [ns] -> perf_counter just before sending) once all are in
-        or `timeout` s have passed: the round trips [s] and the answers of the answered ones, and
-        how many were lost."""
+        or `timeout` s have passed: the round trips [s] and what was kept of the answered ones,
+        and how many were lost."""
         with self.lock:
             self.lock.wait_for(lambda: len(self.received) >= len(sent), timeout=timeout)
             got = dict(self.received)
@@ -88,26 +138,48 @@ class NodeLink:
     """A node's input publisher (pub), its answers' subscriber (into answers, an Answers) and its
     step service (step, persistent), connected: waits up to `service_timeout` s for the service,
     then 30 s each for the node's subscription and for the answers' link to this node; raises
-    RuntimeError naming `what` otherwise."""
+    RuntimeError naming `what` otherwise. With listen=False the answers' subscriber is made only
+    by listen() and dropped by deaf(): a client that calls the service only need not receive and
+    decode every answer a second time from the topic (rospy does that on its own thread, which
+    takes the interpreter from the calls)."""
 
-    def __init__(self, what, ns, topics, types, queue_size, service_timeout):
+    def __init__(self, what, ns, topics, types, queue_size, service_timeout, keep=None,
+                 listen=True):
         # topics: (input, answer, service) names under ns; types: their message/service classes
         import rospy
         input_topic, answer_topic, service = topics
-        input_type, answer_type, service_type = types
-        self.answers = Answers()
+        input_type, self.answer_type, service_type = types
+        self.what, self.queue_size = what, queue_size
+        self.answer_topic = ns + "/" + answer_topic
+        self.answers = Answers(keep)
+        self.sub = None
         self.pub = rospy.Publisher(ns + "/" + input_topic, input_type, queue_size=queue_size,
                                    tcp_nodelay=True)
-        self.sub = rospy.Subscriber(ns + "/" + answer_topic, answer_type, self.answers.on_answer,
-                                    queue_size=queue_size, tcp_nodelay=True)
         rospy.wait_for_service(ns + "/" + service, timeout=service_timeout)
         self.step = rospy.ServiceProxy(ns + "/" + service, service_type, persistent=True)
         end = time.monotonic() + 30.0
         while self.pub.get_num_connections() == 0 and time.monotonic() < end:
             time.sleep(0.01)
-        if self.pub.get_num_connections() == 0 or not wait_for_link(
-                rospy.resolve_name(ns + "/" + answer_topic), 30.0):
+        if self.pub.get_num_connections() == 0:
             raise RuntimeError(what + " not connected")
+        if listen:
+            self.listen()
+
+    def listen(self):
+        """Subscribes to the answers (tcp_nodelay) and waits up to 30 s for the link."""
+        import rospy
+        if self.sub is None:
+            self.sub = rospy.Subscriber(self.answer_topic, self.answer_type,
+                                        self.answers.on_answer, queue_size=self.queue_size,
+                                        tcp_nodelay=True)
+        if not wait_for_link(rospy.resolve_name(self.answer_topic), 30.0):
+            raise RuntimeError(self.what + " not connected")
+
+    def deaf(self):
+        """Drops the answers' subscriber (listen() makes it again)."""
+        if self.sub is not None:
+            self.sub.unregister()
+            self.sub = None
 
 
 def keep_schedule(start, k, rate):
