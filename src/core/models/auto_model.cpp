@@ -324,7 +324,9 @@ StepInput AutoModel::chooseGeometry(const StepInput& in) {
 }
 
 StepOutput AutoModel::aboutReference(StepOutput out) const {
-  out.mz -= centre_ * out.fx;  // mz = x fy - y fx: from the ellipse's centre to the reference
+  // mz = x fy - y fx: from the ellipse's centre to the reference point (only then: a step without
+  // a shape is left as it was, bit for bit).
+  if (centre_ != 0.0) out.mz -= centre_ * out.fx;
   return out;
 }
 
