@@ -332,7 +332,9 @@ StepOutput AutoModel::aboutReference(StepOutput out) const {
 
 StepOutput AutoModel::step(const StepInput& given) {
   const StepInput in = chooseGeometry(given);
-  choose(in);
+  // The time term's monitor sees the creepages as given: the ellipse's own, at its centre, move
+  // with the choice, not with the input.
+  choose(given);
   switch (mode_) {
     case Mode::kNss:
       return aboutReference(nss_.step(in));
