@@ -11,7 +11,7 @@ doc/validation.md can be read against them; so are every row, auto against the c
 choice, and the numbers auto's rule reads off the chart (auto_rule), per variant.
 The real-profile cases (speed_accuracy_patches.csv beside the table, when there): A-2.2's
 gauge-corner patch (y = 5 mm) and tread patches (y = 0.5, 0 mm), each FastSim model on the patch as its equivalent ellipse (dotted)
-and on its strips (solid), and the exact solver on coarser grids, drawn in
+and on its strips (solid; auto, given the strips, chooses between them and the ellipse), and the exact solver on coarser grids, drawn in
 <figure>_patches.png (worst error over the harmonic scenes, of the exact peak force, and over
 the held creepages, of mu Fn) and
 printed per model, mesh, variant and geometry.
@@ -240,6 +240,12 @@ def patch_rows(path):
     return out
 
 
+def shown_geometry(name, geometry):
+    """auto given the strips chooses between them and the ellipse itself (auto_model.hpp)."""
+    return "given strips (its choice)" if name.startswith("auto") and geometry == "strips" \
+        else geometry
+
+
 def patches_figure(path, out):
     """Per patch (columns): the worst harmonic error and the held one against the cost, the
     default variant (calibrated) drawn, both printed; nss fixed printed only (as adaptive)."""
@@ -271,7 +277,7 @@ def patches_figure(path, out):
                           ls=":" if geometry == "ellipse" else "-", lw=1,
                           marker=MARKER.get(name, "P"), color=COLOUR.get(name, "grey"),
                           markerfacecolor="white" if geometry == "ellipse" else None,
-                          label=f"{name}, {geometry}")
+                          label=f"{name}, {shown_geometry(name, geometry)}")
                 for r in rs:
                     axis.annotate(tag(r), (r["ns"], 100 * r[column]), textcoords="offset points",
                                   xytext=(3, 3), fontsize=6)

@@ -29,7 +29,9 @@
 ///      ellipse (a, b) otherwise, as the normal problem chose (no more model than the patch
 ///      needs). The strips' eta runs toward the track centre, the contact frame's y is the same on
 ///      both wheels: the left wheel's strips are mirrored. The exact model solves every patch on
-///      its ellipse and refuses an a/b beyond the table (doc/true_patch.md).
+///      its ellipse and refuses an a/b beyond the table (doc/true_patch.md). Model auto, given the
+///      strips, runs them only where the equivalent ellipse (placed at the strips' centre) is
+///      predicted to miss its tolerance, the ellipse otherwise (doc/performance.md#model-auto).
 ///
 /// History: one model instance per patch slot, a slot being (wheel, zone, rank among that wheel's
 /// patches of the same zone counted from the field side). A slot whose patch is present is stepped

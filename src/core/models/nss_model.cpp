@@ -128,9 +128,9 @@ void NssModel::dropSecondState() {
   secondOrder_ = handingOn_ = false;
 }
 
-void NssModel::sizeBuffers(int n) {
+void NssModel::sizeBuffers(int n, bool keepState) {
   if (field_.tx.size() == n) return;
-  state_.resize(n);
+  if (!keepState) state_.resize(n);
   remapped_.resize(n);
   field_.resize(n);
   scratch_.resize(n);
@@ -138,12 +138,14 @@ void NssModel::sizeBuffers(int n) {
 
 void NssModel::leaveStrips(const HertzEllipse& h, bool carry) {
   if (adaptive_) mesh_.scale(h.a, h.b);
-  if (carry && lastA_ > 0.0) {
+  const bool carried = carry && lastA_ > 0.0;
+  if (carried) {
     remapAtFixedPoints(stripMesh_, stripOrigin_, state_, mesh_, stripOrigin_, &remapped_);
     std::swap(state_, remapped_);
   }
-  sizeBuffers(mesh_.size());  // state_ is sized already when carried: the rest follow
-  if (!carry || !(lastA_ > 0.0)) state_.clear();
+  // state_ is sized already when carried (resizing would clear it): the rest follow.
+  sizeBuffers(mesh_.size(), carried);
+  if (!carried) state_.clear();
   // The history now sits on other nodes: the fixed mesh's trailing nodes keep what the carrying
   // gave them (coverTrailingNodes copies nothing this once).
   std::fill(firstBefore_.begin(), firstBefore_.end(), 0);

@@ -90,8 +90,9 @@ class NssModel : public ContactModel {
   /// Back from a shape's strips onto the ellipse's mesh (fixed, or adaptive at h), the history
   /// carried at fixed physical coordinates unless `carry` is false.
   void leaveStrips(const HertzEllipse& h, bool carry);
-  /// The per-node buffers sized for `n` nodes (allocates only when n changes).
-  void sizeBuffers(int n);
+  /// The per-node buffers sized for `n` nodes (allocates only when n changes, and clears the
+  /// history unless `keepState`: a history carried onto the new mesh already has its size).
+  void sizeBuffers(int n, bool keepState = false);
   PatchMesh stripMesh_, nextStrips_;  // the shape's strips: this step's, and the next one's
   bool onStrips_ = false;             // the history lives on stripMesh_ (else on mesh_)
   double stripOrigin_ = 0.0;          // stripMesh_'s PatchShape::origin
