@@ -28,13 +28,18 @@
 ///    that the nodes' candidates overlap alike).
 ///
 /// Rule where the candidates differ between the nodes around a pose. The candidate set is that of
-/// the nearest node. Each of its candidates is the same one at another node if that node has a
-/// candidate within match_distance of it on both profiles (s_wheel and s_rail). Where all twelve
-/// nodes of the quadratic stencil have it, it is interpolated on them; else among the eight
-/// nodes of the pose's cell that have it, their (linear) weights renormalised. The zone follows
-/// from the interpolated contact angle and the closest candidate from the interpolated vertical
-/// gaps, as the search does. At a jump (tread to gauge corner to flange) the table therefore takes
-/// the candidate set of the node nearer the pose, which is the direct search's on that node's side.
+/// the nearest node, and each tread candidate of another node of the pose's cell (of non-zero
+/// weight) that the nearest node lacks, in the search's order: near a centred tread two tread
+/// candidates lie across a ridge so low that one node's search sees it and the next node's no
+/// longer does, and the normal problem needs both to merge their patches across it
+/// (a candidate only one node has is that node's, at the pose's height). Each candidate is the
+/// same one at another node if that node has a candidate within match_distance of it on both
+/// profiles (s_wheel and s_rail). Where all twelve nodes of the quadratic stencil have it, it is
+/// interpolated on them; else among the eight nodes of the pose's cell that have it, their (linear)
+/// weights renormalised. The zone follows from the interpolated contact angle and the closest
+/// candidate from the interpolated vertical gaps, as the search does. At a jump (tread to gauge
+/// corner to flange) the table therefore takes the candidate set of the node nearer the pose, which
+/// is the direct search's on that node's side.
 ///
 /// Poses beyond the table: see ContactTableOptions::beyond.
 #pragma once

@@ -469,9 +469,34 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     double sw_gf = 0.0;
     ContactCandidate c;
   };
+  // The candidate set: the nearest node's, and each tread candidate of another node of the
+  // cell (of non-negligible weight) that the nearest node lacks. Near a centred tread two tread
+  // candidates lie across a ridge of a micrometre or so, which one node's search still sees and
+  // its neighbour's no longer does; with the nearest node's set alone the other candidate is
+  // lost while the kept one's gap function ends at the ridge (where the node that has both cut
+  // it), and a load whose approach crosses the ridge has no patch to merge with.
+  struct Member {
+    const TableCandidate* t;
+    int owner;  // the corner whose candidate it is
+  };
+  std::vector<Member> set;
+  for (const TableCandidate& mc : corners[master].node->candidates) set.push_back({&mc, master});
+  for (int q = 0; q < 8; ++q) {
+    if (q == master || !(corners[q].w > 1e-9)) continue;
+    for (const TableCandidate& t : corners[q].node->candidates) {
+      if (!(t.angle < so.tread_max_angle)) continue;
+      bool known = false;
+      for (const Member& s : set)
+        known = known || (std::abs(s.t->s_wheel - t.s_wheel) < options_.match_distance &&
+                          std::abs(s.t->s_rail - t.s_rail) < options_.match_distance);
+      if (!known) set.push_back({&t, q});
+    }
+  }
   std::vector<Interpolated> cands;
-  cands.reserve(corners[master].node->candidates.size());
-  for (const TableCandidate& mc : corners[master].node->candidates) {
+  cands.reserve(set.size());
+  for (std::size_t ms = 0; ms < set.size(); ++ms) {
+    const TableCandidate& mc = *set[ms].t;
+    const int owner = set[ms].owner;
     cands.emplace_back();
     Interpolated& ic = cands.back();
     auto& m = ic.m;
@@ -484,7 +509,7 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     // nodes that have it, their weights renormalised.
     if (quad_ok) {
       for (int q = 0; q < 12; ++q) {
-        m[q] = quad[q].node == corners[master].node
+        m[q] = quad[q].node == corners[owner].node
                    ? &mc
                    : match(mc, quad[q].node->candidates, options_.match_distance);
         if (!m[q]) break;
@@ -499,7 +524,7 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
       double sw = 0.0;
       for (int q = 0; q < 8; ++q) {
         const TableCandidate* t =
-            q == master ? &mc : match(mc, corners[q].node->candidates, options_.match_distance);
+            q == owner ? &mc : match(mc, corners[q].node->candidates, options_.match_distance);
         if (!t) continue;
         m[nm] = t;
         at[nm] = corners[q].node;
@@ -660,6 +685,12 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
                                         return c.vertical_gap > best + so.candidate_window;
                                       }),
                        out.candidates.end());
+  // In the search's order (field side to flange, s_wheel growing), which the normal problem's
+  // merging of neighbours across their ridge relies on.
+  if (set.size() > corners[master].node->candidates.size())
+    std::stable_sort(
+        out.candidates.begin(), out.candidates.end(),
+        [](const ContactCandidate& a, const ContactCandidate& b) { return a.s_wheel < b.s_wheel; });
   for (std::size_t k = 0; k < out.candidates.size(); ++k)
     if (out.closest < 0 ||
         out.candidates[k].vertical_gap < out.candidates[out.closest].vertical_gap)

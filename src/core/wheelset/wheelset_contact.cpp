@@ -310,9 +310,9 @@ struct WheelsetContact::Impl {
     std::vector<double> guess = whole ? lift(nullptr) : std::vector<double>{};
     WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, no, guess);
     if (table && n.status != NormalStatus::kOk && n.status != NormalStatus::kNoContact) {
-      // The table takes its nearest node's candidates: next to a ridge lower than the approach
-      // it can drop the neighbour the patch must merge with, leaving a gap function that ends
-      // at the ridge. The direct search keeps both; its geometry answers this step.
+      // Where the table's geometry leaves the normal problem no solution (it could drop the
+      // neighbour a patch must merge with across a low ridge; the table now keeps a neighbouring
+      // node's tread candidate, contact_table.hpp), the direct search's answers this step.
       WheelsetPose direct = s.pose;
       direct.z = 0.0;
       WheelContactGeometry d = searchAtTouchDirect(side, &direct);
