@@ -601,7 +601,7 @@ TEST(ContactTable, NearTheCentreTheNormalProblemSolvesOnTheTableWhereOnTheSearch
   const ContactTable& table = defaultTable();
   const ContactSearch& cs = table.contactSearch();
   const double G = 8.2e10, nu = 0.28;
-  int steps = 0, direct_ok = 0, table_fails = 0, both_fail = 0;
+  int steps = 0, direct_ok = 0, table_fails = 0, both_fail = 0, pmax_beyond = 0;
   double worst_pmax = 0.0;
   for (int iy = -100; iy <= 100; ++iy)
     for (double yaw : {0.0, 1e-3, -1e-3})
@@ -629,11 +629,12 @@ TEST(ContactTable, NearTheCentreTheNormalProblemSolvesOnTheTableWhereOnTheSearch
           for (const NormalPatch& n : nt.patches) pt_max = std::max(pt_max, n.pmax);
           for (const NormalPatch& n : nd.patches) pd_max = std::max(pd_max, n.pmax);
           worst_pmax = std::max(worst_pmax, std::abs(pt_max - pd_max) / pd_max);
+          pmax_beyond += std::abs(pt_max - pd_max) > 0.05 * pd_max;
         }
       }
   std::printf(
       "  near the centre: %d wheel-steps, %d solved on the search's geometry, %d of them "
-      "not on the table's; %d solved on neither; peak pressure within %.2f %%\n",
-      steps, direct_ok, table_fails, both_fail, 100.0 * worst_pmax);
+      "not on the table's; %d solved on neither; peak pressure within %.2f %%, beyond 5 %% in %d\n",
+      steps, direct_ok, table_fails, both_fail, 100.0 * worst_pmax, pmax_beyond);
   EXPECT_EQ(table_fails, 0);
 }

@@ -521,16 +521,52 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
       if (nm < 12) nm = 0;
     }
     if (nm == 0) {
+      // A tread candidate that one lateral node of a yaw-roll pair has and the other lacks (the
+      // search sees a low ridge, and with it the candidate, on one side only) is extrapolated
+      // linearly in Y from that node and the next one beyond it, where that one has it too: its
+      // vertical gap, place and gap function move smoothly with Y up to where the ridge vanishes,
+      // and one node's values alone would be a lateral step off. Elsewhere the nodes that have
+      // it, their weights renormalised.
+      const bool extrapolate = mc.angle < so.tread_max_angle;
       double sw = 0.0;
-      for (int q = 0; q < 8; ++q) {
-        const TableCandidate* t =
-            q == owner ? &mc : match(mc, corners[q].node->candidates, options_.match_distance);
-        if (!t) continue;
+      auto add = [&](const TableCandidate* t, const Node* n, double weight) {
         m[nm] = t;
-        at[nm] = corners[q].node;
-        w[nm] = corners[q].w;
-        sw += corners[q].w;
+        at[nm] = n;
+        w[nm] = weight;
+        sw += weight;
         ++nm;
+      };
+      for (int pair = 0; pair < 4; ++pair) {
+        const int c0 = pair << 1, c1 = c0 | 1;  // the pair's corners at lateral ci and ci + 1
+        const TableCandidate* t0 =
+            c0 == owner ? &mc : match(mc, corners[c0].node->candidates, options_.match_distance);
+        const TableCandidate* t1 =
+            c1 == owner ? &mc : match(mc, corners[c1].node->candidates, options_.match_distance);
+        const double wp = corners[c0].w + corners[c1].w;  // the pair's share of the cell
+        if (!extrapolate || (t0 && t1)) {
+          if (t0) add(t0, corners[c0].node, corners[c0].w);
+          if (t1) add(t1, corners[c1].node, corners[c1].w);
+          continue;
+        }
+        if (!t0 && !t1) continue;
+        const bool upper = t1 != nullptr;
+        const TableCandidate* ts = upper ? t1 : t0;
+        const int outer = upper ? ci + 2 : ci - 1;
+        const TableCandidate* to = nullptr;
+        const Node* no = nullptr;
+        if (outer >= 0 && outer < im.lateral.n) {
+          no = &grid.nodes[im.index(outer, cj + (pair & 1), ck + (pair >> 1))];
+          if (no->status == ContactSearchStatus::kOk)
+            to = match(*ts, no->candidates, options_.match_distance);
+        }
+        const Node* ns = corners[upper ? c1 : c0].node;
+        if (!to) {
+          add(ts, ns, wp);
+        } else {
+          const double ls = upper ? 2.0 - ti : 1.0 + ti;  // Lagrange's weight of ns; to's 1 - ls
+          add(ts, ns, wp * ls);
+          add(to, no, wp * (1.0 - ls));
+        }
       }
       for (int q = 0; q < nm; ++q) {
         w[q] = sw > 0.0 ? w[q] / sw : (m[q] == &mc ? 1.0 : 0.0);
@@ -611,7 +647,7 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
       // stretch would cut the function short for nothing.
       double sw_terms = 0.0;
       for (int q = 0; q < nm; ++q)
-        if (!m[q]->rows.empty() && w_linear[q] > 1e-9 * sw_gf) {
+        if (!m[q]->rows.empty() && std::abs(w_linear[q]) > 1e-9 * sw_gf) {
           lo = std::max(lo, m[q]->eta0);
           hi = std::min(hi, m[q]->etaEnd());
           terms[nt++] = {m[q], w_linear[q], heightAt(q)};

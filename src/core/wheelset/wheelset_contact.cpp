@@ -118,6 +118,7 @@ struct WheelsetContact::Impl {
   WheelsetContactOptions options;
   ContactSearch search;
   std::shared_ptr<const ContactTable> table;
+  std::size_t direct_search_fallbacks = 0;           // directSearchFallbacks()
   std::array<std::map<std::string, Slot>, 2> slots;  // [0] left, [1] right, by slot name
   // Each wheel's previous normal solution for the warm start, with its candidates' zones; empty
   // zones: none (cold start).
@@ -310,9 +311,10 @@ struct WheelsetContact::Impl {
     std::vector<double> guess = whole ? lift(nullptr) : std::vector<double>{};
     WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, no, guess);
     if (table && n.status != NormalStatus::kOk && n.status != NormalStatus::kNoContact) {
-      // Where the table's geometry leaves the normal problem no solution (it could drop the
-      // neighbour a patch must merge with across a low ridge; the table now keeps a neighbouring
-      // node's tread candidate, contact_table.hpp), the direct search's answers this step.
+      // Where the table's geometry leaves the normal problem no solution, the direct search's
+      // answers this step (the table keeps the tread candidates across a low ridge that it once
+      // dropped near a centred tread, contact_table.hpp; this remains for what it still misses).
+      ++direct_search_fallbacks;
       WheelsetPose direct = s.pose;
       direct.z = 0.0;
       WheelContactGeometry d = searchAtTouchDirect(side, &direct);
@@ -521,6 +523,9 @@ const ContactSearch& WheelsetContact::search() const {
 }
 const ContactParameters& WheelsetContact::parameters() const {
   return impl_->parameters;
+}
+std::size_t WheelsetContact::directSearchFallbacks() const {
+  return impl_->direct_search_fallbacks;
 }
 
 }  // namespace wheel_rail_contact
