@@ -589,3 +589,52 @@ TEST(ContactTable, SearchAtTouchAsTwoLookups) {
     }
   EXPECT_GT(shifted, 100);  // most poses are lowered or raised to touch
 }
+
+TEST(ContactTable, NearTheCentreTheNormalProblemSolvesOnTheTableWhereOnTheSearch) {
+  // Near the centre S1002 on UIC60 1:40 has two tread candidates across a ridge a few
+  // micrometres high, and the closest one jumps across the tread at |Y| about 0.22 mm. A load
+  // whose approach crosses the ridge merges the two patches: a table that kept only one
+  // candidate there (its gap function ending at the ridge) left the normal problem no solution
+  // where the search's geometry has one, and WheelsetContact fell back to the direct search.
+  // Sweep: y in [-1, 1] mm every 0.01 mm, yaw 0 and +-1 mrad, 10 to 80 kN, both wheels, each
+  // at first touch as WheelsetContact takes it.
+  const ContactTable& table = defaultTable();
+  const ContactSearch& cs = table.contactSearch();
+  const double G = 8.2e10, nu = 0.28;
+  int steps = 0, direct_ok = 0, table_fails = 0, both_fail = 0, pmax_beyond = 0;
+  double worst_pmax = 0.0;
+  for (int iy = -100; iy <= 100; ++iy)
+    for (double yaw : {0.0, 1e-3, -1e-3})
+      for (WheelSide side : {WheelSide::kRight, WheelSide::kLeft}) {
+        WheelsetPose p;
+        p.y = iy * 1e-5;
+        p.yaw = yaw;
+        WheelsetPose pt = p, pd = p;
+        const WheelContactGeometry t = table.searchAtTouch(side, &pt, 1e-8);
+        const WheelContactGeometry d = cs.search(side, loaded(cs, side, pd, 0.0));
+        for (int kn = 10; kn <= 80; kn += 10) {
+          ++steps;
+          const WheelNormal nt = solveWheelLoad(t, kn * 1e3, G, nu),
+                            nd = solveWheelLoad(d, kn * 1e3, G, nu);
+          const bool t_ok = nt.status == NormalStatus::kOk;
+          if (nd.status != NormalStatus::kOk) {
+            both_fail += !t_ok;
+            continue;
+          }
+          ++direct_ok;
+          table_fails += !t_ok;
+          if (!t_ok) continue;
+          // The wheel's peak pressure as on the search's geometry.
+          double pt_max = 0.0, pd_max = 0.0;
+          for (const NormalPatch& n : nt.patches) pt_max = std::max(pt_max, n.pmax);
+          for (const NormalPatch& n : nd.patches) pd_max = std::max(pd_max, n.pmax);
+          worst_pmax = std::max(worst_pmax, std::abs(pt_max - pd_max) / pd_max);
+          pmax_beyond += std::abs(pt_max - pd_max) > 0.05 * pd_max;
+        }
+      }
+  std::printf(
+      "  near the centre: %d wheel-steps, %d solved on the search's geometry, %d of them "
+      "not on the table's; %d solved on neither; peak pressure within %.2f %%, beyond 5 %% in %d\n",
+      steps, direct_ok, table_fails, both_fail, 100.0 * worst_pmax, pmax_beyond);
+  EXPECT_EQ(table_fails, 0);
+}

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -548,12 +549,15 @@ TEST(WheelsetContact, AWarmStartGivesTheColdStartsPatches) {
   EXPECT_GT(patches, static_cast<int>(steps.size()));  // both wheels mostly in contact
 }
 
-TEST(WheelsetContact, ATableStepWhoseNormalProblemFailsIsAnsweredByTheDirectSearch) {
+TEST(WheelsetContact, NearTheCentreATableStepMergesThePatchesAsTheDirectSearch) {
   // Near the centre the left wheel of S1002 on UIC60 1:40 has two tread candidates 9 mm apart
   // across a ridge a few micrometres high, which 80 kN's approach (about 0.1 mm) crosses: the
   // patches merge. At this pose (from the closed-loop demo) the table's nearest node has only the
-  // one candidate, whose gap function ends at the ridge, and the normal problem on it fails; the
-  // step takes the direct search's geometry instead, and gives the direct step's patches.
+  // one candidate; the table keeps the other, extrapolated in Y from the two nodes beyond that
+  // have it (contact_table.hpp), so the normal problem solves on the table's geometry, the step
+  // needs no direct search, and its patches are the direct step's within the tolerances the
+  // table's other steps meet (AContactTableGivesTheDirectSearchsPatches: fn within 2 %, pmax
+  // within 5 %; AContactTablesLeftWheelHasTheSearchsNormals: the tangential forces within 5 %).
   ContactTableOptions to;
   to.max_abs_lateral = 0.002;
   to.max_abs_yaw = 0.01;
@@ -566,8 +570,9 @@ TEST(WheelsetContact, ATableStepWhoseNormalProblemFailsIsAnsweredByTheDirectSear
   const ContactTable table(ContactSearch{WheelsetTrackData{}}, to);
   WheelsetPose touch = p;
   const WheelContactGeometry g = table.searchAtTouch(WheelSide::kLeft, &touch, 1e-8);
-  ASSERT_NE(solveWheelLoad(g, 8e4, 8.2e10, 0.28).status, NormalStatus::kOk)
-      << "the table's geometry no longer fails here: the test needs another pose";
+  ASSERT_EQ(g.candidates.size(), 2u);
+  const WheelNormal n = solveWheelLoad(g, 8e4, 8.2e10, 0.28);
+  ASSERT_EQ(n.status, NormalStatus::kOk) << n.message;
 
   WheelsetContactOptions o;
   o.use_contact_table = true;
@@ -580,25 +585,54 @@ TEST(WheelsetContact, ATableStepWhoseNormalProblemFailsIsAnsweredByTheDirectSear
   s.motion.omega = 40.0 / 0.46;
   s.fz_left = s.fz_right = 8e4;
   const WheelsetResult t = withTable.step(s, 0.0), d = direct.step(s, 0.0);
-  ASSERT_EQ(t.left.status, WheelStatus::kOk) << t.left.message;
-  ASSERT_EQ(t.left.patches.size(), d.left.patches.size());
-  for (size_t i = 0; i < d.left.patches.size(); ++i) {
-    const PatchResult &pt = t.left.patches[i], &pd = d.left.patches[i];
-    EXPECT_EQ(pt.slot, pd.slot);
-    EXPECT_NEAR(pt.normal.fn, pd.normal.fn, 1e-9 * pd.normal.fn);
-    EXPECT_NEAR(pt.fx, pd.fx, 1e-9 * std::abs(pd.fx) + 1e-6);
-    EXPECT_NEAR(pt.fs, pd.fs, 1e-9 * std::abs(pd.fs) + 1e-6);
+  EXPECT_EQ(withTable.directSearchFallbacks(), 0u);
+  for (const auto* w : {&t.left, &t.right}) {
+    const WheelResult& wd = w == &t.left ? d.left : d.right;
+    ASSERT_EQ(w->status, WheelStatus::kOk) << w->message;
+    ASSERT_EQ(w->patches.size(), wd.patches.size());
+    for (size_t i = 0; i < wd.patches.size(); ++i) {
+      const PatchResult &pt = w->patches[i], &pd = wd.patches[i];
+      EXPECT_EQ(pt.slot, pd.slot);
+      EXPECT_EQ(pt.tangential_status, StepStatus::kOk);
+      EXPECT_NEAR(pt.normal.fn, pd.normal.fn, 0.02 * pd.normal.fn);
+      EXPECT_NEAR(pt.normal.pmax, pd.normal.pmax, 0.05 * pd.normal.pmax);
+      EXPECT_NEAR(pt.fx, pd.fx, 0.05 * std::abs(pd.fx));
+      EXPECT_NEAR(pt.fs, pd.fs, 0.05 * std::abs(pd.fs));
+    }
   }
-  // The right wheel, where the table's geometry serves: its patches as the direct step's within
-  // what interpolation moves, and the creepages accepted (the table's normals point as the
-  // search's on both wheels).
-  ASSERT_EQ(t.right.status, WheelStatus::kOk) << t.right.message;
-  ASSERT_EQ(t.right.patches.size(), d.right.patches.size());
-  for (size_t i = 0; i < d.right.patches.size(); ++i) {
-    EXPECT_EQ(t.right.patches[i].tangential_status, StepStatus::kOk);
-    EXPECT_NEAR(t.right.patches[i].fs, d.right.patches[i].fs,
-                0.02 * std::abs(d.right.patches[i].fs));
-  }
+}
+
+TEST(WheelsetContact, NearTheCentreATableNeedsNoDirectSearch) {
+  // Steps of a wheelset over y in [-1, 1] mm every 0.02 mm, yaw 0 and +-1 mrad, 10 to 80 kN per
+  // wheel every 10 kN, on a table: the normal problem solves on the table's geometry every time,
+  // so no step falls back to the direct search (464 of these 4 848 wheel-steps did while the table
+  // took its nearest node's candidates only).
+  WheelsetContactOptions o;
+  o.use_contact_table = true;
+  o.table.max_abs_lateral = 0.002;
+  o.table.max_abs_yaw = 0.01;
+  o.table.yaw_step = 0.005;
+  o.table.max_abs_roll = 0.0025;
+  o.tangential = false;
+  WheelsetContact c(WheelsetTrackData{}, parameters("steady"), o);
+  int ok = 0, steps = 0;
+  for (int iy = -50; iy <= 50; ++iy)
+    for (double yaw : {0.0, 1e-3, -1e-3})
+      for (int kn = 10; kn <= 80; kn += 10) {
+        WheelsetState s;
+        s.pose.y = iy * 2e-5;
+        s.pose.yaw = yaw;
+        s.motion.V = 30.0;
+        s.motion.omega = 30.0 / 0.46;
+        s.fz_left = s.fz_right = kn * 1e3;
+        const WheelsetResult r = c.step(s, 0.0);
+        ok += (r.left.status == WheelStatus::kOk) + (r.right.status == WheelStatus::kOk);
+        steps += 2;
+      }
+  std::printf("  near the centre on a table: %d of %d wheel-steps solved, %zu direct searches\n",
+              ok, steps, c.directSearchFallbacks());
+  EXPECT_EQ(ok, steps);
+  EXPECT_EQ(c.directSearchFallbacks(), 0u);
 }
 
 TEST(WheelsetContact, AContactTablesLeftWheelHasTheSearchsNormals) {

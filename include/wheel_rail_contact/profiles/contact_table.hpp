@@ -28,13 +28,23 @@
 ///    that the nodes' candidates overlap alike).
 ///
 /// Rule where the candidates differ between the nodes around a pose. The candidate set is that of
-/// the nearest node. Each of its candidates is the same one at another node if that node has a
-/// candidate within match_distance of it on both profiles (s_wheel and s_rail). Where all twelve
-/// nodes of the quadratic stencil have it, it is interpolated on them; else among the eight
-/// nodes of the pose's cell that have it, their (linear) weights renormalised. The zone follows
-/// from the interpolated contact angle and the closest candidate from the interpolated vertical
-/// gaps, as the search does. At a jump (tread to gauge corner to flange) the table therefore takes
-/// the candidate set of the node nearer the pose, which is the direct search's on that node's side.
+/// the nearest node, and each tread candidate of another node of the pose's cell (of non-zero
+/// weight) that the nearest node lacks, in the search's order: near a centred tread two tread
+/// candidates lie across a ridge so low that one node's search sees it and the next node's no
+/// longer does, and the normal problem needs both to merge their patches across it. Each candidate
+/// is the same one at another node if that node has a candidate within match_distance of it on both
+/// profiles (s_wheel and s_rail). Where all twelve nodes of the quadratic stencil have it, it is
+/// interpolated on them; else among the eight nodes of the pose's cell that have it, their (linear)
+/// weights renormalised, except for a tread candidate that only one node of a pair of the cell's
+/// nodes differing in Y alone has: the pair's share is then extrapolated linearly in Y from that
+/// node and the next node beyond it (Lagrange weights 1 + f and -f, f <= 1 the pose's fraction of
+/// the step from that node), or is that node's where the next one lacks it too. Up to where the
+/// ridge vanishes a tread candidate's vertical gap, place and gap function move smoothly with Y, so
+/// the extrapolation keeps its height above its neighbour, which sets the load split, to a fraction
+/// of a micrometre where one node's value is a lateral step off (some 4 um). The zone follows from
+/// the interpolated contact angle and the closest candidate from the interpolated vertical gaps, as
+/// the search does. At a jump (tread to gauge corner to flange) the table therefore takes the
+/// candidate set of the node nearer the pose, which is the direct search's on that node's side.
 ///
 /// Poses beyond the table: see ContactTableOptions::beyond.
 #pragma once

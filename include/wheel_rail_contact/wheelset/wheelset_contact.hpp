@@ -17,8 +17,9 @@
 ///      WheelsetContactOptions::whole_force_balance their whole forces'); a patch is a candidate
 ///      with fn > 0. With a table, a wheel whose normal problem fails on the table's geometry is
 ///      searched again directly (at the search's cost) and takes that geometry when its normal
-///      problem succeeds: the table keeps its nearest node's candidates, and next to a ridge lower
-///      than the approach it can drop the neighbour that the patch must merge with;
+///      problem succeeds (counted: directSearchFallbacks). The table keeps a tread candidate
+///      across a low ridge that its nearest node lacks (contact_table.hpp), so near a centred
+///      tread, where that happened, it no longer does;
 ///   3. each patch's creepages xi, eta, phi from the wheelset's motion (patchCreepages);
 ///   4. its tangential forces from the creep-force model of ContactParameters::model (unless
 ///      WheelsetContactOptions::tangential is false) with its fn and creepages: on the true patch
@@ -227,6 +228,10 @@ class WheelsetContact {
 
   const ContactSearch& search() const;
   const ContactParameters& parameters() const;
+  /// With a contact table: the wheel-steps since construction whose normal problem had no
+  /// solution on the table's geometry, which were searched again directly (step 2 above; about a
+  /// millisecond each). reset() leaves it. 0 without a table.
+  std::size_t directSearchFallbacks() const;
 
  private:
   struct Impl;

@@ -469,9 +469,34 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     double sw_gf = 0.0;
     ContactCandidate c;
   };
+  // The candidate set: the nearest node's, and each tread candidate of another node of the
+  // cell (of non-negligible weight) that the nearest node lacks. Near a centred tread two tread
+  // candidates lie across a ridge of a micrometre or so, which one node's search still sees and
+  // its neighbour's no longer does; with the nearest node's set alone the other candidate is
+  // lost while the kept one's gap function ends at the ridge (where the node that has both cut
+  // it), and a load whose approach crosses the ridge has no patch to merge with.
+  struct Member {
+    const TableCandidate* t;
+    int owner;  // the corner whose candidate it is
+  };
+  std::vector<Member> set;
+  for (const TableCandidate& mc : corners[master].node->candidates) set.push_back({&mc, master});
+  for (int q = 0; q < 8; ++q) {
+    if (q == master || !(corners[q].w > 1e-9)) continue;
+    for (const TableCandidate& t : corners[q].node->candidates) {
+      if (!(t.angle < so.tread_max_angle)) continue;
+      bool known = false;
+      for (const Member& s : set)
+        known = known || (std::abs(s.t->s_wheel - t.s_wheel) < options_.match_distance &&
+                          std::abs(s.t->s_rail - t.s_rail) < options_.match_distance);
+      if (!known) set.push_back({&t, q});
+    }
+  }
   std::vector<Interpolated> cands;
-  cands.reserve(corners[master].node->candidates.size());
-  for (const TableCandidate& mc : corners[master].node->candidates) {
+  cands.reserve(set.size());
+  for (std::size_t ms = 0; ms < set.size(); ++ms) {
+    const TableCandidate& mc = *set[ms].t;
+    const int owner = set[ms].owner;
     cands.emplace_back();
     Interpolated& ic = cands.back();
     auto& m = ic.m;
@@ -484,7 +509,7 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     // nodes that have it, their weights renormalised.
     if (quad_ok) {
       for (int q = 0; q < 12; ++q) {
-        m[q] = quad[q].node == corners[master].node
+        m[q] = quad[q].node == corners[owner].node
                    ? &mc
                    : match(mc, quad[q].node->candidates, options_.match_distance);
         if (!m[q]) break;
@@ -496,16 +521,52 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
       if (nm < 12) nm = 0;
     }
     if (nm == 0) {
+      // A tread candidate that one lateral node of a yaw-roll pair has and the other lacks (the
+      // search sees a low ridge, and with it the candidate, on one side only) is extrapolated
+      // linearly in Y from that node and the next one beyond it, where that one has it too: its
+      // vertical gap, place and gap function move smoothly with Y up to where the ridge vanishes,
+      // and one node's values alone would be a lateral step off. Elsewhere the nodes that have
+      // it, their weights renormalised.
+      const bool extrapolate = mc.angle < so.tread_max_angle;
       double sw = 0.0;
-      for (int q = 0; q < 8; ++q) {
-        const TableCandidate* t =
-            q == master ? &mc : match(mc, corners[q].node->candidates, options_.match_distance);
-        if (!t) continue;
+      auto add = [&](const TableCandidate* t, const Node* n, double weight) {
         m[nm] = t;
-        at[nm] = corners[q].node;
-        w[nm] = corners[q].w;
-        sw += corners[q].w;
+        at[nm] = n;
+        w[nm] = weight;
+        sw += weight;
         ++nm;
+      };
+      for (int pair = 0; pair < 4; ++pair) {
+        const int c0 = pair << 1, c1 = c0 | 1;  // the pair's corners at lateral ci and ci + 1
+        const TableCandidate* t0 =
+            c0 == owner ? &mc : match(mc, corners[c0].node->candidates, options_.match_distance);
+        const TableCandidate* t1 =
+            c1 == owner ? &mc : match(mc, corners[c1].node->candidates, options_.match_distance);
+        const double wp = corners[c0].w + corners[c1].w;  // the pair's share of the cell
+        if (!extrapolate || (t0 && t1)) {
+          if (t0) add(t0, corners[c0].node, corners[c0].w);
+          if (t1) add(t1, corners[c1].node, corners[c1].w);
+          continue;
+        }
+        if (!t0 && !t1) continue;
+        const bool upper = t1 != nullptr;
+        const TableCandidate* ts = upper ? t1 : t0;
+        const int outer = upper ? ci + 2 : ci - 1;
+        const TableCandidate* to = nullptr;
+        const Node* no = nullptr;
+        if (outer >= 0 && outer < im.lateral.n) {
+          no = &grid.nodes[im.index(outer, cj + (pair & 1), ck + (pair >> 1))];
+          if (no->status == ContactSearchStatus::kOk)
+            to = match(*ts, no->candidates, options_.match_distance);
+        }
+        const Node* ns = corners[upper ? c1 : c0].node;
+        if (!to) {
+          add(ts, ns, wp);
+        } else {
+          const double ls = upper ? 2.0 - ti : 1.0 + ti;  // Lagrange's weight of ns; to's 1 - ls
+          add(ts, ns, wp * ls);
+          add(to, no, wp * (1.0 - ls));
+        }
       }
       for (int q = 0; q < nm; ++q) {
         w[q] = sw > 0.0 ? w[q] / sw : (m[q] == &mc ? 1.0 : 0.0);
@@ -586,7 +647,7 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
       // stretch would cut the function short for nothing.
       double sw_terms = 0.0;
       for (int q = 0; q < nm; ++q)
-        if (!m[q]->rows.empty() && w_linear[q] > 1e-9 * sw_gf) {
+        if (!m[q]->rows.empty() && std::abs(w_linear[q]) > 1e-9 * sw_gf) {
           lo = std::max(lo, m[q]->eta0);
           hi = std::min(hi, m[q]->etaEnd());
           terms[nt++] = {m[q], w_linear[q], heightAt(q)};
@@ -660,6 +721,12 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
                                         return c.vertical_gap > best + so.candidate_window;
                                       }),
                        out.candidates.end());
+  // In the search's order (field side to flange, s_wheel growing), which the normal problem's
+  // merging of neighbours across their ridge relies on.
+  if (set.size() > corners[master].node->candidates.size())
+    std::stable_sort(
+        out.candidates.begin(), out.candidates.end(),
+        [](const ContactCandidate& a, const ContactCandidate& b) { return a.s_wheel < b.s_wheel; });
   for (std::size_t k = 0; k < out.candidates.size(); ++k)
     if (out.closest < 0 ||
         out.candidates[k].vertical_gap < out.candidates[out.closest].vertical_gap)

@@ -118,6 +118,7 @@ struct WheelsetContact::Impl {
   WheelsetContactOptions options;
   ContactSearch search;
   std::shared_ptr<const ContactTable> table;
+  std::size_t direct_search_fallbacks = 0;           // directSearchFallbacks()
   std::array<std::map<std::string, Slot>, 2> slots;  // [0] left, [1] right, by slot name
   // Each wheel's previous normal solution for the warm start, with its candidates' zones; empty
   // zones: none (cold start).
@@ -315,9 +316,10 @@ struct WheelsetContact::Impl {
     std::vector<double> guess = whole ? lift(nullptr) : std::vector<double>{};
     WheelNormal n = solveWheelLoad(g, load, parameters.G, parameters.nu, no, guess);
     if (table && n.status != NormalStatus::kOk && n.status != NormalStatus::kNoContact) {
-      // The table takes its nearest node's candidates: next to a ridge lower than the approach
-      // it can drop the neighbour the patch must merge with, leaving a gap function that ends
-      // at the ridge. The direct search keeps both; its geometry answers this step.
+      // Where the table's geometry leaves the normal problem no solution, the direct search's
+      // answers this step (the table keeps the tread candidates across a low ridge that it once
+      // dropped near a centred tread, contact_table.hpp; this remains for what it still misses).
+      ++direct_search_fallbacks;
       WheelsetPose direct = s.pose;
       direct.z = 0.0;
       WheelContactGeometry d = searchAtTouchDirect(side, &direct);
@@ -526,6 +528,9 @@ const ContactSearch& WheelsetContact::search() const {
 }
 const ContactParameters& WheelsetContact::parameters() const {
   return impl_->parameters;
+}
+std::size_t WheelsetContact::directSearchFallbacks() const {
+  return impl_->direct_search_fallbacks;
 }
 
 }  // namespace wheel_rail_contact
