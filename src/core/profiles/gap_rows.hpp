@@ -45,7 +45,7 @@ class GapFunctionSum {
  public:
   void clear() {
     terms_.clear();
-    shifted_.clear();
+    used_ = 0;
   }
   int terms() const { return static_cast<int>(terms_.size()); }
 
@@ -56,8 +56,9 @@ class GapFunctionSum {
     t.inv_deta = f.inv_deta;
     t.last_interval = f.n - 2.0;
     t.w = w;
-    t.first = shifted_.size();
-    shifted_.resize(shifted_.size() + static_cast<std::size_t>(GapColumns::kQuantities) * f.n);
+    t.first = used_;
+    used_ += static_cast<std::size_t>(GapColumns::kQuantities) * f.n;
+    if (shifted_.size() < used_) shifted_.resize(used_);
     for (int k = 0; k < GapColumns::kQuantities; ++k) {
       // value + per_dz dZ in double, a column at a time (Eigen's vector lanes).
       Eigen::Map<Eigen::ArrayXd>(shifted_.data() + t.first + static_cast<std::size_t>(k) * f.n,
@@ -82,26 +83,48 @@ class GapFunctionSum {
   }
 
   /// out[s] for s = 0 .. count - 1 at eta = eta_first + s step: eta, offset + the sum's gap, and
-  /// the sum's radius and angle.
-  void sample(double eta_first, double step, int count, double offset, GapSample* out) const {
-    for (int s = 0; s < count; ++s) {
-      out[s].eta = eta_first + s * step;
-      out[s].gap = offset;
-      out[s].rolling_radius = 0.0;
-      out[s].contact_angle = 0.0;
+  /// the sum's radius and angle. Two samples at a time in Eigen's two-lane arrays (an even count
+  /// is worked, a last odd one's partner discarded).
+  void sample(double eta_first, double step, int count, double offset, GapSample* out) {
+    const int even = count + (count & 1);
+    eta_.resize(even);
+    for (int k = 0; k < GapColumns::kQuantities; ++k) sums_[k].resize(even);
+    for (int s = 0; s < even; ++s) {
+      eta_[s] = eta_first + s * step;
+      sums_[0][s] = offset;
+      sums_[1][s] = 0.0;
+      sums_[2][s] = 0.0;
     }
+    using Pair = Eigen::Array2d;
+    // Locals, so that the stores through sum are not taken to move what the loop reads.
+    const double* eta = eta_.data();
+    double* const sum[GapColumns::kQuantities] = {sums_[0].data(), sums_[1].data(),
+                                                  sums_[2].data()};
     for (const Term& t : terms_) {
-      const double* g = shifted_.data() + t.first;
-      const double *r = g + t.n, *a = r + t.n;
-      for (int s = 0; s < count; ++s) {
-        GapSample& o = out[s];
-        double u;
-        const int j = t.interval(o.eta, &u);
-        const double v = 1.0 - u;
-        o.gap += t.w * (v * g[j] + u * g[j + 1]);
-        o.rolling_radius += t.w * (v * r[j] + u * r[j + 1]);
-        o.contact_angle += t.w * (v * a[j] + u * a[j + 1]);
+      const double* const column[GapColumns::kQuantities] = {
+          shifted_.data() + t.first, shifted_.data() + t.first + t.n,
+          shifted_.data() + t.first + 2 * static_cast<std::size_t>(t.n)};
+      const Pair eta0 = Pair::Constant(t.eta0), inv_deta = Pair::Constant(t.inv_deta);
+      const Pair w = Pair::Constant(t.w);
+      const double last_interval = t.last_interval;
+      for (int s = 0; s < even; s += 2) {
+        // Term::interval, lane by lane.
+        const Pair x = (Eigen::Map<const Pair>(eta + s) - eta0) * inv_deta;
+        const Pair clamped = x.max(0.0).min(last_interval);
+        const int j0 = static_cast<int>(clamped[0]), j1 = static_cast<int>(clamped[1]);
+        const Pair u = x - Pair(j0, j1), v = 1.0 - u;
+        for (int k = 0; k < GapColumns::kQuantities; ++k) {
+          const double* c = column[k];
+          Eigen::Map<Pair>(sum[k] + s) +=
+              w * (v * Pair(c[j0], c[j1]) + u * Pair(c[j0 + 1], c[j1 + 1]));
+        }
       }
+    }
+    for (int s = 0; s < count; ++s) {
+      out[s].eta = eta_[s];
+      out[s].gap = sums_[0][s];
+      out[s].rolling_radius = sums_[1][s];
+      out[s].contact_angle = sums_[2][s];
     }
   }
 
@@ -124,6 +147,8 @@ class GapFunctionSum {
   };
   std::vector<Term> terms_;
   std::vector<double> shifted_;  ///< per term its gap, radius and angle columns at its height
+  std::size_t used_ = 0;         ///< of shifted_ (which only grows: no zeroing per lookup)
+  std::vector<double> eta_, sums_[GapColumns::kQuantities];  ///< sample's etas and sums
 };
 
 }  // namespace wheel_rail_contact
