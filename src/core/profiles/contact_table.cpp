@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/profiles/gap_rows.hpp"
+#include "core/profiles/table_gap_function.hpp"
 
 namespace wheel_rail_contact {
 

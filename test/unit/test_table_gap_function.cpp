@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "core/profiles/gap_rows.hpp"
+#include "core/profiles/table_gap_function.hpp"
 
 using namespace wheel_rail_contact;
 
