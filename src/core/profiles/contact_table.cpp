@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/profiles/table_gap_function.hpp"
+
 namespace wheel_rail_contact {
 
 namespace {
@@ -27,43 +29,7 @@ struct TableCandidate {
                        ///< sin(yaw) cos(roll))
   Eigen::Vector2d rail_file = Eigen::Vector2d::Zero(), wheel_file = Eigen::Vector2d::Zero();
   double s_rail = 0.0, s_wheel = 0.0;
-  /// Gap function on eta = eta0 + j deta: each sample's gap, wheel circle radius and contact
-  /// angle at Z_a and their slopes in Z (empty: the search gave none).
-  double eta0 = 0.0, deta = 0.0, inv_deta = 0.0;
-  struct Row {
-    float gap, gap_dz, radius, radius_dz, angle, angle_dz;
-  };
-  std::vector<Row> rows;
-
-  /// The row interval holding eta: its first row j (clamped to the table), and u set to eta's
-  /// fraction of the way from row j to row j + 1.
-  int interval(double eta, double* u) const {
-    const double t = (eta - eta0) * inv_deta;
-    const int last = static_cast<int>(rows.size()) - 1;
-    const int j = std::min(std::max(static_cast<int>(std::floor(t)), 0), last - 1);
-    *u = t - j;
-    return j;
-  }
-  /// The gap function's sample at eta, dZ above Z_a (gap, radius and angle; eta left unset).
-  GapSample gapFunction(double eta, double dZ) const {
-    double u;
-    const int j = interval(eta, &u);
-    const Row &p = rows[j], &q = rows[j + 1];
-    const double v = 1.0 - u;
-    GapSample s;
-    s.gap = v * (p.gap + p.gap_dz * dZ) + u * (q.gap + q.gap_dz * dZ);
-    s.rolling_radius = v * (p.radius + p.radius_dz * dZ) + u * (q.radius + q.radius_dz * dZ);
-    s.contact_angle = v * (p.angle + p.angle_dz * dZ) + u * (q.angle + q.angle_dz * dZ);
-    return s;
-  }
-  /// gapFunction(eta, dZ).gap alone (the same arithmetic).
-  double gapAt(double eta, double dZ) const {
-    double u;
-    const int j = interval(eta, &u);
-    const Row &p = rows[j], &q = rows[j + 1];
-    return (1.0 - u) * (p.gap + p.gap_dz * dZ) + u * (q.gap + q.gap_dz * dZ);
-  }
-  double etaEnd() const { return eta0 + deta * (static_cast<int>(rows.size()) - 1); }
+  GapColumns gap_function;  ///< on Z_a and its slopes in Z (empty: the search gave none)
 };
 
 struct Node {
@@ -290,22 +256,21 @@ ContactTable::ContactTable(const ContactSearch& search, const ContactTableOption
               const double hi = std::min(ca.gap_function.back().eta, cb->gap_function.back().eta);
               if (hi > lo) {
                 const int m = wide.gap_samples;
-                t.eta0 = lo;
-                t.deta = (hi - lo) / (m - 1);
-                t.inv_deta = 1.0 / t.deta;
-                t.rows.resize(m);
+                GapColumns& f = t.gap_function;
+                f.eta0 = lo;
+                f.deta = (hi - lo) / (m - 1);
+                f.inv_deta = 1.0 / f.deta;
+                f.resize(m);
                 const double inv_dz = 1.0 / (z_b - z_a);
                 for (int s = 0; s < m; ++s) {
-                  const double eta = lo + s * t.deta;
+                  const double eta = lo + s * f.deta;
                   const GapSample sa = lerp(ca.gap_function, eta), sb = lerp(cb->gap_function, eta);
-                  TableCandidate::Row& r = t.rows[s];
-                  r.gap = static_cast<float>(sa.gap);
-                  r.gap_dz = static_cast<float>((sb.gap - sa.gap) * inv_dz);
-                  r.radius = static_cast<float>(sa.rolling_radius);
-                  r.radius_dz =
-                      static_cast<float>((sb.rolling_radius - sa.rolling_radius) * inv_dz);
-                  r.angle = static_cast<float>(sa.contact_angle);
-                  r.angle_dz = static_cast<float>((sb.contact_angle - sa.contact_angle) * inv_dz);
+                  const double at_a[3] = {sa.gap, sa.rolling_radius, sa.contact_angle};
+                  const double at_b[3] = {sb.gap, sb.rolling_radius, sb.contact_angle};
+                  for (int x = 0; x < GapColumns::kQuantities; ++x) {
+                    f.value(x)[s] = static_cast<float>(at_a[x]);
+                    f.perDz(x)[s] = static_cast<float>((at_b[x] - at_a[x]) * inv_dz);
+                  }
                 }
               }
             }
@@ -345,7 +310,7 @@ std::size_t ContactTable::bytes() const {
     for (const Node& n : g.nodes) {
       b += sizeof(Node) + n.message.capacity() + n.candidates.capacity() * sizeof(TableCandidate);
       for (const TableCandidate& c : n.candidates)
-        b += c.rows.capacity() * sizeof(TableCandidate::Row);
+        b += c.gap_function.data.capacity() * sizeof(float);
     }
   return b;
 }
@@ -577,7 +542,7 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     // gap the stencil gives.
     double& sw_gf = ic.sw_gf;
     for (int q = 0; q < nm; ++q)
-      if (!m[q]->rows.empty()) sw_gf += w_linear[q];
+      if (!m[q]->gap_function.empty()) sw_gf += w_linear[q];
     ContactCandidate& c = ic.c;
     double vg0 = 0.0, angle = 0.0, lead = 0.0, axial = 0.0;
     for (int q = 0; q < nm; ++q) {
@@ -638,7 +603,7 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
       // them cover; cut where the search would cut it and sampled as the search samples it.
       double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
       struct Term {
-        const TableCandidate* t;
+        const GapColumns* f;
         double w, dZ;
       };
       std::array<Term, 12> terms;
@@ -647,34 +612,20 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
       // stretch would cut the function short for nothing.
       double sw_terms = 0.0;
       for (int q = 0; q < nm; ++q)
-        if (!m[q]->rows.empty() && std::abs(w_linear[q]) > 1e-9 * sw_gf) {
-          lo = std::max(lo, m[q]->eta0);
-          hi = std::min(hi, m[q]->etaEnd());
-          terms[nt++] = {m[q], w_linear[q], heightAt(q)};
+        if (!m[q]->gap_function.empty() && std::abs(w_linear[q]) > 1e-9 * sw_gf) {
+          lo = std::max(lo, m[q]->gap_function.eta0);
+          hi = std::min(hi, m[q]->gap_function.etaEnd());
+          terms[nt++] = {&m[q]->gap_function, w_linear[q], heightAt(q)};
           sw_terms += w_linear[q];
         }
-      for (int q = 0; q < nt; ++q) terms[q].w /= sw_terms;
-      // The nodes' weighted sample at eta; the gap shifted by `offset` so that eta = 0 gives
-      // the candidate's gap.
+      // The nodes' functions at their heights, weighted (the buffers reused from lookup to
+      // lookup on this thread).
+      thread_local GapFunctionSum sum;
+      sum.clear();
+      for (int q = 0; q < nt; ++q) sum.add(*terms[q].f, terms[q].w / sw_terms, terms[q].dZ);
+      // The gap shifted by `offset` so that eta = 0 gives the candidate's gap.
       double offset = 0.0;
-      auto sampleAt = [&](double eta) {
-        GapSample v;
-        v.eta = eta;
-        v.gap = offset;
-        for (int q = 0; q < nt; ++q) {
-          const GapSample f = terms[q].t->gapFunction(eta, terms[q].dZ);
-          v.gap += terms[q].w * f.gap;
-          v.rolling_radius += terms[q].w * f.rolling_radius;
-          v.contact_angle += terms[q].w * f.contact_angle;
-        }
-        return v;
-      };
-      // sampleAt(eta).gap, without the radius and angle the edges' search does not need.
-      auto G = [&](double eta) {
-        double sum = offset;
-        for (int q = 0; q < nt; ++q) sum += terms[q].w * terms[q].t->gapAt(eta, terms[q].dZ);
-        return sum;
-      };
+      auto G = [&](double eta) { return sum.gapAt(eta, offset); };
       if (nt > 0 && lo <= 0.0 && hi >= 0.0 && hi > lo) {
         offset = c.gap - G(0.0);
         // The search's level and march (contact_search.cpp): steps growing from 0.1 mm by half
@@ -703,8 +654,7 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
         }
         const int ns = so.gap_samples;
         c.gap_function.resize(ns);
-        const double de = (edge[1] - edge[0]) / (ns - 1);
-        for (int s = 0; s < ns; ++s) c.gap_function[s] = sampleAt(edge[0] + s * de);
+        sum.sample(edge[0], (edge[1] - edge[0]) / (ns - 1), ns, offset, c.gap_function.data());
       }
     }
     if (mirror) {
