@@ -573,26 +573,32 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     c.gap = gap;
 
     if (sw_gf > 0.0) {
-      // The gap function: the nodes' functions at this height, weighted, on the stretch all of
-      // them cover; cut where the search would cut it and sampled as the search samples it.
-      double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+      // The gap function: the nodes' functions at this height, weighted, on the nodes' stretches
+      // weighted alike (each node's function continued linearly beyond its own ends); cut where
+      // the search would cut it and sampled as the search samples it. The stretch all of them
+      // cover instead would jump where a node's weight leaves zero: a stretch that ends at a
+      // ridge (the neighbouring candidate's) would then end where the shortest node's does, a
+      // pose 0.1 um off a node cutting a centred tread's function short of its neighbour's, so
+      // that the two no longer meet at their ridge and their patches do not merge.
+      double lo = 0.0, hi = 0.0;
       struct Term {
         const TableCandidate* t;
         double w, dZ;
       };
       std::array<Term, 12> terms;
       int nt = 0;
-      // Nodes of negligible weight (a pose on a node's face, up to rounding) are left out: their
-      // stretch would cut the function short for nothing.
+      // Nodes of negligible weight (a pose on a node's face, up to rounding) are left out.
       double sw_terms = 0.0;
       for (int q = 0; q < nm; ++q)
         if (!m[q]->rows.empty() && w_linear[q] > 1e-9 * sw_gf) {
-          lo = std::max(lo, m[q]->eta0);
-          hi = std::min(hi, m[q]->etaEnd());
           terms[nt++] = {m[q], w_linear[q], heightAt(q)};
           sw_terms += w_linear[q];
         }
-      for (int q = 0; q < nt; ++q) terms[q].w /= sw_terms;
+      for (int q = 0; q < nt; ++q) {
+        terms[q].w /= sw_terms;
+        lo += terms[q].w * terms[q].t->eta0;
+        hi += terms[q].w * terms[q].t->etaEnd();
+      }
       // The nodes' weighted sample at eta; the gap shifted by `offset` so that eta = 0 gives
       // the candidate's gap.
       double offset = 0.0;
