@@ -320,7 +320,9 @@ TEST(PatchNormal, OverlappingNeighboursAreCutWhereTheyCrossAndMerge) {
                                             candidate(-0.744, 1e-6, -3e-3, 6e-3)};
   const double ridge = ridgeApproach(cs[0], cs[1]);
   ASSERT_TRUE(std::isfinite(ridge));
-  EXPECT_NEAR(ridge, 9.51e-6, 0.3e-6);  // within a sample's step of the crossing
+  // The lower of the two cut ends: within a sample's step (0.1 mm, some 0.6 um here) below it.
+  EXPECT_LE(ridge, 9.51e-6);
+  EXPECT_GT(ridge, 8.8e-6);
   std::vector<double> ridges;
   const ContactCandidate merged = mergeCandidates(cs, 0, 1, 0, &ridges);
   ASSERT_EQ(ridges.size(), 1u);
@@ -334,7 +336,7 @@ TEST(PatchNormal, OverlappingNeighboursAreCutWhereTheyCrossAndMerge) {
   WheelContactGeometry geo;
   geo.candidates = cs;
   geo.closest = 0;
-  const WheelNormal w = solveWheelLoad(geo, 2e5, kG, kNu);
+  const WheelNormal w = solveWheelLoad(geo, 2e4, kG, kNu);
   ASSERT_EQ(w.status, NormalStatus::kOk) << w.message;
   EXPECT_GT(w.vertical_approach, ridge);
   EXPECT_EQ(w.patches[1].merged_into, 0);

@@ -451,18 +451,18 @@ TEST(WheelsetContact, AWarmStartGivesTheColdStartsPatches) {
 TEST(WheelsetContact, ATableStepWhoseNormalProblemFailsIsAnsweredByTheDirectSearch) {
   // Near the centre the left wheel of S1002 on UIC60 1:40 has two tread candidates 9 mm apart
   // across a ridge a few micrometres high, which 80 kN's approach (about 0.1 mm) crosses: the
-  // patches merge. At this pose (from the closed-loop demo) the table's nearest node has only the
-  // one candidate, whose gap function ends at the ridge, and the normal problem on it fails; the
-  // step takes the direct search's geometry instead, and gives the direct step's patches.
+  // patches merge. At this pose the table's nearest node has only the one candidate, whose gap
+  // function ends at the ridge, and the normal problem on it fails; the step takes the direct
+  // search's geometry instead, and gives the direct step's patches.
   ContactTableOptions to;
   to.max_abs_lateral = 0.002;
   to.max_abs_yaw = 0.01;
   to.yaw_step = 0.005;
   to.max_abs_roll = 0.0025;
   WheelsetPose p;
-  p.y = 0.365375e-3;
-  p.yaw = -2.096573e-3;
-  p.roll = 0.016182e-3;
+  p.y = 0.3399774e-3;
+  p.yaw = -0.5247669e-3;
+  p.roll = -0.04658287e-3;
   const ContactTable table(ContactSearch{WheelsetTrackData{}}, to);
   WheelsetPose touch = p;
   const WheelContactGeometry g = table.searchAtTouch(WheelSide::kLeft, &touch, 1e-8);
