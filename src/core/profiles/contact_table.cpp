@@ -573,21 +573,31 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     c.gap = gap;
 
     if (sw_gf > 0.0) {
-      // The gap function: the nodes' functions at this height, weighted, on the nodes' stretches
-      // weighted alike (each node's function continued linearly beyond its own ends); cut where
-      // the search would cut it and sampled as the search samples it. The stretch all of them
-      // cover instead would jump where a node's weight leaves zero: a stretch that ends at a
-      // ridge (the neighbouring candidate's) would then end where the shortest node's does, a
-      // pose 0.1 um off a node cutting a centred tread's function short of its neighbour's, so
-      // that the two no longer meet at their ridge and their patches do not merge.
-      double lo = 0.0, hi = 0.0;
+      // The gap function: the nodes' functions at this height, weighted, on the stretch all of
+      // them cover; cut where the search would cut it and sampled as the search samples it. An end
+      // toward a neighbouring tread candidate (the one before or after this tread candidate in
+      // the set) is where the nodes' searches cut the function at the ridge between the two,
+      // which moves from node to node, and which a load's approach can cross (the two patches
+      // merge, normal/patch_normal.hpp): there the stretch ends where the nodes' ends do,
+      // weighted alike (each node's function continued linearly beyond its own end), so that the
+      // two neighbours' functions keep meeting at their ridge between the nodes. The shortest
+      // node's end would jump where its weight leaves zero (0.1 um off a node at a centred
+      // tread, 2 mm short of the neighbour's start): the two would no longer meet, and their
+      // patches not merge.
+      const std::size_t k = static_cast<std::size_t>(&ic - cands.data());
+      const auto& own = corners[master].node->candidates;
+      auto tread = [&](std::size_t i) { return own[i].angle < so.tread_max_angle; };
+      const bool ridge_lo = k > 0 && tread(k) && tread(k - 1);
+      const bool ridge_hi = k + 1 < own.size() && tread(k) && tread(k + 1);
+      double lo = -std::numeric_limits<double>::infinity(), hi = -lo, lo_w = 0.0, hi_w = 0.0;
       struct Term {
         const TableCandidate* t;
         double w, dZ;
       };
       std::array<Term, 12> terms;
       int nt = 0;
-      // Nodes of negligible weight (a pose on a node's face, up to rounding) are left out.
+      // Nodes of negligible weight (a pose on a node's face, up to rounding) are left out: their
+      // stretch would cut the function short for nothing.
       double sw_terms = 0.0;
       for (int q = 0; q < nm; ++q)
         if (!m[q]->rows.empty() && w_linear[q] > 1e-9 * sw_gf) {
@@ -596,9 +606,13 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
         }
       for (int q = 0; q < nt; ++q) {
         terms[q].w /= sw_terms;
-        lo += terms[q].w * terms[q].t->eta0;
-        hi += terms[q].w * terms[q].t->etaEnd();
+        lo = std::max(lo, terms[q].t->eta0);
+        hi = std::min(hi, terms[q].t->etaEnd());
+        lo_w += terms[q].w * terms[q].t->eta0;
+        hi_w += terms[q].w * terms[q].t->etaEnd();
       }
+      if (nt > 0 && ridge_lo) lo = lo_w;
+      if (nt > 0 && ridge_hi) hi = hi_w;
       // The nodes' weighted sample at eta; the gap shifted by `offset` so that eta = 0 gives
       // the candidate's gap.
       double offset = 0.0;
