@@ -468,6 +468,7 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     int nm = 0;
     double sw_gf = 0.0;
     ContactCandidate c;
+    bool tread_before = false, tread_after = false;  ///< a tread neighbour of a tread candidate
   };
   std::vector<Interpolated> cands;
   cands.reserve(corners[master].node->candidates.size());
@@ -554,6 +555,15 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     }
   }
 
+  // Each tread candidate's tread neighbours, by s_wheel (growing from the field side to the
+  // flange, as eta does).
+  for (Interpolated& ic : cands)
+    for (const Interpolated& o : cands)
+      if (&o != &ic && ic.c.zone == ContactZone::kTread && o.c.zone == ContactZone::kTread) {
+        ic.tread_before = ic.tread_before || o.c.s_wheel < ic.c.s_wheel;
+        ic.tread_after = ic.tread_after || o.c.s_wheel > ic.c.s_wheel;
+      }
+
   // Pass two: the gap and the gap function at the candidate's height.
   for (Interpolated& ic : cands) {
     const auto& m = ic.m;
@@ -575,20 +585,16 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     if (sw_gf > 0.0) {
       // The gap function: the nodes' functions at this height, weighted, on the stretch all of
       // them cover; cut where the search would cut it and sampled as the search samples it. An end
-      // toward a neighbouring tread candidate (the one before or after this tread candidate in
-      // the set) is where the nodes' searches cut the function at the ridge between the two,
-      // which moves from node to node, and which a load's approach can cross (the two patches
-      // merge, normal/patch_normal.hpp): there the stretch ends where the nodes' ends do,
-      // weighted alike (each node's function continued linearly beyond its own end), so that the
-      // two neighbours' functions keep meeting at their ridge between the nodes. The shortest
-      // node's end would jump where its weight leaves zero (0.1 um off a node at a centred
+      // toward a neighbouring tread candidate (another tread candidate on that side: a tread
+      // candidate's tread_before, tread_after) is where the nodes' searches cut the function at the
+      // ridge between the two, which moves from node to node, and which a load's approach can cross
+      // (the two patches merge, normal/patch_normal.hpp): there the stretch ends where the nodes'
+      // ends do, weighted alike (each node's function continued linearly beyond its own end), so
+      // that the two neighbours' functions keep meeting at their ridge between the nodes. The
+      // shortest node's end would jump where its weight leaves zero (0.1 um off a node at a centred
       // tread, 2 mm short of the neighbour's start): the two would no longer meet, and their
       // patches not merge.
-      const std::size_t k = static_cast<std::size_t>(&ic - cands.data());
-      const auto& own = corners[master].node->candidates;
-      auto tread = [&](std::size_t i) { return own[i].angle < so.tread_max_angle; };
-      const bool ridge_lo = k > 0 && tread(k) && tread(k - 1);
-      const bool ridge_hi = k + 1 < own.size() && tread(k) && tread(k + 1);
+      const bool ridge_lo = ic.tread_before, ridge_hi = ic.tread_after;
       double lo = -std::numeric_limits<double>::infinity(), hi = -lo, lo_w = 0.0, hi_w = 0.0;
       struct Term {
         const TableCandidate* t;
