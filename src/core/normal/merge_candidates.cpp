@@ -51,8 +51,8 @@ bool overlap(const ContactCandidate& a, const ContactCandidate& b) {
   return fa.back().eta - moved(fb.front(), b, a).eta > spacing;
 }
 /// Overlapping neighbours (above) each cut at the ridge between them: at the highest point of
-/// their lower envelope over the overlap (where they cross), a's samples beyond it and b's before
-/// it dropped. Others unchanged.
+/// their lower envelope over the overlap between the two candidates' points (where they cross),
+/// a's samples beyond it and b's before it dropped. Others unchanged.
 void cutAtOverlap(ContactCandidate* a, ContactCandidate* b) {
   if (!overlap(*a, *b)) return;  // they meet (or not at all): as the search gives them
   auto& fa = a->gap_function;
@@ -60,7 +60,11 @@ void cutAtOverlap(ContactCandidate* a, ContactCandidate* b) {
   std::vector<GapSample> mb;  // b's samples in a's plane
   mb.reserve(fb.size());
   for (const GapSample& s : fb) mb.push_back(moved(s, *b, *a));
-  const double lo = mb.front().eta, hi = fa.back().eta;
+  // The ridge lies between the two candidates' points: a's at eta 0, b's at its own eta 0.
+  GapSample b_point;
+  const double lo = std::max(mb.front().eta, 0.0);
+  const double hi = std::min(fa.back().eta, moved(b_point, *b, *a).eta);
+  if (!(hi > lo)) return;
   double best = -std::numeric_limits<double>::infinity(), at = hi;
   auto consider = [&](double e) {
     const double envelope = std::min(gapAt(fa, e), gapAt(mb, e));
