@@ -183,24 +183,29 @@ TEST(WheelsetOnProfiles, TheKinematicPitchRateIsNotTheTruePatchsFreeRolling) {
 
 TEST(WheelsetOnProfiles, AnImpactBringsTheFlangeIntoContactAndTheWheelsetBack) {
   // 80 kN for 50 ms on the wheelset at 40 m/s throws it to the left: the left wheel's gauge
-  // corner, then its flange, takes the load, with steps of two patches on one wheel on the way;
-  // the flange's lateral force throws the wheelset back. No NaN, no stop.
+  // corner, then its flange, takes the load; the flange's lateral force throws the wheelset back.
+  // No NaN, no stop. Near the centre each wheel's two tread lumps, across a ridge far below 80 kN's
+  // approach, make one merged patch on every step (normal_problem.md): no split into two.
   demo::LateralImpulse impulse;
   impulse.force = 8e4;
   impulse.start = 0.02;
   impulse.duration = 0.05;
   const LoopRun r = run("nss", 40.0, 0.3, 0.0, impulse);
   ASSERT_EQ(r.stopped, "");
-  int flange = 0, twoPoint = 0;
+  int flange = 0, centred = 0, centredSplit = 0;
   double maxY = 0.0;
   for (const auto& st : r.steps) {
     ASSERT_TRUE(allFinite(st)) << st.t;
     for (const PatchResult& p : st.contact.left.patches) flange += p.zone == ContactZone::kFlange;
-    twoPoint += st.contact.left.patches.size() >= 2 || st.contact.right.patches.size() >= 2;
+    if (std::abs(st.s.y) < 0.15e-3) {
+      ++centred;
+      centredSplit += st.contact.left.patches.size() != 1 || st.contact.right.patches.size() != 1;
+    }
     maxY = std::max(maxY, st.s.y);
   }
   EXPECT_GT(flange, 0);
-  EXPECT_GT(twoPoint, 0);
+  EXPECT_GT(centred, 10);  // the check below sees steps
+  EXPECT_EQ(centredSplit, 0);
   EXPECT_GT(maxY, 6e-3);               // the flange's clearance is some 6-7 mm
   EXPECT_LT(maxY, 9e-3);               // and the flange holds
   EXPECT_LT(r.y.back(), maxY - 3e-3);  // thrown back

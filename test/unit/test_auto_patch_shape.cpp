@@ -224,8 +224,12 @@ TEST(AutoPatchShape, A22ChoiceAgainstExact) {
           EXPECT_LE(distance(fa, x), distance(fs, x) + tol * scale) << c.name;
         else
           EXPECT_LE(distance(fa, x), tol * scale) << c.name << " tolerance " << tol;
-        if (!inTable(c) || c.a < 0.3 * c.b) EXPECT_TRUE(am.onStrips()) << c.name;
-        if (c.hertz && inTable(c)) EXPECT_FALSE(am.onStrips()) << c.name;
+        if (!inTable(c) || c.a < 0.3 * c.b) {
+          EXPECT_TRUE(am.onStrips()) << c.name;
+        }
+        if (c.hertz && inTable(c)) {
+          EXPECT_FALSE(am.onStrips()) << c.name;
+        }
         (am.onStrips() ? strips : ellipse) += 1;
       }
     }

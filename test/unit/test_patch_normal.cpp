@@ -297,6 +297,55 @@ TEST(PatchNormal, A22CentredTreadsMergeAcrossTheirRidge) {
   EXPECT_NEAR(patch.eta_max, at_load.eta_max, 3e-4);
 }
 
+TEST(PatchNormal, OverlappingNeighboursAreCutWhereTheyCrossAndMerge) {
+  // Two tread candidates in one plane whose gap functions overlap by 1.5 mm (a contact table's
+  // interpolated function runs on past the ridge): a's gap e^2 / (1 m), b's 1 um + (e - 6 mm)^2 /
+  // (1 m), crossing at e = 3.083 mm where the gap is 9.51 um. They are cut there (the lower
+  // envelope's highest sample), so that they meet at a ridge and merge as the search's do.
+  auto candidate = [](double y, double g0, double from, double to) {
+    ContactCandidate c;
+    c.point = Eigen::Vector3d(0.0, y, 0.0);
+    c.normal = Eigen::Vector2d(0.0, 1.0);
+    c.gap = c.vertical_gap = g0;
+    for (double e = from; e <= to + 1e-12; e += 1e-4) {
+      GapSample s;
+      s.eta = e;
+      s.gap = g0 + e * e;
+      s.rolling_radius = 0.46;
+      c.gap_function.push_back(s);
+    }
+    return c;
+  };
+  const std::vector<ContactCandidate> cs = {candidate(-0.75, 0.0, -6e-3, 4.5e-3),
+                                            candidate(-0.744, 1e-6, -3e-3, 6e-3)};
+  const double ridge = ridgeApproach(cs[0], cs[1]);
+  ASSERT_TRUE(std::isfinite(ridge));
+  // The lower of the two cut ends: within a sample's step (0.1 mm, some 0.6 um here) below it.
+  EXPECT_LE(ridge, 9.51e-6);
+  EXPECT_GT(ridge, 8.8e-6);
+  std::vector<double> ridges;
+  const ContactCandidate merged = mergeCandidates(cs, 0, 1, 0, &ridges);
+  ASSERT_EQ(ridges.size(), 1u);
+  EXPECT_NEAR(ridges[0], 3.083e-3, 1e-4);
+  // Past the crossing the merged function is b's (the lower), not a's running on.
+  for (const GapSample& s : merged.gap_function) {
+    const double b = 1e-6 + (s.eta - 6e-3) * (s.eta - 6e-3);
+    if (s.eta > ridges[0] + 1e-4 && s.eta < 6e-3) {
+      EXPECT_NEAR(s.gap, b, 1e-9) << s.eta;
+    }
+  }
+  // At an approach past the ridge the two make one patch across it.
+  WheelContactGeometry geo;
+  geo.candidates = cs;
+  geo.closest = 0;
+  const WheelNormal w = solveWheelLoad(geo, 2e4, kG, kNu);
+  ASSERT_EQ(w.status, NormalStatus::kOk) << w.message;
+  EXPECT_GT(w.vertical_approach, ridge);
+  EXPECT_EQ(w.patches[1].merged_into, 0);
+  EXPECT_LT(w.patches[0].eta_min, 0.0);
+  EXPECT_GT(w.patches[0].eta_max, ridges[0]);
+}
+
 TEST(PatchNormal, A22CentredStateSolvesAtEveryLoad) {
   // Light loads keep the two tread candidates apart, heavier ones merge them: the load iteration
   // needs the force continuous across the merge (a patch that jumped to the ridge would leave

@@ -25,13 +25,85 @@ GapSample moved(const GapSample& s, const ContactCandidate& k, const ContactCand
   return m;
 }
 
-}  // namespace
+/// The gap function's gap at eta (in its own samples' eta), linearly; +inf outside its range.
+double gapAt(const std::vector<GapSample>& f, double eta) {
+  if (f.empty() || eta < f.front().eta || eta > f.back().eta) {
+    return std::numeric_limits<double>::infinity();
+  }
+  const auto it = std::lower_bound(f.begin(), f.end(), eta,
+                                   [](const GapSample& s, double v) { return s.eta < v; });
+  if (it == f.begin()) return it->gap;
+  const GapSample &l = *(it - 1), &r = *it;
+  return l.gap + (eta - l.eta) / (r.eta - l.eta) * (r.gap - l.gap);
+}
 
-double ridgeApproach(const ContactCandidate& a, const ContactCandidate& b) {
-  const double inf = std::numeric_limits<double>::infinity();
+/// Whether the gap functions of neighbours `a` and `b` (b the next toward the flange) overlap in
+/// a's contact plane by more than a sample spacing. The contact search cuts both at the ridge
+/// between them, so that its neighbours meet there; a contact table's interpolated gap function,
+/// weighted between a node where the ridge separates the two and one where the search found one
+/// candidate only, runs on past the ridge, above the neighbour's function there. Left so, the two
+/// would not meet at a ridge, and whether their patches merge would depend on how far it runs on.
+bool overlap(const ContactCandidate& a, const ContactCandidate& b) {
   const auto& fa = a.gap_function;
   const auto& fb = b.gap_function;
-  if (fa.size() < 2 || fb.size() < 2 || !(a.normal.y() > 0.0) || !(b.normal.y() > 0.0)) return inf;
+  if (fa.size() < 2 || fb.size() < 2) return false;
+  const double spacing = std::max(fa[1].eta - fa[0].eta, fb[1].eta - fb[0].eta);
+  return fa.back().eta - moved(fb.front(), b, a).eta > spacing;
+}
+/// Overlapping neighbours (above) each cut at the ridge between them: at the highest point of
+/// their lower envelope over the overlap between the two candidates' points (where they cross),
+/// a's samples beyond it and b's before it dropped. Others unchanged.
+void cutAtOverlap(ContactCandidate* a, ContactCandidate* b) {
+  if (!overlap(*a, *b)) return;  // they meet (or not at all): as the search gives them
+  auto& fa = a->gap_function;
+  auto& fb = b->gap_function;
+  std::vector<GapSample> mb;  // b's samples in a's plane
+  mb.reserve(fb.size());
+  for (const GapSample& s : fb) mb.push_back(moved(s, *b, *a));
+  // The ridge lies between the two candidates' points: a's at eta 0, b's at its own eta 0.
+  GapSample b_point;
+  const double lo = std::max(mb.front().eta, 0.0);
+  const double hi = std::min(fa.back().eta, moved(b_point, *b, *a).eta);
+  if (!(hi > lo)) return;
+  double best = -std::numeric_limits<double>::infinity(), at = hi;
+  auto consider = [&](double e) {
+    const double envelope = std::min(gapAt(fa, e), gapAt(mb, e));
+    if (std::isfinite(envelope) && envelope > best) {
+      best = envelope;
+      at = e;
+    }
+  };
+  for (const GapSample& s : fa)
+    if (s.eta >= lo && s.eta <= hi) consider(s.eta);
+  for (const GapSample& s : mb)
+    if (s.eta >= lo && s.eta <= hi) consider(s.eta);
+  std::size_t keep_a = 0, first_b = 0;
+  while (keep_a < fa.size() && fa[keep_a].eta <= at) ++keep_a;
+  while (first_b < mb.size() && mb[first_b].eta < at) ++first_b;
+  // Each keeps at least two samples (a uniform spacing, as the normal problem needs).
+  if (keep_a < 2 || mb.size() - first_b < 2) return;
+  fa.resize(keep_a);
+  fb.erase(fb.begin(), fb.begin() + static_cast<std::ptrdiff_t>(first_b));
+}
+
+}  // namespace
+
+double ridgeApproach(const ContactCandidate& a_in, const ContactCandidate& b_in) {
+  const double inf = std::numeric_limits<double>::infinity();
+  if (a_in.gap_function.size() < 2 || b_in.gap_function.size() < 2 || !(a_in.normal.y() > 0.0) ||
+      !(b_in.normal.y() > 0.0))
+    return inf;
+  const bool cut = overlap(a_in, b_in);
+  ContactCandidate a_cut, b_cut;
+  if (cut) {
+    a_cut = a_in;
+    b_cut = b_in;
+    cutAtOverlap(&a_cut, &b_cut);
+  }
+  const ContactCandidate& a = cut ? a_cut : a_in;
+  const ContactCandidate& b = cut ? b_cut : b_in;
+  const auto& fa = a.gap_function;
+  const auto& fb = b.gap_function;
   const double spacing =
       std::max(fa[1].eta - fa[0].eta, fb[1].eta - fb[0].eta);  // both uniform, > 0
   const GapSample b_first = moved(fb.front(), b, a);
@@ -39,8 +111,13 @@ double ridgeApproach(const ContactCandidate& a, const ContactCandidate& b) {
   return std::min(fa.back().gap / a.normal.y(), fb.front().gap / b.normal.y());
 }
 
-ContactCandidate mergeCandidates(const std::vector<ContactCandidate>& cs, int first, int last,
+ContactCandidate mergeCandidates(const std::vector<ContactCandidate>& in, int first, int last,
                                  int primary, std::vector<double>* ridges) {
+  std::vector<ContactCandidate> cs(in.begin() + first, in.begin() + last + 1);
+  for (std::size_t k = 0; k + 1 < cs.size(); ++k) cutAtOverlap(&cs[k], &cs[k + 1]);
+  primary -= first;
+  last -= first;
+  first = 0;
   const ContactCandidate& p = cs[primary];
   ContactCandidate out = p;
   if (ridges) {

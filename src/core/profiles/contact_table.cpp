@@ -433,6 +433,7 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     int nm = 0;
     double sw_gf = 0.0;
     ContactCandidate c;
+    bool tread_before = false, tread_after = false;  ///< a tread neighbour of a tread candidate
   };
   // The candidate set: the nearest node's, and each tread candidate of another node of the
   // cell (of non-negligible weight) that the nearest node lacks. Near a centred tread two tread
@@ -580,6 +581,15 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     }
   }
 
+  // Each tread candidate's tread neighbours, by s_wheel (growing from the field side to the
+  // flange, as eta does).
+  for (Interpolated& ic : cands)
+    for (const Interpolated& o : cands)
+      if (&o != &ic && ic.c.zone == ContactZone::kTread && o.c.zone == ContactZone::kTread) {
+        ic.tread_before = ic.tread_before || o.c.s_wheel < ic.c.s_wheel;
+        ic.tread_after = ic.tread_after || o.c.s_wheel > ic.c.s_wheel;
+      }
+
   // Pass two: the gap and the gap function at the candidate's height.
   for (Interpolated& ic : cands) {
     const auto& m = ic.m;
@@ -600,8 +610,18 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
 
     if (sw_gf > 0.0) {
       // The gap function: the nodes' functions at this height, weighted, on the stretch all of
-      // them cover; cut where the search would cut it and sampled as the search samples it.
-      double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+      // them cover; cut where the search would cut it and sampled as the search samples it. An end
+      // toward a neighbouring tread candidate (another tread candidate on that side: a tread
+      // candidate's tread_before, tread_after) is where the nodes' searches cut the function at the
+      // ridge between the two, which moves from node to node, and which a load's approach can cross
+      // (the two patches merge, normal/patch_normal.hpp): there the stretch ends where the nodes'
+      // ends do, weighted alike (each node's function continued linearly beyond its own end), so
+      // that the two neighbours' functions keep meeting at their ridge between the nodes. The
+      // shortest node's end would jump where its weight leaves zero (0.1 um off a node at a centred
+      // tread, 2 mm short of the neighbour's start): the two would no longer meet, and their
+      // patches not merge.
+      const bool ridge_lo = ic.tread_before, ridge_hi = ic.tread_after;
+      double lo = -std::numeric_limits<double>::infinity(), hi = -lo, lo_w = 0.0, hi_w = 0.0;
       struct Term {
         const GapColumns* f;
         double w, dZ;
@@ -613,16 +633,23 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
       double sw_terms = 0.0;
       for (int q = 0; q < nm; ++q)
         if (!m[q]->gap_function.empty() && std::abs(w_linear[q]) > 1e-9 * sw_gf) {
-          lo = std::max(lo, m[q]->gap_function.eta0);
-          hi = std::min(hi, m[q]->gap_function.etaEnd());
           terms[nt++] = {&m[q]->gap_function, w_linear[q], heightAt(q)};
           sw_terms += w_linear[q];
         }
+      for (int q = 0; q < nt; ++q) {
+        terms[q].w /= sw_terms;
+        lo = std::max(lo, terms[q].f->eta0);
+        hi = std::min(hi, terms[q].f->etaEnd());
+        lo_w += terms[q].w * terms[q].f->eta0;
+        hi_w += terms[q].w * terms[q].f->etaEnd();
+      }
+      if (nt > 0 && ridge_lo) lo = lo_w;
+      if (nt > 0 && ridge_hi) hi = hi_w;
       // The nodes' functions at their heights, weighted (the buffers reused from lookup to
       // lookup on this thread).
       thread_local GapFunctionSum sum;
       sum.clear();
-      for (int q = 0; q < nt; ++q) sum.add(*terms[q].f, terms[q].w / sw_terms, terms[q].dZ);
+      for (int q = 0; q < nt; ++q) sum.add(*terms[q].f, terms[q].w, terms[q].dZ);
       // The gap shifted by `offset` so that eta = 0 gives the candidate's gap.
       double offset = 0.0;
       auto G = [&](double eta) { return sum.gapAt(eta, offset); };
