@@ -484,11 +484,6 @@ NormalPatch solvePatch(const ContactCandidate& c, BuiltGeometry* cache, double a
   if (!lateralExtent(g, 0.5 * d0, &ys, &ye))
     return fail(NormalStatus::kBeyondGapFunction, beyondMessage(g, d0), approach);
   const double spacing = g.eta[1] - g.eta[0];
-  double cl = g.eta0 - ys, cr = ye - g.eta0;
-  if (o.continuous_region) halfDepthWidths(g, 0.5 * d0, &cl, &cr);
-  const double ymid = o.continuous_region ? g.eta0 + 0.5 * (cr - cl) : 0.5 * (ys + ye);
-  const double half = std::max(0.5 * (cl + cr), 1e-3 * spacing);
-  const double B = std::max(0.5 * d0 / (half * half), 1e-3 * A0);
 
   // How far from elliptic (Hertz up to 1): the gap's largest departure from its least-squares
   // parabola about the minimum over the region, over hertz_tolerance d0 / 2, or R_x's largest
@@ -565,6 +560,11 @@ NormalPatch solvePatch(const ContactCandidate& c, BuiltGeometry* cache, double a
     NormalPatch out = start;
     out.method = NormalMethod::kNonHertzian;
     out.strip_weight = 1.0;
+    double cl = g.eta0 - ys, cr = ye - g.eta0;
+    if (o.continuous_region) halfDepthWidths(g, 0.5 * d0, &cl, &cr);
+    const double ymid = o.continuous_region ? g.eta0 + 0.5 * (cr - cl) : 0.5 * (ys + ye);
+    const double half = std::max(0.5 * (cl + cr), 1e-3 * spacing);
+    const double B = std::max(0.5 * d0 / (half * half), 1e-3 * A0);
     const StripPenetration penetration(g, A0, B, d0, Estar, ymid, o.continuous_region);
     // By default the region is where the penetration is positive around the minimum, its ends by
     // bisection between samples.
