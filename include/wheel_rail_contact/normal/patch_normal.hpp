@@ -36,11 +36,11 @@
 ///   it grows outward, and the patch every part of the gap function where
 ///   h - h0 < eps d0 (the parts' ends where that quadratic less the gap's line crosses zero),
 ///   n strips of equal width laid along the parts one after the other. fn, the region's edges and
-///   the strips then move continuously with the approach, and fn grows monotonically on A-2.2's
-///   states. By default, beside a tread's plateau (A-2.2 at 0.5 mm) the extent runs over the
-///   plateau within a fraction of a micrometre of approach, and the region around eta0 jumps over
-///   it when the penetration's dip between fills: fn jumps up and down in the approach.
-///   doc/normal_problem.md says what the option costs in accuracy there.
+///   the strips then move continuously with the approach, and fn grows monotonically on the
+///   states measured (0.5 to 6.5 mm). By default, beside a tread's plateau (A-2.2 at 0.5 mm) the
+///   extent runs over the plateau within a fraction of a micrometre of approach, and the region
+///   around eta0 jumps over it when the penetration's dip between fills: fn jumps up and down in
+///   the approach. doc/normal_problem.md says what the option costs in accuracy there.
 ///
 /// Where it is weak: a gap with a plateau or two lumps under one candidate (near-conformal tread
 /// contact): the exact contact spreads over nearly all of the plateau's rigid overlap, the
