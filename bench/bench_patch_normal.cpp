@@ -4,9 +4,9 @@
 // gauge corner timed), the flange at 6.5 mm (strips). Run:
 //   build/devel/lib/wheel_rail_contact/bench_patch_normal --benchmark_repetitions=5
 //     --benchmark_report_aggregates_only=true
-// WheelLoadWarm: the same with NormalOptions::start_beyond_touch from the previous step's
-// solution, its pose 0.01 mm away. The contact search is not timed (its geometry is computed once
-// per state).
+// Patch/k/1: with NormalOptions::continuous_region. WheelLoadWarm: the same with
+// NormalOptions::start_beyond_touch from the previous step's solution, its pose 0.01 mm away. The
+// contact search is not timed (its geometry is computed once per state).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -42,9 +42,13 @@ WheelContactGeometry geometry(int k, double dy_mm = 0.0) {
   return search.search(WheelSide::kRight, p);
 }
 
+/// Patch: one solvePatchNormal at the load's approach; second argument 1:
+/// NormalOptions::continuous_region (the trial's cost with it, at its own load's approach).
 void Patch(benchmark::State& state) {
   const WheelContactGeometry g = geometry(static_cast<int>(state.range(0)));
-  const WheelNormal w = solveWheelLoad(g, 1e4, 8.2e10, 0.28);
+  NormalOptions o;
+  o.continuous_region = state.range(1) != 0;
+  const WheelNormal w = solveWheelLoad(g, 1e4, 8.2e10, 0.28, o);
   if (w.status != NormalStatus::kOk) state.SkipWithError(w.message.c_str());
   std::size_t i = static_cast<std::size_t>(g.closest);
   const double ws = w.patches[i].strip_weight;
@@ -53,7 +57,7 @@ void Patch(benchmark::State& state) {
                              : "blend, strips' weight " + std::to_string(ws));
   const double approach = w.patches[i].approach;
   for (auto _ : state)
-    benchmark::DoNotOptimize(solvePatchNormal(g.candidates[i], approach, 8.2e10, 0.28));
+    benchmark::DoNotOptimize(solvePatchNormal(g.candidates[i], approach, 8.2e10, 0.28, o));
 }
 
 void WheelLoad(benchmark::State& state) {
@@ -81,7 +85,7 @@ void WheelLoadWarm(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(Patch)->DenseRange(0, 3);
+BENCHMARK(Patch)->ArgsProduct({{0, 1, 2, 3}, {0, 1}});
 BENCHMARK(WheelLoad)->DenseRange(0, 3);
 BENCHMARK(WheelLoadWarm)->DenseRange(0, 3);
 BENCHMARK_MAIN();

@@ -137,7 +137,7 @@ void Geometry_Table(benchmark::State& bs) {
 // solveWheelLoad alone on the table's geometries of the 20 poses (computed before the timing, as
 // Geometry_Table does), warm from the previous pose's solution as WheelsetContact starts it; the
 // label gives the mean number of trials (approaches solved) per step.
-void Normal_Table(benchmark::State& bs) {
+void normalTable(benchmark::State& bs, bool continuous_region) {
   const int k = static_cast<int>(bs.range(0));
   std::vector<WheelContactGeometry> g;
   for (int i = 0; i < 20; ++i) {
@@ -145,11 +145,13 @@ void Normal_Table(benchmark::State& bs) {
     pose.z = 0.0;
     g.push_back(table()->searchAtTouch(WheelSide::kRight, &pose, 1e-5));
   }
-  WheelNormal prev = solveWheelLoad(g[0], 1e4, 8.2e10, 0.28);
+  NormalOptions cold;
+  cold.continuous_region = continuous_region;
+  WheelNormal prev = solveWheelLoad(g[0], 1e4, 8.2e10, 0.28, cold);
   long trials = 0, steps = 0;
   int i = 1;
   for (auto _ : bs) {
-    NormalOptions o;
+    NormalOptions o = cold;
     o.start_beyond_touch = prev.vertical_approach - prev.touch_approach;
     o.start_exponent = prev.load_exponent;
     prev = solveWheelLoad(g[i++ % 20], 1e4, 8.2e10, 0.28, o);
@@ -157,6 +159,13 @@ void Normal_Table(benchmark::State& bs) {
     ++steps;
   }
   bs.SetLabel(std::to_string(static_cast<double>(trials) / std::max(steps, 1L)) + " trials");
+}
+void Normal_Table(benchmark::State& bs) {
+  normalTable(bs, false);
+}
+// The same with NormalOptions::continuous_region (fn continuous on the 0.5 mm tread's plateau).
+void Normal_Table_Continuous(benchmark::State& bs) {
+  normalTable(bs, true);
 }
 
 void ModelMade(benchmark::State& bs) {
@@ -181,6 +190,7 @@ void ModelMade(benchmark::State& bs) {
 BENCHMARK(Geometry_Search)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(Geometry_Table)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(Normal_Table)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(Normal_Table_Continuous)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(GeometryNormal_Search)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(GeometryNormal_Table)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(GeometryNormal_Table_Cold)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);

@@ -29,6 +29,7 @@ struct Options {
   int exact_mx = 48, exact_my = 32;
   double G = 82e9, nu = 0.28;
   bool contact_table = false;
+  bool continuous_region = false;  ///< NormalOptions::continuous_region
   std::string creep_out = "doc/data/manchester_a22_creep.csv";
   std::vector<std::string> creep_models = {"steady", "nss", "shen-li"};
   int creep_mx = 32, creep_my = 24;
@@ -49,6 +50,8 @@ void addOptions(CLI::App& app, Options* o) {
       ->check(CLI::IsMember({"left", "right"}));
   tools::option(app, "--exact-mx", &o->exact_mx, "exact grid: elements along x per patch");
   tools::option(app, "--exact-my", &o->exact_my, "exact grid: elements across per patch");
+  app.add_flag("--continuous-region", o->continuous_region,
+               "the normal problem with NormalOptions::continuous_region");
   app.add_flag("--contact-table", o->contact_table,
                "take the geometry from the contact table (ContactTable, default options) instead "
                "of the direct search, and print the largest differences between the two in our "
@@ -114,6 +117,7 @@ void runCreep(const Options& o, const ContactSearch& search, const std::vector<A
   ao.nu = o.nu;
   ao.exact_mx = o.creep_mx;
   ao.exact_my = o.creep_my;
+  ao.normal.continuous_region = o.continuous_region;
   A22CreepOptions co;
   co.models = o.creep_models;
   std::ofstream out = tools::writeFile(o.creep_out);
@@ -180,6 +184,7 @@ int run(const Options& o) {
   ao.nu = o.nu;
   ao.exact_mx = o.exact_mx;
   ao.exact_my = o.exact_my;
+  ao.normal.continuous_region = o.continuous_region;
   const ContactSearch search{WheelsetTrackData{}};
   std::unique_ptr<ContactTable> table;
   if (o.contact_table) table = std::make_unique<ContactTable>(search);

@@ -27,6 +27,7 @@ struct Options {
   int grid = 40;                                         ///< exact grid nx = ny
   double min_ridge = ContactSearchOptions{}.min_ridge;   ///< the contact search's [m]
   int gap_samples = ContactSearchOptions{}.gap_samples;  ///< the contact search's
+  bool continuous_region = false;                        ///< NormalOptions::continuous_region
 };
 
 void addOptions(CLI::App& app, Options* o) {
@@ -38,6 +39,7 @@ void addOptions(CLI::App& app, Options* o) {
   tools::option(app, "--grid", &o->grid, "exact grid nx = ny");
   tools::option(app, "--min-ridge", &o->min_ridge, "ContactSearchOptions::min_ridge [m]");
   tools::option(app, "--gap-samples", &o->gap_samples, "ContactSearchOptions::gap_samples");
+  app.add_flag("--continuous-region", o->continuous_region, "NormalOptions::continuous_region");
 }
 
 double percent(double a, double b) {
@@ -65,7 +67,9 @@ int run(const Options& o) {
       if (geo.closest < 0) break;
       pose.z -= geo.candidates[geo.closest].vertical_gap;
     }
-    const WheelNormal w = solveWheelLoad(geo, o.load, o.G, o.nu);
+    NormalOptions no;
+    no.continuous_region = o.continuous_region;
+    const WheelNormal w = solveWheelLoad(geo, o.load, o.G, o.nu, no);
     if (w.status != NormalStatus::kOk) {
       std::printf("| %.1f | - | - | %s | | | | | | |\n", state.y_mm, w.message.c_str());
       continue;

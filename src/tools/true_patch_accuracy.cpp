@@ -30,6 +30,7 @@ struct Options {
   int nx = 20;
   double mu = 0.3;
   bool sliding = false;
+  bool continuous_region = false;  ///< NormalOptions::continuous_region
 };
 
 void addOptions(CLI::App& app, Options* o) {
@@ -42,6 +43,8 @@ void addOptions(CLI::App& app, Options* o) {
   tools::option(app, "--exact-my", &o->exact_my, "exact grid: elements across per patch");
   tools::option(app, "--nx", &o->nx, "FastSim nodes per strip");
   tools::option(app, "--mu", &o->mu, "friction coefficient");
+  app.add_flag("--continuous-region", o->continuous_region,
+               "the normal problem with NormalOptions::continuous_region");
   app.add_flag("--sliding", o->sliding,
                "instead: an ellipse sliding sideways against the exact transient solution of the "
                "same motion, nss with the history's frame following 0, 1/2 (the model's) and all "
@@ -200,6 +203,7 @@ int run(const Options& o) {
   A22Options ao;
   ao.exact_mx = o.exact_mx;
   ao.exact_my = o.exact_my;
+  ao.normal.continuous_region = o.continuous_region;
   const ContactSearch search{WheelsetTrackData{}};
   std::ofstream out = tools::writeFile(o.out);
   out << "wheel,y_mm,patch,zone,method,a_over_b,fn_N,exact_fn_N,xi,eta,phi_per_m,exact_fx_N,"

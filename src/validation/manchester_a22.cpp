@@ -293,7 +293,9 @@ std::vector<A22Creep> runA22Creep(const A22Wheel& w, const A22Options& o, const 
     par.G = o.G;
     par.nu = o.nu;
     par.mu = c.mu;
-    WheelsetContact wc(WheelsetTrackData{}, par);
+    WheelsetContactOptions wo;
+    wo.normal = o.normal;  // the same normal problem as the wheel's
+    WheelsetContact wc(WheelsetTrackData{}, par, wo);
     const auto wheelOf = [&](const WheelsetResult& r) -> const WheelResult& {
       return s.side == WheelSide::kLeft ? r.left : r.right;
     };

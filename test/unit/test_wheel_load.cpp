@@ -105,6 +105,31 @@ TEST(WheelLoad, TreadPlateauPosesSolve) {
   EXPECT_GT(jumps, 0);  // the rule is exercised, not only the converging cases
 }
 
+TEST(WheelLoad, ContinuousRegionCarriesTheTreadPlateauPosesWithoutAJump) {
+  // The same poses with NormalOptions::continuous_region: the force is continuous in the
+  // approach there, every load carried within the tolerance, no jump taken.
+  struct Pose {
+    double y_mm, yaw, load;
+  };
+  const Pose poses[] = {{-0.6, 0.0, 1.5e4},  {-0.4, 0.0, 1e4},     {-0.6, 0.01, 1e4},
+                        {-0.6, 0.01, 1.5e4}, {0.2, 0.01, 1.5e4},   {0.3, 0.01, 2e4},
+                        {-0.6, -0.01, 1e4},  {-0.6, -0.01, 1.5e4}, {0.2, -0.01, 1.5e4},
+                        {0.3, -0.01, 2e4},   {-0.5, -0.0012, 1e4}};
+  NormalOptions o;
+  o.continuous_region = true;
+  for (const Pose& p : poses) {
+    for (WheelSide side : {WheelSide::kRight, WheelSide::kLeft}) {
+      const double sign = side == WheelSide::kRight ? 1.0 : -1.0;
+      const WheelContactGeometry g = atFirstTouch(side, sign * p.y_mm, sign * p.yaw);
+      ASSERT_FALSE(g.candidates.empty());
+      const WheelNormal w = solveWheelLoad(g, p.load, kG, kNu, o);
+      ASSERT_EQ(w.status, NormalStatus::kOk) << p.y_mm << " " << w.message;
+      EXPECT_EQ(w.message.find("jumps"), std::string::npos) << p.y_mm << " " << w.message;
+      EXPECT_NEAR(verticalForce(g, w), p.load, 1e-6 * p.load) << p.y_mm << " " << p.yaw;
+    }
+  }
+}
+
 TEST(WheelLoad, CutGapFunctionPosesSolve) {
   // The other poses the sweep found failing: y = -6.6 mm with yaw on the right wheel (6.6 mm on
   // the left), 5 to 30 kN. The search cuts the gauge corner's gap function where it still falls

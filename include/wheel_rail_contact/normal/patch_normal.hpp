@@ -21,22 +21,36 @@
 ///   w = t^2 (3 - 2t), t = r - 1 (NormalPatch::strip_weight), so that fn, pmax, a, b and the
 ///   strips are continuous and fn grows monotonically in the approach across the change.
 /// - For r >= 2 (kNonHertzian) Kik-Piotrowski's strips with a y-dependent penetration factor, as
-///   CONTACT's KPEC: the region's lateral extent [ys, ye] gives B = (d0/2) / ((ye - ys)/2)^2 about
-///   ymid = (ys + ye)/2, Hertz's semi-axes aa, bb for A, B at approach d0, and
+///   CONTACT's KPEC: the region's lateral extent [ys, ye] at depth d0/2 gives half-widths
+///   cl = eta0 - ys, cr = ye - eta0, B = (d0/2) / ((cl + cr)/2)^2 about ymid = (ys + ye)/2,
+///   Hertz's semi-axes aa, bb for A, B at approach d0, and
 ///     eps(eta) d0 = A aa^2 - (A aa^2 - B bb^2) ((eta - ymid) / bb)^2.
-///   The patch is where h(0, eta) - h(0, eta0) < eps(eta) d0; each strip carries
+///   The patch is where h(0, eta) - h(0, eta0) < eps(eta) d0 around eta0; each strip carries
 ///   p = P sqrt(L^2 - x^2) over |x| < L(eta) = sqrt((eps d0 - h(0, eta) + h(0, eta0)) 2 R_x(eta)),
 ///   and the one amplitude P makes the elastic (Boussinesq) displacement at (0, eta0) equal d0.
 ///   On a Hertz gap this region is Hertz's ellipse and the pressure Hertz's.
+/// - NormalOptions::continuous_region: the same with cl, cr the half-widths of the parabola with
+///   the gap's interpenetration area at depth d0/2 on that side of eta0,
+///   cl = (3/d0) int_{eta<eta0} max(0, d0/2 - h(0, eta) + h(0, eta0)) d eta (likewise cr; on a
+///   parabola its extent), ymid = eta0 + (cr - cl)/2, eps held at B bb^2 beyond ymid +- bb where
+///   it grows outward, and the patch every part of the gap function where
+///   h - h0 < eps d0 (the parts' ends where that quadratic less the gap's line crosses zero),
+///   n strips of equal width laid along the parts one after the other. fn, the region's edges and
+///   the strips then move continuously with the approach, and fn grows monotonically on the A-2.2
+///   states measured (0.5 to 6.5 mm). By default, beside a tread's plateau (A-2.2 at 0.5 mm) the
+///   extent runs over the plateau within a fraction of a micrometre of approach, and the region
+///   around eta0 jumps over it when the penetration's dip between fills: fn jumps up and down in
+///   the approach. doc/normal_problem.md says what the option costs in accuracy there.
 ///
 /// Where it is weak: a gap with a plateau or two lumps under one candidate (near-conformal tread
-/// contact): the strips stop where the exact contact spreads over the plateau, fn at a given
-/// approach some 30 % low on the Manchester benchmark at 0.5 mm (the patch's message flags a gap
-/// that turns concave under the patch, status staying kOk); conformal contact (a flange
-/// root hugging the gauge corner, worn profiles), where the half-space and the single contact plane
-/// fail as well; very short patches (a << b), where the one displacement condition carries any
-/// error of the assumed shape straight into fn. test/unit/test_patch_normal.cpp checks it against
-/// the exact half-space solver.
+/// contact): the exact contact spreads over nearly all of the plateau's rigid overlap, the
+/// penetration factor, falling away from ymid, stops short of it: fn at a given approach some
+/// 30 % low on the Manchester benchmark at 0.5 mm (23 % with continuous_region; the patch's
+/// message flags a gap that turns concave under the patch, status staying kOk); conformal contact
+/// (a flange root hugging the gauge corner, worn profiles), where the half-space and the single
+/// contact plane fail as well; very short patches (a << b), where the one displacement condition
+/// carries any error of the assumed shape straight into fn. test/unit/test_patch_normal.cpp checks
+/// it against the exact half-space solver.
 ///
 /// Units SI: m, N, Pa, rad.
 #pragma once
@@ -100,7 +114,12 @@ struct NormalOptions {
   /// Hertz where the gap departs from its fitted parabola by less than this fraction of half the
   /// deepest interpenetration, and R_x varies by less than this fraction, over the patch.
   double hertz_tolerance = 0.03;
-  bool allow_hertz = true;       ///< false: the strip method on every patch (for checks)
+  bool allow_hertz = true;  ///< false: the strip method on every patch (for checks)
+  /// The strips' half-widths from the interpenetration's area and their region every part where
+  /// the penetration is positive (the method above): fn continuous and monotonic in the approach
+  /// beside a tread's plateau, where by default it jumps; on A-2.2's plateau (0.5 mm) pmax some
+  /// 7 % below exact's at the load against 1 % above by default (doc/normal_problem.md).
+  bool continuous_region = false;
   double load_tolerance = 1e-6;  ///< solveWheelLoad: relative error of the vertical load
   int max_iterations = 100;      ///< solveWheelLoad: iterations on the approach
   /// solveWheelLoad's warm start: its first trial's vertical approach beyond first touch [m],
@@ -172,8 +191,8 @@ struct WheelNormal {
 ///
 /// Iteration (doc/normal_problem.md): secant steps on ln f against ln(dv - touch_approach) inside
 /// a bracket that bisects when they leave it or stall, to |f - load| <= load_tolerance load.
-/// Where the patches' force jumps in the approach across the load (the strips' region spreading
-/// at once over a tread plateau, a merge), the side whose force is nearer the load is taken once
+/// Where the patches' force jumps in the approach across the load (two patches merging across a
+/// ridge, a patch cut at a kink), the side whose force is nearer the load is taken once
 /// the bracket is 1e-13 m wide: status kOk, the message "the patches' vertical force jumps from
 /// ... N to ... N ...". NormalOptions::start_beyond_touch, start_exponent: a warm start.
 WheelNormal solveWheelLoad(const WheelContactGeometry& geometry, double vertical_load, double G,

@@ -118,6 +118,36 @@ bool lateralExtent(const PatchGeometry& g, double depth, double* lo, double* hi)
   return true;
 }
 
+/// The half-widths of the parabola with the gap's interpenetration area at level `depth` on each
+/// side of the minimum: c = 3 I / (2 depth), I = int max(0, depth - (h - h0)) d eta over that side
+/// (the gap linear between samples). On a parabola they are its extent at that level; unlike the
+/// extent they move smoothly as a plateau sinks below the level.
+void halfDepthWidths(const PatchGeometry& g, double depth, double* cl, double* cr) {
+  auto part = [&](double x0, double x1, double h0v, double h1v) {
+    const double u0 = depth - h0v, u1 = depth - h1v, dx = x1 - x0;
+    if (u0 >= 0.0 && u1 >= 0.0) return 0.5 * dx * (u0 + u1);
+    if (u0 <= 0.0 && u1 <= 0.0) return 0.0;
+    const double up = std::max(u0, u1), un = std::min(u0, u1);
+    return 0.5 * dx * up * up / (up - un);
+  };
+  const int n = static_cast<int>(g.eta.size());
+  double il = 0.0, ir = 0.0;
+  const double hm = g.gap(g.eta0) - g.h0;
+  for (int k = 0; k + 1 < n; ++k) {
+    const double a = g.eta[k], b = g.eta[k + 1], ha = g.h[k] - g.h0, hb = g.h[k + 1] - g.h0;
+    if (b <= g.eta0) {
+      il += part(a, b, ha, hb);
+    } else if (a >= g.eta0) {
+      ir += part(a, b, ha, hb);
+    } else {
+      il += part(a, g.eta0, ha, hm);
+      ir += part(g.eta0, b, hm, hb);
+    }
+  }
+  *cl = 1.5 * il / depth;
+  *cr = 1.5 * ir / depth;
+}
+
 /// Gauss-Legendre nodes and weights on [0, 1], 6 points.
 constexpr double kGx[6] = {0.033765242898423986, 0.16939530676686776, 0.38069040695840156,
                            0.61930959304159845,  0.83060469323313224, 0.96623475710157603};
@@ -271,9 +301,11 @@ NormalPatch fail(NormalStatus s, const std::string& why, double approach) {
 /// ellipse.
 class StripPenetration {
  public:
+  /// held: the factor, where it grows away from ymid (A0 aa^2 < B bb^2), held at B bb^2 beyond
+  /// ymid +- bb, so that it stays bounded where positiveParts looks (the whole gap function).
   StripPenetration(const PatchGeometry& g, double A0, double B, double d0, double Estar,
-                   double ymid)
-      : g_(g), ymid_(ymid) {
+                   double ymid, bool held = false)
+      : g_(g), ymid_(ymid), held_(held) {
     const HertzApproach hz = hertzFromApproach(A0, B, d0, Estar);
     bb_ = std::max(hz.b, 1.1 * std::abs(g.eta0 - ymid));
     ex_ = A0 * hz.a * hz.a;  // eps d0 at the centre
@@ -293,14 +325,85 @@ class StripPenetration {
     double t;
     return g_.interval(e, &t);
   }
+  /// The parts of sample interval [k, k + 1] where the penetration is positive, appended to
+  /// *pieces as (from, to) pairs in eta, continuing the last pair where it ends at the interval's
+  /// start. Their ends are the roots of the quadratic the penetration is there (the factor's
+  /// parabola less the gap's line; where the factor's max(0, .) clips, the penetration is <= 0),
+  /// so that they move continuously with the approach.
+  void positiveParts(int k, std::vector<double>* pieces) const {
+    const double x0 = g_.eta[k], x1 = g_.eta[k + 1];
+    const double c = (ex_ - ey_) / (bb_ * bb_);  // factor = ex - c (e - ymid)^2
+    if (c >= 0.0 || !held_) {
+      positiveIn(k, x0, x1, c, ex_, pieces);
+      return;
+    }
+    // A factor growing away from ymid held at ey beyond ymid +- bb (of()).
+    double cuts[4] = {x0, x1, x1, x1};
+    int m = 1;
+    for (const double e : {ymid_ - bb_, ymid_ + bb_})
+      if (e > x0 && e < x1) cuts[m++] = e;
+    cuts[m] = x1;
+    for (int i = 0; i < m; ++i) {
+      const bool held = std::abs(0.5 * (cuts[i] + cuts[i + 1]) - ymid_) >= bb_;
+      positiveIn(k, cuts[i], cuts[i + 1], held ? 0.0 : c, held ? ey_ : ex_, pieces);
+    }
+  }
 
  private:
+  /// positiveParts on [s0, s1] within sample interval k, the factor there e0 - c (e - ymid)^2.
+  void positiveIn(int k, double s0, double s1, double c, double e0,
+                  std::vector<double>* pieces) const {
+    const double len = s1 - s0;
+    if (!(len > 0.0)) return;
+    const double slope = (g_.h[k + 1] - g_.h[k]) / (g_.eta[k + 1] - g_.eta[k]);
+    auto gap = [&](double e) { return g_.h[k] + slope * (e - g_.eta[k]) - g_.h0; };
+    auto factor = [&](double e) { return e0 - c * (e - ymid_) * (e - ymid_); };
+    double top = std::max(factor(s0), factor(s1));
+    if (c > 0.0 && ymid_ > s0 && ymid_ < s1) top = e0;
+    if (!(top > std::min(gap(s0), gap(s1)))) return;  // the common case, cheaply
+    // F(t) = a2 t^2 + a1 t + a0 over t = e - s0 in [0, len].
+    const double v = s0 - ymid_;
+    const double a2 = -c, a1 = -2.0 * c * v - slope, a0 = e0 - c * v * v - gap(s0);
+    double cut[4] = {0.0, len, len, len};
+    int nc = 1;
+    auto root = [&](double t) {
+      if (t > 0.0 && t < len) cut[nc++] = t;
+    };
+    if (std::abs(a2) * len <= 1e-12 * std::abs(a1)) {
+      if (a1 != 0.0) root(-a0 / a1);
+    } else {
+      const double disc = a1 * a1 - 4.0 * a2 * a0;
+      if (disc > 0.0) {
+        const double q = -0.5 * (a1 + std::copysign(std::sqrt(disc), a1));
+        if (q != 0.0) {
+          root(q / a2);
+          root(a0 / q);
+        }
+      }
+    }
+    cut[nc] = len;
+    if (nc == 3 && cut[2] < cut[1]) std::swap(cut[1], cut[2]);
+    for (int i = 0; i < nc; ++i) {
+      const double t = 0.5 * (cut[i] + cut[i + 1]);
+      if (!(cut[i + 1] > cut[i]) || !((a2 * t + a1) * t + a0 > 0.0)) continue;
+      const double from = cut[i] > 0.0 ? s0 + cut[i] : s0;
+      const double to = cut[i + 1] < len ? s0 + cut[i + 1] : s1;
+      if (!pieces->empty() && pieces->back() == from) {
+        pieces->back() = to;
+      } else {
+        pieces->push_back(from);
+        pieces->push_back(to);
+      }
+    }
+  }
   double of(double e, double gap) const {
     const double u = (e - ymid_) / bb_;
-    return std::max(0.0, ex_ - (ex_ - ey_) * u * u) - (gap - g_.h0);
+    const double u2 = held_ && ex_ < ey_ ? std::min(u * u, 1.0) : u * u;
+    return std::max(0.0, ex_ - (ex_ - ey_) * u2) - (gap - g_.h0);
   }
   const PatchGeometry& g_;
   double ymid_, bb_ = 0.0, ex_ = 0.0, ey_ = 0.0;
+  bool held_ = false;
 };
 
 /// Where the penetration f ends between inner (f > 0) and outer (f <= 0): bisection, then linear
@@ -369,16 +472,18 @@ NormalPatch solvePatch(const ContactCandidate& c, BuiltGeometry* cache, double a
   if (!(A0 > 0.0))
     return fail(NormalStatus::kInvalidInput, "the wheel is not convex along x", approach);
 
-  // The equivalent ellipse (as CONTACT's KPEC): the lateral extent [ys, ye] of Kik-Piotrowski's
-  // region at penetration factor 1/2 gives the lateral curvature B of a parabola centred on it
-  // that reaches 0.5 d0 at its edges; Hertz's ellipse (aa, bb) for A0, B at approach d0.
+  // The equivalent ellipse (as CONTACT's KPEC): the lateral curvature B of a parabola that
+  // reaches 0.5 d0 at half-widths cl, cr on either side of the minimum, centred on ymid between
+  // them; Hertz's ellipse (aa, bb) for A0, B at approach d0. The half-widths: KPEC's, the extent
+  // [ys, ye] of the region at 0.5 d0; with continuous_region those of the parabola with the same
+  // interpenetration area at that level on each side (on a parabola, its extent), which move
+  // smoothly as a plateau beside the minimum sinks below the level, where the extent runs over
+  // the plateau within a fraction of a micrometre of approach and the penetration factor with it
+  // (the force then falls as the approach grows). [ys, ye] bounds the samples of the Hertz test.
   double ys = 0.0, ye = 0.0;
   if (!lateralExtent(g, 0.5 * d0, &ys, &ye))
     return fail(NormalStatus::kBeyondGapFunction, beyondMessage(g, d0), approach);
   const double spacing = g.eta[1] - g.eta[0];
-  const double ymid = 0.5 * (ys + ye);
-  const double half = std::max(0.5 * (ye - ys), 1e-3 * spacing);
-  const double B = std::max(0.5 * d0 / (half * half), 1e-3 * A0);
 
   // How far from elliptic (Hertz up to 1): the gap's largest departure from its least-squares
   // parabola about the minimum over the region, over hertz_tolerance d0 / 2, or R_x's largest
@@ -455,9 +560,14 @@ NormalPatch solvePatch(const ContactCandidate& c, BuiltGeometry* cache, double a
     NormalPatch out = start;
     out.method = NormalMethod::kNonHertzian;
     out.strip_weight = 1.0;
-    const StripPenetration penetration(g, A0, B, d0, Estar, ymid);
-    // Lateral extent: where the penetration is positive, connected to the minimum, by bisection
-    // between samples.
+    double cl = g.eta0 - ys, cr = ye - g.eta0;
+    if (o.continuous_region) halfDepthWidths(g, 0.5 * d0, &cl, &cr);
+    const double ymid = o.continuous_region ? g.eta0 + 0.5 * (cr - cl) : 0.5 * (ys + ye);
+    const double half = std::max(0.5 * (cl + cr), 1e-3 * spacing);
+    const double B = std::max(0.5 * d0 / (half * half), 1e-3 * A0);
+    const StripPenetration penetration(g, A0, B, d0, Estar, ymid, o.continuous_region);
+    // By default the region is where the penetration is positive around the minimum, its ends by
+    // bisection between samples.
     auto edge = [&](int dir, double* at) {
       double inner = g.eta0;
       for (int i = dir > 0 ? g.imin + 1 : g.imin - 1;; i += dir) {
@@ -469,9 +579,27 @@ NormalPatch solvePatch(const ContactCandidate& c, BuiltGeometry* cache, double a
         inner = g.eta[i];
       }
     };
-    double lo = 0.0, hi = 0.0;
-    if (!edge(-1, &lo) || !edge(+1, &hi))
+    // With continuous_region, every part of the gap function where the penetration is positive,
+    // the parts' ends where the penetration's quadratic crosses zero in a sample interval. Beside
+    // a plateau the penetration can dip below zero between the minimum and the plateau, and a
+    // region stopping at the dip jumps over the plateau (and the force with it) when it fills.
+    std::vector<double> pieces;  // (from, to) pairs, ordered
+    if (o.continuous_region) {
+      const int last_interval = static_cast<int>(g.eta.size()) - 2;
+      for (int k = 0; k <= last_interval; ++k) penetration.positiveParts(k, &pieces);
+    } else {
+      pieces.assign(2, 0.0);
+      if (!edge(-1, &pieces[0]) || !edge(+1, &pieces[1]))
+        return fail(NormalStatus::kBeyondGapFunction, beyondMessage(g, d0), approach);
+    }
+    if (pieces.empty()) {
+      out.message = "the patch has no strip in contact";
+      zeroForces(&out);
+      return out;
+    }
+    if (pieces.front() <= g.eta.front() || pieces.back() >= g.eta.back())
       return fail(NormalStatus::kBeyondGapFunction, beyondMessage(g, d0), approach);
+    const double lo = pieces.front(), hi = pieces.back();
     {
       // A gap that turns concave under the patch (a plateau, a second lump beside the minimum) is
       // where the strips are weak: say so.
@@ -484,13 +612,34 @@ NormalPatch solvePatch(const ContactCandidate& c, BuiltGeometry* cache, double a
             "the gap turns concave under the patch: the strips may miss part of the "
             "contact (doc/normal_problem.md)";
     }
-    const double w = (hi - lo) / n;
-    std::vector<double> L(n);
+    // The strips share the parts' whole length equally, laid along the parts one after the
+    // other: strip j's centre lies (j + 1/2) w along them, w their total length over n. A strip
+    // whose centre passes the gap between two parts has its half-length 0 at either end of the
+    // gap (the penetration's zeros), so the force moves continuously as parts grow, appear or
+    // join; on one part these are n equal strips from lo to hi.
+    double total = 0.0;
+    for (std::size_t i = 0; i < pieces.size(); i += 2) total += pieces[i + 1] - pieces[i];
+    const double w = total / n;
+    std::vector<double> L(n), centre(n);
     auto halfLength = [&](double e) {
       const double pen = penetration(e), Ae = g.curvature(e);
       return pen > 0.0 && Ae > 0.0 ? std::sqrt(pen / Ae) : 0.0;
     };
-    for (int j = 0; j < n; ++j) L[j] = halfLength(lo + (j + 0.5) * w);
+    if (pieces.size() == 2) {
+      for (int j = 0; j < n; ++j) centre[j] = lo + (j + 0.5) * w;
+    } else {
+      std::size_t i = 0;
+      double before = 0.0;  // the parts' length before part i
+      for (int j = 0; j < n; ++j) {
+        const double along = (j + 0.5) * w;
+        while (i + 2 < pieces.size() && along > before + pieces[i + 1] - pieces[i]) {
+          before += pieces[i + 1] - pieces[i];
+          i += 2;
+        }
+        centre[j] = std::min(pieces[i] + (along - before), pieces[i + 1]);
+      }
+    }
+    for (int j = 0; j < n; ++j) L[j] = halfLength(centre[j]);
     // Displacement at (0, eta0) per unit amplitude P: over each strip the integral of
     // sqrt(L^2 - x^2) / r, exact in eta (J differences) near eta0, midpoint further out.
     // The far strips' lines first, side by side (stripLines), summed in the strips' order.
@@ -498,7 +647,7 @@ NormalPatch solvePatch(const ContactCandidate& c, BuiltGeometry* cache, double a
     farL.reserve(n);
     farY.reserve(n);
     for (int j = 0; j < n; ++j) {
-      const double y1 = lo + j * w - g.eta0, y2 = y1 + w;
+      const double y1 = centre[j] - 0.5 * w - g.eta0, y2 = y1 + w;
       if (!(y2 > -3.0 * w && y1 < 3.0 * w)) {
         farL.push_back(L[j]);
         farY.push_back(0.5 * (y1 + y2));
@@ -508,7 +657,7 @@ NormalPatch solvePatch(const ContactCandidate& c, BuiltGeometry* cache, double a
     stripLines(farL.data(), farY.data(), static_cast<int>(farL.size()), farLine.data());
     double influence = 0.0;
     for (int j = 0, far = 0; j < n; ++j) {
-      const double y1 = lo + j * w - g.eta0, y2 = y1 + w;
+      const double y1 = centre[j] - 0.5 * w - g.eta0, y2 = y1 + w;
       if (y2 > -3.0 * w && y1 < 3.0 * w) {
         if (y1 < 0.0 && y2 > 0.0)
           influence += centralStrip(L[j], -y1) + centralStrip(L[j], y2);
@@ -529,7 +678,7 @@ NormalPatch solvePatch(const ContactCandidate& c, BuiltGeometry* cache, double a
     double fn = 0.0, area = 0.0, pmax = P * halfLength(g.eta0);
     for (int j = 0; j < n; ++j) {
       NormalStrip& s = out.strips[j];
-      s.eta = lo + (j + 0.5) * w;
+      s.eta = centre[j];
       s.width = w;
       s.x_lead = L[j];
       s.x_trail = -L[j];
@@ -946,8 +1095,8 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
   // secant through the last two trials. A step that leaves the bracket [lo, hi] found so far,
   // or is more than half the step before last (the secant stalls), bisects it; a step beyond
   // every trial so far (no bracket yet) goes at most eight times as deep. The bracket closing
-  // to kJumpWidth without the load met is a jump of the patches' force in the approach (the
-  // strips' region spreading at once over a plateau, two patches joining): the side whose force
+  // to kJumpWidth without the load met is a jump of the patches' force in the approach (two
+  // patches joining across a ridge, a patch cut at a kink): the side whose force
   // is nearer the load is taken.
   constexpr double kJumpWidth = 1e-13;  // m, far below any approach the tolerance resolves
   const double inf = std::numeric_limits<double>::infinity();
@@ -1001,7 +1150,7 @@ WheelNormal solveWheelLoad(const WheelContactGeometry& geo, double load, double 
       m.precision(9);
       m << "the patches' vertical force jumps from " << f_lo << " N to " << f_hi
         << " N at vertical approach " << lo
-        << " m (the strips' region spreading at once, or patches joining): the side nearer the "
+        << " m (patches joining, or a patch cut at a kink): the side nearer the "
            "load is taken, "
         << f << " N";
       out.message = m.str();
