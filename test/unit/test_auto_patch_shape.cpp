@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../a22_states.hpp"
+#include "../patch_step_input.hpp"
 #include "core/exact/halfspace_solver.hpp"
 #include "core/models/auto_model.hpp"
 #include "validation/ellipse_patch.hpp"
@@ -334,16 +335,7 @@ TEST(AutoPatchShape, LopsidedPatchSwitchesOnceEachWay) {
           shape.strips[j].x_trail = f * e.x_trail;
           shape.strips[j].pmax = f * e.pmax;
         }
-        StepInput in;
-        in.dt = 1e-4;
-        in.V = 20.0;
-        in.xi = 2e-4;
-        in.eta = 3e-4;
-        in.phi = 0.3;
-        in.fz = fz;
-        in.a = a;
-        in.b = b;
-        in.shape = &shape;
+        const StepInput in = combinedCreepageStep(&shape, a, b, fz);
         out.push_back(m->step(in));
         ASSERT_EQ(out.back().status, StepStatus::kOk) << out.back().message;
         EXPECT_FALSE(am.nonSteady()) << k;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../a22_states.hpp"
+#include "../patch_step_input.hpp"
 #include "core/exact/halfspace_solver.hpp"
 #include "core/fastsim/transient_fastsim.hpp"
 #include "validation/ellipse_patch.hpp"
@@ -469,16 +470,7 @@ TEST(TruePatch, LeavingTheStripsKeepsTheHistory) {
     p.b0 = b;
     p.fz0 = fz;
     auto m = makeContactModel(p);
-    StepInput in;
-    in.dt = 1e-4;
-    in.V = 20.0;
-    in.xi = 2e-4;
-    in.eta = 3e-4;
-    in.phi = 0.3;
-    in.fz = fz;
-    in.a = a;
-    in.b = b;
-    in.shape = &shape;
+    StepInput in = combinedCreepageStep(&shape, a, b, fz);
     StepOutput before;
     for (int k = 0; k < 200; ++k) before = m->step(in);
     in.shape = nullptr;

@@ -50,6 +50,17 @@ ContactParameters parameters(const std::string& model) {
   return p;
 }
 
+// A contact table over the centre's few millimetres (the default ranges would take seconds to
+// build): lateral +-max_abs_lateral, yaw +-10 mrad every 5 mrad, roll +-2.5 mrad.
+ContactTableOptions centreTable(double max_abs_lateral) {
+  ContactTableOptions t;
+  t.max_abs_lateral = max_abs_lateral;
+  t.max_abs_yaw = 0.01;
+  t.yaw_step = 0.005;
+  t.max_abs_roll = 0.0025;
+  return t;
+}
+
 double verticalLoad(const WheelResult& w) {
   double sum = 0.0;
   for (const PatchResult& p : w.patches) sum += p.normal.fn * std::cos(p.geometry.contact_angle);
@@ -561,11 +572,7 @@ TEST(WheelsetContact, NearTheCentreATableStepMergesThePatchesAsTheDirectSearch) 
   // within 5 %), and the tangential forces within 1 % of mu fn (the unit every force error of
   // the package is stated in; fx here is a small remainder, 1.3 kN of mu fn's 24 kN, so 5 % of
   // itself, 65 N, would ask the table's geometry for more than the gap's sampling defines).
-  ContactTableOptions to;
-  to.max_abs_lateral = 0.002;
-  to.max_abs_yaw = 0.01;
-  to.yaw_step = 0.005;
-  to.max_abs_roll = 0.0025;
+  const ContactTableOptions to = centreTable(0.002);
   WheelsetPose p;
   p.y = 0.365375e-3;
   p.yaw = -2.096573e-3;
@@ -613,11 +620,8 @@ TEST(WheelsetContact, ATableStepWhoseGeometryFailsIsAnsweredByTheDirectSearch) {
   // gives the direct step's patches.
   WheelsetContactOptions o;
   o.use_contact_table = true;
-  o.table.max_abs_lateral = 0.002;
+  o.table = centreTable(0.002);
   o.table.lateral_step = 1e-3;
-  o.table.max_abs_yaw = 0.01;
-  o.table.yaw_step = 0.005;
-  o.table.max_abs_roll = 0.0025;
   WheelsetContact withTable(WheelsetTrackData{}, parameters("steady"), o);
   WheelsetContact direct(WheelsetTrackData{}, parameters("steady"));
   WheelsetState s;
@@ -652,10 +656,7 @@ TEST(WheelsetContact, NearTheCentreATableNeedsNoDirectSearch) {
   // took its nearest node's candidates only).
   WheelsetContactOptions o;
   o.use_contact_table = true;
-  o.table.max_abs_lateral = 0.002;
-  o.table.max_abs_yaw = 0.01;
-  o.table.yaw_step = 0.005;
-  o.table.max_abs_roll = 0.0025;
+  o.table = centreTable(0.002);
   o.tangential = false;
   WheelsetContact c(WheelsetTrackData{}, parameters("steady"), o);
   int ok = 0, steps = 0;
@@ -750,11 +751,7 @@ TEST(WheelsetContact, ACentredMergedPatchStaysOneAndItsForcesContinuousOffCentre
   // the two no longer met at their ridge and the wheel's patch split in two, its fx stepping by
   // 1.3 kN and the wheelset's yaw moment by 0.9 kN m at 80 kN. Bound: 0.1 % of mu Fn per
   // 0.1 um step, on every component of each wheel's wrench (N, and N m per metre of lever).
-  ContactTableOptions t;
-  t.max_abs_lateral = 0.004;
-  t.max_abs_yaw = 0.01;
-  t.yaw_step = 0.005;
-  t.max_abs_roll = 0.0025;
+  const ContactTableOptions t = centreTable(0.004);
   WheelsetContactOptions with_table;
   with_table.contact_table =
       std::make_shared<const ContactTable>(ContactSearch{WheelsetTrackData{}}, t);
