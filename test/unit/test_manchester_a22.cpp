@@ -113,7 +113,7 @@ TEST(ManchesterA22, NormalForceAndPeakPressureAgainstTheExactSolver) {
 }
 
 TEST(ManchesterA22, TheTreadPlateauIsWhereTheStripMethodIsOff) {
-  // As measured (64 x 48: the force at the same approach -30 % at 0.5 mm on the right wheel),
+  // As measured (64 x 48: the force at the same approach -23 % at 0.5 mm on the right wheel),
   // within a band, so that an improvement or a regression shows: the patch stops short of the
   // plateau beside the minimum and is too soft.
   int checked = 0;
