@@ -225,8 +225,8 @@ TEST(PatchNormal, A22TreadPlateauIsTheMethodsWeakness) {
   // 10 kN the exact contact spreads over it, the method's strips (penetration factor some 0.4
   // at the centre of the equivalent ellipse) stop short of it. Asserted as measured, so that a
   // change in either direction shows: fn at the same approach 20 to 40 % low, the patch narrower,
-  // pmax within 11 % (measured 9.6 % low: the region spread from the interpenetration's area is
-  // wider than the pressure's peak wants; without continuous_region 4 % low, but fn jumps).
+  // pmax within 11 % (measured 9.6 % low; 4 % low with continuous_region = false, whose fn
+  // jumps in the approach here, doc/normal_problem.md).
   const BenchmarkState s = benchmarkState(0.5);
   ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
   const NormalPatch& p = s.wheel.patches.at(s.geo.closest);
@@ -279,10 +279,10 @@ TEST(PatchNormal, ContinuousRegionMovesSmoothlyOverTheTreadPlateau) {
 
 TEST(PatchNormal, ContinuousRegionOnTheTreadPlateauAgainstExact) {
   // The plateau with continuous_region (default), at its own load's approach against the exact
-  // solver at the same approach (40 x 40), as measured, within a band so that a change shows: fn 23
-  // % low (30 % by default: the region, though continuous, still stops short of the plateau, where
-  // the exact contact covers nearly all the rigid overlap), pmax 9.6 % low (4 % by default), the
-  // patch narrower than exact's.
+  // solver at the same approach (40 x 40), as measured, within a band so that a change shows: fn
+  // 23 % low (30 % with continuous_region = false: the region, though continuous, still stops
+  // short of the plateau, where the exact contact covers nearly all the rigid overlap), pmax 9.6 %
+  // low (4 % with continuous_region = false), the patch narrower than exact's.
   const WheelContactGeometry geo = atFirstTouch(WheelSide::kRight, a22Right(0.5));
   const WheelNormal w = solveWheelLoad(geo, kLoad, kG, kNu);
   ASSERT_EQ(w.status, NormalStatus::kOk) << w.message;
@@ -356,8 +356,8 @@ TEST(PatchNormal, A22CentredTreadsMergeAcrossTheirRidge) {
   // One strip patch over both lumps (solvePatchNormal on the merged gap): without
   // continuous_region its region spreads past the ridge and fn is some 30 % high (measured
   // +30.3 %), the lumps must do better; with it (the default) the one patch is as near exact as
-  // the lumps (measured fn -5.3 %, pmax -1.0 %, edges 0.09 and 0.28 mm inside), within the
-  // lumps' bounds.
+  // the lumps (measured fn -5.3 %, pmax -1.0 %, edges 0.09 mm outside and 0.28 mm inside), within
+  // the lumps' bounds.
   NormalOptions kpec;
   kpec.continuous_region = false;
   const NormalPatch single_kpec = solvePatchNormal(merged, patch.approach, kG, kNu, kpec);
