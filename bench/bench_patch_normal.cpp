@@ -4,7 +4,7 @@
 // gauge corner timed), the flange at 6.5 mm (strips). Run:
 //   build/devel/lib/wheel_rail_contact/bench_patch_normal --benchmark_repetitions=5
 //     --benchmark_report_aggregates_only=true
-// Patch/k/1: with NormalOptions::continuous_region. WheelLoadWarm: the same with
+// Patch/k/1: with NormalOptions::continuous_region = false. WheelLoadWarm: the same with
 // NormalOptions::start_beyond_touch from the previous step's solution, its pose 0.01 mm away. The
 // contact search is not timed (its geometry is computed once per state).
 #include <benchmark/benchmark.h>
@@ -43,11 +43,12 @@ WheelContactGeometry geometry(int k, double dy_mm = 0.0) {
 }
 
 /// Patch: one solvePatchNormal at the load's approach; second argument 1:
-/// NormalOptions::continuous_region (the trial's cost with it, at its own load's approach).
+/// NormalOptions::continuous_region = false (the trial's cost without it, at its own load's
+/// approach).
 void Patch(benchmark::State& state) {
   const WheelContactGeometry g = geometry(static_cast<int>(state.range(0)));
   NormalOptions o;
-  o.continuous_region = state.range(1) != 0;
+  o.continuous_region = state.range(1) == 0;
   const WheelNormal w = solveWheelLoad(g, 1e4, 8.2e10, 0.28, o);
   if (w.status != NormalStatus::kOk) state.SkipWithError(w.message.c_str());
   std::size_t i = static_cast<std::size_t>(g.closest);

@@ -29,7 +29,7 @@ struct Options {
   int exact_mx = 48, exact_my = 32;
   double G = 82e9, nu = 0.28;
   bool contact_table = false;
-  bool continuous_region = false;  ///< NormalOptions::continuous_region
+  bool continuous_region = NormalOptions{}.continuous_region;
   std::string creep_out = "doc/data/manchester_a22_creep.csv";
   std::vector<std::string> creep_models = {"steady", "nss", "shen-li"};
   int creep_mx = 32, creep_my = 24;
@@ -50,8 +50,10 @@ void addOptions(CLI::App& app, Options* o) {
       ->check(CLI::IsMember({"left", "right"}));
   tools::option(app, "--exact-mx", &o->exact_mx, "exact grid: elements along x per patch");
   tools::option(app, "--exact-my", &o->exact_my, "exact grid: elements across per patch");
-  app.add_flag("--continuous-region", o->continuous_region,
-               "the normal problem with NormalOptions::continuous_region");
+  app.add_flag_callback(
+      "--no-continuous-region", [o] { o->continuous_region = false; },
+      "the normal problem with NormalOptions::continuous_region = false (its rule before "
+      "continuous_region became the default)");
   app.add_flag("--contact-table", o->contact_table,
                "take the geometry from the contact table (ContactTable, default options) instead "
                "of the direct search, and print the largest differences between the two in our "

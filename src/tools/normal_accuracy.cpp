@@ -27,7 +27,7 @@ struct Options {
   int grid = 40;                                         ///< exact grid nx = ny
   double min_ridge = ContactSearchOptions{}.min_ridge;   ///< the contact search's [m]
   int gap_samples = ContactSearchOptions{}.gap_samples;  ///< the contact search's
-  bool continuous_region = false;                        ///< NormalOptions::continuous_region
+  bool continuous_region = NormalOptions{}.continuous_region;
 };
 
 void addOptions(CLI::App& app, Options* o) {
@@ -39,7 +39,9 @@ void addOptions(CLI::App& app, Options* o) {
   tools::option(app, "--grid", &o->grid, "exact grid nx = ny");
   tools::option(app, "--min-ridge", &o->min_ridge, "ContactSearchOptions::min_ridge [m]");
   tools::option(app, "--gap-samples", &o->gap_samples, "ContactSearchOptions::gap_samples");
-  app.add_flag("--continuous-region", o->continuous_region, "NormalOptions::continuous_region");
+  app.add_flag_callback(
+      "--no-continuous-region", [o] { o->continuous_region = false; },
+      "NormalOptions::continuous_region = false (its rule before it became the default)");
 }
 
 double percent(double a, double b) {

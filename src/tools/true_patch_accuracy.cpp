@@ -30,7 +30,7 @@ struct Options {
   int nx = 20;
   double mu = 0.3;
   bool sliding = false;
-  bool continuous_region = false;  ///< NormalOptions::continuous_region
+  bool continuous_region = NormalOptions{}.continuous_region;
 };
 
 void addOptions(CLI::App& app, Options* o) {
@@ -43,8 +43,10 @@ void addOptions(CLI::App& app, Options* o) {
   tools::option(app, "--exact-my", &o->exact_my, "exact grid: elements across per patch");
   tools::option(app, "--nx", &o->nx, "FastSim nodes per strip");
   tools::option(app, "--mu", &o->mu, "friction coefficient");
-  app.add_flag("--continuous-region", o->continuous_region,
-               "the normal problem with NormalOptions::continuous_region");
+  app.add_flag_callback(
+      "--no-continuous-region", [o] { o->continuous_region = false; },
+      "the normal problem with NormalOptions::continuous_region = false (its rule before "
+      "continuous_region became the default)");
   app.add_flag("--sliding", o->sliding,
                "instead: an ellipse sliding sideways against the exact transient solution of the "
                "same motion, nss with the history's frame following 0, 1/2 (the model's) and all "

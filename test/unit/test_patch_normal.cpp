@@ -224,7 +224,9 @@ TEST(PatchNormal, A22TreadPlateauIsTheMethodsWeakness) {
   // At 0.5 mm the tread's gap has a plateau some 10 um high over 8 mm beside its minimum: under
   // 10 kN the exact contact spreads over it, the method's strips (penetration factor some 0.4
   // at the centre of the equivalent ellipse) stop short of it. Asserted as measured, so that a
-  // change in either direction shows: fn at the same approach 20 to 40 % low, the patch narrower.
+  // change in either direction shows: fn at the same approach 20 to 40 % low, the patch narrower,
+  // pmax within 11 % (measured 9.6 % low; 4 % low with continuous_region = false, whose fn
+  // jumps in the approach here, doc/normal_problem.md).
   const BenchmarkState s = benchmarkState(0.5);
   ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
   const NormalPatch& p = s.wheel.patches.at(s.geo.closest);
@@ -236,7 +238,7 @@ TEST(PatchNormal, A22TreadPlateauIsTheMethodsWeakness) {
   EXPECT_GT(p.fn, 0.6 * e.fn);
   EXPECT_LT(p.fn, 0.8 * e.fn);
   EXPECT_LT(p.eta_max - p.eta_min, e.eta_max - e.eta_min);
-  EXPECT_NEAR(p.pmax, e.pmax, 0.06 * e.pmax);
+  EXPECT_NEAR(p.pmax, e.pmax, 0.11 * e.pmax);
 }
 
 TEST(PatchNormal, ContinuousRegionMovesSmoothlyOverTheTreadPlateau) {
@@ -244,7 +246,8 @@ TEST(PatchNormal, ContinuousRegionMovesSmoothlyOverTheTreadPlateau) {
   // stops where the penetration dips below zero between the minimum and the plateau and jumps
   // over the plateau when the dip fills, and KPEC's extent at d0/2 runs over the plateau within
   // a fraction of a micrometre: fn falls by some 90 % in one step (measured 0.918 at 21.13 um)
-  // and its lower edge jumps by some 11 mm. With continuous_region fn grows in every step, no
+  // and its lower edge jumps by some 11 mm (continuous_region = false, the rule before it became
+  // the default). With continuous_region fn grows in every step, no
   // step more than twice the one before (measured 1.46, near first touch), and the lower edge
   // moves at most 0.1 mm a step (measured 0.05 mm).
   const ContactCandidate c = benchmarkState(0.5).geo.candidates.at(0);
@@ -275,15 +278,13 @@ TEST(PatchNormal, ContinuousRegionMovesSmoothlyOverTheTreadPlateau) {
 }
 
 TEST(PatchNormal, ContinuousRegionOnTheTreadPlateauAgainstExact) {
-  // The plateau with continuous_region, at its own load's approach against the exact solver at
-  // the same approach (40 x 40), as measured, within a band so that a change shows: fn 23 % low
-  // (30 % by default: the region, though continuous, still stops short of the plateau, where the
-  // exact contact covers nearly all the rigid overlap), pmax 9.6 % low (4 % by default), the
-  // patch narrower than exact's.
+  // The plateau with continuous_region (default), at its own load's approach against the exact
+  // solver at the same approach (40 x 40), as measured, within a band so that a change shows: fn
+  // 23 % low (30 % with continuous_region = false: the region, though continuous, still stops
+  // short of the plateau, where the exact contact covers nearly all the rigid overlap), pmax 9.6 %
+  // low (4 % with continuous_region = false), the patch narrower than exact's.
   const WheelContactGeometry geo = atFirstTouch(WheelSide::kRight, a22Right(0.5));
-  NormalOptions o;
-  o.continuous_region = true;
-  const WheelNormal w = solveWheelLoad(geo, kLoad, kG, kNu, o);
+  const WheelNormal w = solveWheelLoad(geo, kLoad, kG, kNu);
   ASSERT_EQ(w.status, NormalStatus::kOk) << w.message;
   EXPECT_TRUE(w.message.empty()) << w.message;  // no jump
   const NormalPatch& p = w.patches.at(geo.closest);
@@ -298,16 +299,14 @@ TEST(PatchNormal, ContinuousRegionOnTheTreadPlateauAgainstExact) {
 }
 
 TEST(PatchNormal, ContinuousRegionKeepsTheConvexPatches) {
-  // Elsewhere on continuous_region changes little: on the right wheel's states with a
-  // strips patch beyond the plateau, at the load, against the exact solver at the same approach
-  // (40 x 40), fn within 2 % and pmax within 3 % on every loaded patch (measured: fn -1.4 % and
-  // pmax -1.3 % at 1 mm, where the default has +0.4 % and -4.1 %; within 0.6 % and 1.3 % at the
-  // others). Hertz's patches do not depend on it.
+  // Elsewhere on continuous_region (default) changes little: on the right wheel's states
+  // with a strips patch beyond the plateau, at the load, against the exact solver at the same
+  // approach (40 x 40), fn within 2 % and pmax within 3 % on every loaded patch (measured: fn
+  // -1.4 % and pmax -1.3 % at 1 mm, where continuous_region = false has +0.4 % and -4.1 %; within
+  // 0.6 % and 1.3 % at the others). Hertz's patches do not depend on it.
   for (double y : {1.0, 4.5, 5.0, 6.0, 6.5}) {
     const WheelContactGeometry geo = atFirstTouch(WheelSide::kRight, a22Right(y));
-    NormalOptions o;
-    o.continuous_region = true;
-    const WheelNormal w = solveWheelLoad(geo, kLoad, kG, kNu, o);
+    const WheelNormal w = solveWheelLoad(geo, kLoad, kG, kNu);
     ASSERT_EQ(w.status, NormalStatus::kOk) << y << " " << w.message;
     for (std::size_t i = 0; i < w.patches.size(); ++i) {
       const NormalPatch& p = w.patches[i];
@@ -328,8 +327,7 @@ TEST(PatchNormal, A22CentredTreadsMergeAcrossTheirRidge) {
   // within 8 % and pmax within 4 % (measured +6.2 % and -2.6 %: the lumps' semi-elliptic strips
   // stop at the ridge, where the exact pressure passes over it); at the load pmax within 6 %
   // (measured -4.3 %) and the approach within 5 % (measured -3.5 %); the lateral edges within
-  // 0.3 mm at both. One strip patch over both lumps (solvePatchNormal on the merged gap) has fn
-  // some 40 % high at the same approach: the lumps must do better.
+  // 0.3 mm at both.
   const BenchmarkState s = benchmarkState(0.0);
   ASSERT_EQ(s.wheel.status, NormalStatus::kOk) << s.wheel.message;
   ASSERT_EQ(s.geo.candidates.size(), 2u);
@@ -355,8 +353,20 @@ TEST(PatchNormal, A22CentredTreadsMergeAcrossTheirRidge) {
   EXPECT_NEAR(patch.pmax, e.pmax, 0.04 * e.pmax);
   EXPECT_NEAR(patch.eta_min, e.eta_min, 3e-4);
   EXPECT_NEAR(patch.eta_max, e.eta_max, 3e-4);
+  // One strip patch over both lumps (solvePatchNormal on the merged gap): without
+  // continuous_region its region spreads past the ridge and fn is some 30 % high (measured
+  // +30.3 %), the lumps must do better; with it (the default) the one patch is as near exact as
+  // the lumps (measured fn -5.3 %, pmax -1.0 %, edges 0.09 mm outside and 0.28 mm inside), within
+  // the lumps' bounds.
+  NormalOptions kpec;
+  kpec.continuous_region = false;
+  const NormalPatch single_kpec = solvePatchNormal(merged, patch.approach, kG, kNu, kpec);
+  EXPECT_GT(std::abs(single_kpec.fn - e.fn), 2.0 * std::abs(patch.fn - e.fn));
   const NormalPatch single = solvePatchNormal(merged, patch.approach, kG, kNu);
-  EXPECT_GT(std::abs(single.fn - e.fn), 2.0 * std::abs(patch.fn - e.fn));
+  EXPECT_NEAR(single.fn, e.fn, 0.08 * e.fn);
+  EXPECT_NEAR(single.pmax, e.pmax, 0.04 * e.pmax);
+  EXPECT_NEAR(single.eta_min, e.eta_min, 3e-4);
+  EXPECT_NEAR(single.eta_max, e.eta_max, 3e-4);
 
   // The exact approach that carries the load (secant from the method's).
   const double nz = merged.normal.y();

@@ -707,14 +707,18 @@ TEST(WheelsetContact, APatchMovingOnItsRailKeepsItsHistory) {
   // The tread patch at 0.5 mm (non-Hertzian: strips) as the wheelset drifts 0.4 mm sideways over
   // 40 steps of 2 mm rolled (shorter than the patch, 5.4 mm): its contact point moves on the rail
   // and nss carries the history on the rail's profile, never restarting from rest (said in the
-  // message). The patch itself changes at once where the strips spread over the tread's plateau
-  // (b 3 -> 6.5 mm -> 3.6 mm in three steps, doc/normal_problem.md); from step to step nss's force
-  // moves by at most 4 % of mu fn more than its steady limit's (steady, calibrated as nss) does
-  // (measured 3.0 %).
+  // message). With NormalOptions::continuous_region = false the patch itself changes at once
+  // where the strips spread over the tread's plateau (b 3 -> 6.5 mm -> 3.6 mm in three steps,
+  // doc/normal_problem.md): the hardest case for the history, kept here on purpose (by default b
+  // shrinks smoothly, 3.0 to 1.9 mm, and nss's steps exceed the limit's by some 0.1 % of mu fn);
+  // from step to step nss's force moves by at most 4 % of mu fn more than its steady limit's
+  // (steady, calibrated as nss) does (measured 3.0 %).
   ContactParameters steadyParameters = parameters("steady");
   steadyParameters.fastsim = FastSimVariant::kCalibrated;
-  WheelsetContact c(WheelsetTrackData{}, parameters("nss")),
-      limit(WheelsetTrackData{}, steadyParameters);
+  WheelsetContactOptions jumping;
+  jumping.normal.continuous_region = false;
+  WheelsetContact c(WheelsetTrackData{}, parameters("nss"), jumping),
+      limit(WheelsetTrackData{}, steadyParameters, jumping);
   WheelsetState s = tread();
   const double dt = 1e-3;  // 2 mm at 2 m/s
   double fx = 0.0, fs = 0.0, lx = 0.0, ls = 0.0;

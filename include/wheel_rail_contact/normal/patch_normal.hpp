@@ -29,7 +29,8 @@
 ///   p = P sqrt(L^2 - x^2) over |x| < L(eta) = sqrt((eps d0 - h(0, eta) + h(0, eta0)) 2 R_x(eta)),
 ///   and the one amplitude P makes the elastic (Boussinesq) displacement at (0, eta0) equal d0.
 ///   On a Hertz gap this region is Hertz's ellipse and the pressure Hertz's.
-/// - NormalOptions::continuous_region: the same with cl, cr the half-widths of the parabola with
+/// - NormalOptions::continuous_region (default): the same with cl, cr the half-widths of the
+/// parabola with
 ///   the gap's interpenetration area at depth d0/2 on that side of eta0,
 ///   cl = (3/d0) int_{eta<eta0} max(0, d0/2 - h(0, eta) + h(0, eta0)) d eta (likewise cr; on a
 ///   parabola its extent), ymid = eta0 + (cr - cl)/2, eps held at B bb^2 beyond ymid +- bb where
@@ -37,15 +38,16 @@
 ///   h - h0 < eps d0 (the parts' ends where that quadratic less the gap's line crosses zero),
 ///   n strips of equal width laid along the parts one after the other. fn, the region's edges and
 ///   the strips then move continuously with the approach, and fn grows monotonically on the
-///   states measured (0.5 to 6.5 mm). By default, beside a tread's plateau (A-2.2 at 0.5 mm) the
-///   extent runs over the plateau within a fraction of a micrometre of approach, and the region
-///   around eta0 jumps over it when the penetration's dip between fills: fn jumps up and down in
-///   the approach. doc/normal_problem.md says what the option costs in accuracy there.
+///   states measured (0.5 to 6.5 mm). Without it (continuous_region = false), beside a tread's
+///   plateau (A-2.2 at 0.5 mm) the extent runs over the plateau within a fraction of a micrometre
+///   of approach, and the region around eta0 jumps over it when the penetration's dip between
+///   fills: fn jumps up and down in the approach, which is why it is not the default.
+///   doc/normal_problem.md says what each costs in accuracy there.
 ///
 /// Where it is weak: a gap with a plateau or two lumps under one candidate (near-conformal tread
 /// contact): the exact contact spreads over nearly all of the plateau's rigid overlap, the
 /// penetration factor, falling away from ymid, stops short of it: fn at a given approach some
-/// 30 % low on the Manchester benchmark at 0.5 mm (23 % with continuous_region; the patch's
+/// 23 % low on the Manchester benchmark at 0.5 mm (30 % without continuous_region; the patch's
 /// message flags a gap that turns concave under the patch, status staying kOk); conformal contact
 /// (a flange root hugging the gauge corner, worn profiles), where the half-space and the single
 /// contact plane fail as well; very short patches (a << b), where the one displacement condition
@@ -117,9 +119,10 @@ struct NormalOptions {
   bool allow_hertz = true;  ///< false: the strip method on every patch (for checks)
   /// The strips' half-widths from the interpenetration's area and their region every part where
   /// the penetration is positive (the method above): fn continuous and monotonic in the approach
-  /// beside a tread's plateau, where by default it jumps; on A-2.2's plateau (0.5 mm) pmax some
-  /// 7 % below exact's at the load against 1 % above by default (doc/normal_problem.md).
-  bool continuous_region = false;
+  /// beside a tread's plateau. false: KPEC's extent at d0/2 and the one region around eta0, whose
+  /// pmax on A-2.2's plateau (0.5 mm) is nearer exact's at the load (+0.8 % against -6.6 %) but
+  /// whose fn jumps by up to 92 % within 0.01 um of approach there (doc/normal_problem.md).
+  bool continuous_region = true;
   double load_tolerance = 1e-6;  ///< solveWheelLoad: relative error of the vertical load
   int max_iterations = 100;      ///< solveWheelLoad: iterations on the approach
   /// solveWheelLoad's warm start: its first trial's vertical approach beyond first touch [m],
