@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -700,10 +701,15 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
                        out.candidates.end());
   // In the search's order (field side to flange, s_wheel growing), which the normal problem's
   // merging of neighbours across their ridge relies on.
-  if (set.size() > corners[master].node->candidates.size())
-    std::stable_sort(
-        out.candidates.begin(), out.candidates.end(),
-        [](const ContactCandidate& a, const ContactCandidate& b) { return a.s_wheel < b.s_wheel; });
+  // An insertion sort: stable, and no temporary buffer for a handful of candidates (a lookup
+  // allocates nothing beyond its answer).
+  if (set.size() > corners[master].node->candidates.size()) {
+    const auto by_s = [](const ContactCandidate& a, const ContactCandidate& b) {
+      return a.s_wheel < b.s_wheel;
+    };
+    for (auto it = out.candidates.begin(); it != out.candidates.end(); ++it)
+      std::rotate(std::upper_bound(out.candidates.begin(), it, *it, by_s), it, std::next(it));
+  }
   for (std::size_t k = 0; k < out.candidates.size(); ++k)
     if (out.closest < 0 ||
         out.candidates[k].vertical_gap < out.candidates[out.closest].vertical_gap)
