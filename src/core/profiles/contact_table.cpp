@@ -131,16 +131,22 @@ struct ContactTable::Impl {
 
 namespace {
 
-/// The candidate of `others` that is `c` (within match_distance on both profiles), or null: a
-/// TableCandidate or a ContactCandidate, both with the arc lengths s_wheel and s_rail.
+/// Whether a and b are one candidate: within `distance` of each other on both profiles (a
+/// TableCandidate or a ContactCandidate, both with the arc lengths s_wheel and s_rail).
+template <class Candidate>
+bool samePlace(const Candidate& a, const Candidate& b, double distance) {
+  return std::abs(a.s_wheel - b.s_wheel) < distance && std::abs(a.s_rail - b.s_rail) < distance;
+}
+
+/// The candidate of `others` that is `c` (samePlace), the nearest if several, or null.
 template <class Candidate>
 const Candidate* match(const Candidate& c, const std::vector<Candidate>& others, double distance) {
   const Candidate* best = nullptr;
   double best_d = std::numeric_limits<double>::infinity();
   for (const Candidate& o : others) {
-    const double dw = std::abs(o.s_wheel - c.s_wheel), dr = std::abs(o.s_rail - c.s_rail);
-    if (dw < distance && dr < distance && dw + dr < best_d) {
-      best_d = dw + dr;
+    const double d = std::abs(o.s_wheel - c.s_wheel) + std::abs(o.s_rail - c.s_rail);
+    if (samePlace(o, c, distance) && d < best_d) {
+      best_d = d;
       best = &o;
     }
   }
@@ -452,10 +458,9 @@ WheelContactGeometry ContactTable::lookup(WheelSide side, const WheelsetPose& po
     if (q == master || !(corners[q].w > 1e-9)) continue;
     for (const TableCandidate& t : corners[q].node->candidates) {
       if (!(t.angle < so.tread_max_angle)) continue;
-      bool known = false;
-      for (const Member& s : set)
-        known = known || (std::abs(s.t->s_wheel - t.s_wheel) < options_.match_distance &&
-                          std::abs(s.t->s_rail - t.s_rail) < options_.match_distance);
+      const bool known = std::any_of(set.begin(), set.end(), [&](const Member& s) {
+        return samePlace(*s.t, t, options_.match_distance);
+      });
       if (!known) set.push_back({&t, q});
     }
   }
